@@ -1,0 +1,21 @@
+// The subcommands: run a case, check a case.
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace tc {
+
+struct RunOptions {
+  std::string case_path;
+  std::string out_dir;  // default: results/<case name>
+  bool force = false;
+  bool quiet = false;
+  std::vector<std::string> overrides;  // --set path=value
+};
+
+/// Exit codes: 0 success, 2 bad input (nothing written), 1 run failure (summary says why).
+int run_case(const RunOptions& options);
+int check_case(const RunOptions& options);
+
+}  // namespace tc

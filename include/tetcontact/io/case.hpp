@@ -1,0 +1,102 @@
+// Case files: YAML, SI units. The full schema with an example of every key is in
+// data/cases/README.md. load_case validates everything before anything runs.
+#pragma once
+
+#include <array>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "tetcontact/material/elastic.hpp"
+#include "tetcontact/mesh/mesh.hpp"
+
+namespace tc {
+
+/// Bad input in a case file or an override: the message reads
+/// "FILE:LINE:COL: key 'a.b.c': what is wrong" (or "--set a.b.c: ..." for an override).
+struct CaseError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+struct MeshSpec {
+  enum class Kind { box, plate, cylinder, sphere, file };
+  Kind kind = Kind::box;
+  Vec3 size = Vec3::Zero();           // box, plate
+  std::array<int, 3> cells{1, 1, 1};  // box
+  int cells_through_thickness = 0;    // plate
+  double radius = 0.0;                // cylinder, sphere
+  double height = 0.0;                // cylinder
+  int cells_across = 0;               // cylinder, sphere
+  int cells_axial = 0;                // cylinder
+  int split = 6;                      // 5, 6 or 12
+  std::string file;                   // file: path resolved against the case file's folder
+  std::string physical;               // file: physical volume name ("" = all tets)
+};
+
+struct TransformOp {
+  enum class Kind { translate, rotate, scale };
+  Kind kind = Kind::translate;
+  Vec3 vector = Vec3::Zero();  // translate offset or rotation axis
+  double value = 0.0;          // rotation angle (degrees) or scale factor
+};
+
+struct Region {  // axis-aligned box, inclusive
+  Vec3 min = Vec3::Zero();
+  Vec3 max = Vec3::Zero();
+};
+
+struct VelocityRegion {
+  Region region;
+  Vec3 velocity = Vec3::Zero();
+};
+
+struct BodySpec {
+  std::string name;
+  std::string material;
+  MeshSpec mesh;
+  std::vector<TransformOp> transform;
+  Vec3 velocity = Vec3::Zero();
+  std::vector<VelocityRegion> velocity_regions;
+};
+
+struct BoundarySpec {
+  std::string key;  // "boundary_conditions.N", for messages
+  std::string body;
+  std::optional<Region> region;
+  bool fixed = true;  // type: fixed (all listed components zero) or velocity
+  Vec3 velocity = Vec3::Zero();
+  std::array<bool, 3> components{true, true, true};
+};
+
+struct OutputSpec {
+  double interval = 0.0;  // simulated seconds between frames
+  std::vector<std::string> fields;
+  long history_every = 1;  // steps between history rows
+};
+
+struct Case {
+  std::string file;  // path as given
+  std::string name;
+  std::string description;
+  double end_time = 0.0;
+  double cfl = 0.5;
+  long max_steps = 10'000'000;
+  std::vector<Material> materials;
+  std::vector<BodySpec> bodies;
+  std::vector<BoundarySpec> boundary_conditions;
+  OutputSpec output;
+  bool contact = false;
+  bool fracture = false;
+
+  const Material& material(const std::string& name) const;
+};
+
+/// Output fields a case may ask for.
+const std::vector<std::string>& known_output_fields();
+
+/// Reads and validates a case file, applying `overrides` ("path.to.key=value", the value in
+/// YAML syntax; list entries are addressed by index: bodies.0.velocity=[1,0,0]) first.
+Case load_case(const std::string& path, const std::vector<std::string>& overrides = {});
+
+}  // namespace tc

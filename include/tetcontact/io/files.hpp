@@ -1,0 +1,40 @@
+// Output directories and atomic file writes.
+#pragma once
+
+#include <fstream>
+#include <stdexcept>
+#include <string>
+
+namespace tc {
+
+/// An output path that cannot be used (exists and is not empty, not writable): exit code 2.
+struct OutputError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+/// Creates `dir` (and parents). An existing non-empty directory is refused unless `force`,
+/// in which case the files a previous run wrote there (case.pvd, frame_*.vtu, history.csv,
+/// summary.json) are removed first so that no stale frame survives; other files are kept.
+void prepare_output_dir(const std::string& dir, bool force);
+
+/// Writes `content` to `path` through a temporary file renamed into place.
+void write_file_atomic(const std::string& path, const std::string& content);
+
+/// A file written incrementally under a temporary name and renamed on commit().
+class AtomicFile {
+ public:
+  explicit AtomicFile(std::string path);
+  ~AtomicFile();  // an uncommitted file is removed
+  std::ofstream& stream() { return out_; }
+  void commit();
+
+ private:
+  std::string path_, tmp_;
+  std::ofstream out_;
+  bool committed_ = false;
+};
+
+/// Shortest decimal form that reads back to the same double ("nan"/"inf" for non-finite).
+std::string format_double(double v);
+
+}  // namespace tc

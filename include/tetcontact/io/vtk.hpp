@@ -1,0 +1,21 @@
+// ParaView output: one VTK XML UnstructuredGrid (.vtu) per output time, and a .pvd series.
+#pragma once
+
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "tetcontact/solver/model.hpp"
+#include "tetcontact/solver/state.hpp"
+
+namespace tc {
+
+/// The .vtu text of the state at t^n. Point data: displacement, velocity (time-centred),
+/// body; cell data: stress (6 components xx, yy, zz, xy, yz, xz), pressure, von_mises, body —
+/// each only when listed in `fields`.
+std::string vtu_frame(const Model& model, const State& st, const std::vector<std::string>& fields);
+
+/// The .pvd collection: (time, file name) per frame.
+std::string pvd_series(const std::vector<std::pair<double, std::string>>& frames);
+
+}  // namespace tc

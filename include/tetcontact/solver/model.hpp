@@ -1,0 +1,37 @@
+// Everything the solver needs from a case, as plain data.
+#pragma once
+
+#include <array>
+#include <string>
+#include <vector>
+
+#include "tetcontact/material/elastic.hpp"
+#include "tetcontact/mesh/mesh.hpp"
+#include "tetcontact/mesh/surface.hpp"
+
+namespace tc {
+
+/// Prescribed velocity components on a set of nodes (a fixed node prescribes zero).
+struct VelocityConstraint {
+  std::string name;  // e.g. "boundary_conditions.0"
+  std::vector<Index> nodes;
+  std::array<bool, 3> components{true, true, true};
+  Vec3 velocity = Vec3::Zero();
+};
+
+struct Model {
+  Mesh mesh;
+  std::vector<Surface> surfaces;     // one per body
+  std::vector<Material> materials;   // distinct materials used
+  std::vector<Index> body_material;  // body → materials index
+  std::vector<VelocityConstraint> constraints;
+  std::vector<Vec3> initial_velocity;  // per node
+};
+
+struct SolverSettings {
+  double end_time = 0.0;
+  double cfl = 0.5;
+  long max_steps = 10'000'000;
+};
+
+}  // namespace tc

@@ -1,0 +1,78 @@
+// One explicit run: the step composed from the stages the case needs.
+#pragma once
+
+#include <chrono>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "tetcontact/diagnostics/balance.hpp"
+#include "tetcontact/solver/element.hpp"
+#include "tetcontact/solver/model.hpp"
+#include "tetcontact/solver/state.hpp"
+
+namespace tc {
+
+/// Seconds spent in each stage over the run, in pipeline order.
+struct StepProfile {
+  std::vector<std::pair<std::string, double>> stages;
+  double& operator[](const std::string& name);
+  double total() const;
+};
+
+/// A stage that looks at the complete state at t^n (positions, stresses, U^n and U^{n+1})
+/// once per step: output writers, diagnostics.
+class Observer {
+ public:
+  virtual ~Observer() = default;
+  virtual void observe(const State& st, const Sample& sample) = 0;
+};
+
+class Simulation {
+ public:
+  Simulation(Model model, SolverSettings settings);
+
+  /// One step t^n → t^{n+1}.
+  void step();
+  /// Samples the final time level (prediction only, nothing committed) so that observers see
+  /// it. Call once, after the last step. The run ends at the first step at or after end_time.
+  void finish();
+  bool done() const;
+
+  void add_observer(Observer* observer, const std::string& module_name);
+
+  const State& state() const { return state_; }
+  const Model& model() const { return model_; }
+  const SolverSettings& settings() const { return settings_; }
+  const Sample& first_sample() const { return first_; }
+  const Sample& last_sample() const { return last_; }
+  /// |kinetic + internal − boundary work − initial total| / energy scale, max over the run;
+  /// the scale is the largest of |initial total|, |boundary work| and kinetic + internal seen.
+  double balance_error_max() const { return balance_error_max_; }
+  double balance_error(const Sample& s) const;
+  const std::vector<std::string>& modules() const { return modules_; }
+  const StepProfile& profile() const { return profile_; }
+  Index critical_tet() const { return critical_tet_; }
+
+ private:
+  void predict_stage();
+  void sample_stage();
+  void output_stage();
+  void commit_stage();
+  void elements_stage();
+  [[noreturn]] void rethrow_with_body(const InvertedElement& e) const;
+
+  Model model_;
+  SolverSettings settings_;
+  State state_;
+  Sample first_, last_;
+  bool have_sample_ = false;
+  double energy_scale_ = 0.0;
+  double balance_error_max_ = 0.0;
+  Index critical_tet_ = -1;
+  std::vector<std::string> modules_;
+  std::vector<Observer*> observers_;
+  StepProfile profile_;
+};
+
+}  // namespace tc

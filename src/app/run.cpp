@@ -1,0 +1,266 @@
+#include "tetcontact/app/run.hpp"
+
+#include <unistd.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <sstream>
+
+#include "tetcontact/app/setup.hpp"
+#include "tetcontact/io/case.hpp"
+#include "tetcontact/io/files.hpp"
+#include "tetcontact/io/json.hpp"
+#include "tetcontact/io/output.hpp"
+#include "tetcontact/mesh/gmsh.hpp"
+#include "tetcontact/solver/simulation.hpp"
+
+namespace tc {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point t0) {
+  return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+std::string fmt(double v, const char* f = "%.4g") {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, f, v);
+  return buf;
+}
+
+std::string fmt3(const Vec3& v) {
+  return "[" + fmt(v.x()) + ", " + fmt(v.y()) + ", " + fmt(v.z()) + "]";
+}
+
+// Progress on stderr: a bar redrawn in place on a terminal, a line every 10% otherwise.
+class Progress {
+ public:
+  Progress(bool quiet, double end_time)
+      : quiet_(quiet), tty_(isatty(STDERR_FILENO)), end_(end_time), start_(Clock::now()) {}
+  void update(const State& st) {
+    if (quiet_) return;
+    const double wall = seconds_since(start_);
+    if (wall - last_ < (tty_ ? 0.2 : 5.0) && !(tty_ ? false : st.t >= next_mark_)) return;
+    last_ = wall;
+    const double frac = std::min(1.0, st.t / end_);
+    const double rate = st.step / std::max(wall, 1e-9);
+    const double eta = frac > 0 ? wall * (1.0 - frac) / frac : 0.0;
+    if (tty_) {
+      const int width = 30, filled = static_cast<int>(frac * width);
+      std::fprintf(stderr, "\r[%s%s] %5.1f%%  t = %.3e s  %.0f steps/s  ETA %.0f s ",
+                   std::string(filled, '#').c_str(), std::string(width - filled, '.').c_str(),
+                   100 * frac, st.t, rate, eta);
+    } else {
+      std::fprintf(stderr, "progress: %5.1f%%  t = %.3e s  step %ld  %.0f steps/s  ETA %.0f s\n",
+                   100 * frac, st.t, st.step, rate, eta);
+      while (next_mark_ <= st.t) next_mark_ += 0.1 * end_;
+    }
+  }
+  void done() {
+    if (!quiet_ && tty_) std::fprintf(stderr, "\r%80s\r", "");
+  }
+
+ private:
+  bool quiet_, tty_;
+  double end_;
+  Clock::time_point start_;
+  double last_ = -1e300, next_mark_ = 0.0;
+};
+
+Json summary_json(const Case& c, const Simulation& sim, const std::string& status, double wall) {
+  const Model& model = sim.model();
+  const State& st = sim.state();
+  const Sample& first = sim.first_sample();
+  const Sample& last = sim.last_sample();
+  Json j = Json::object();
+  j["schema"] = "tetcontact.summary/1";
+  j["case"] = c.name;
+  j["case_file"] = c.file;
+  j["status"] = status;
+  j["steps"] = st.step;
+  j["time"] = last.t;
+  j["end_time"] = c.end_time;
+  j["wall_seconds"] = wall;
+  Json modules = Json::array();
+  for (const std::string& m : sim.modules()) modules.push_back(m);
+  j["modules"] = modules;
+
+  Json& mesh = j["mesh"];
+  std::size_t faces = 0, edges = 0;
+  for (const Surface& s : model.surfaces) faces += s.faces.size(), edges += s.edges.size();
+  mesh["nodes"] = model.mesh.x.size();
+  mesh["tets"] = model.mesh.tets.size();
+  mesh["surface_faces"] = faces;
+  mesh["surface_edges"] = edges;
+
+  Json& timings = j["timings"];
+  for (const auto& [name, seconds] : sim.profile().stages) timings[name] = seconds;
+
+  Json& e = j["energy"];
+  e["kinetic"] = last.kinetic;
+  e["internal"] = last.internal;
+  e["contact_work"] = nullptr;  // no contact stage in this version: not measured
+  e["boundary_work"] = last.boundary_work;
+  e["total_initial"] = first.total;
+  e["total_final"] = last.total;
+  e["balance_error"] = last.balance_error;
+  e["balance_error_max"] = sim.balance_error_max();
+
+  Json& p = j["momentum"];
+  p["initial"] = first.momentum;
+  p["final"] = last.momentum;
+  p["boundary_impulse"] = last.boundary_impulse;
+  const double scale = std::max(first.momentum_scale, last.momentum_scale);
+  p["relative_error"] =
+      scale > 0 ? (last.momentum - first.momentum - last.boundary_impulse).norm() / scale : 0.0;
+
+  Json& mass = j["mass"];
+  mass["initial"] = first.mass;
+  mass["final"] = last.mass;
+
+  Json bodies = Json::array();
+  for (const BodyStats& b : body_stats(model, st)) {
+    Json o = Json::object();
+    o["name"] = b.name;
+    o["mass"] = b.mass;
+    o["velocity"] = b.velocity;
+    o["bbox_min"] = b.bbox_min;
+    o["bbox_max"] = b.bbox_max;
+    bodies.push_back(o);
+  }
+  j["bodies"] = bodies;
+
+  Json& ts = j["time_step"];
+  ts["last"] = last.dt;
+  ts["cfl"] = c.cfl;
+  ts["critical_tet"] = static_cast<long>(sim.critical_tet());
+
+  // Stages not in this version: null means "not measured", never zero.
+  Json& contact = j["contact"];
+  for (const char* k :
+       {"node_face", "edge_edge", "candidates", "first_time", "last_time", "max_force", "work"})
+    contact[k] = nullptr;
+  Json& pen = j["penetration"];
+  for (const char* k : {"max_depth", "max_depth_over_h", "max_crossings"}) pen[k] = nullptr;
+  return j;
+}
+
+void print_table(const Case& c, const Simulation& sim, const std::string& status,
+                 const std::string& dir, std::size_t frames, double wall) {
+  const Sample& first = sim.first_sample();
+  const Sample& last = sim.last_sample();
+  std::ostringstream os;
+  os << "tetcontact " << TETCONTACT_VERSION << " — case " << c.name << "\n";
+  os << "  status     " << status << "\n";
+  os << "  steps      " << sim.state().step << "   t = " << fmt(last.t) << " s   wall "
+     << fmt(wall, "%.3f") << " s\n";
+  os << "  energy     initial " << fmt(first.total, "%.6g") << " J   final "
+     << fmt(last.total, "%.6g") << " J   boundary work " << fmt(last.boundary_work, "%.4g")
+     << " J   balance error " << fmt(last.balance_error, "%.2e") << " (max "
+     << fmt(sim.balance_error_max(), "%.2e") << ")\n";
+  os << "  momentum   initial " << fmt3(first.momentum) << "   final " << fmt3(last.momentum)
+     << " kg m/s\n";
+  for (const BodyStats& b : body_stats(sim.model(), sim.state()))
+    os << "  body       " << b.name << ": mass " << fmt(b.mass) << " kg, velocity "
+       << fmt3(b.velocity) << " m/s, bbox " << fmt3(b.bbox_min) << " – " << fmt3(b.bbox_max)
+       << " m\n";
+  const double total = sim.profile().total();
+  os << "  timings   ";
+  for (const auto& [name, s] : sim.profile().stages)
+    os << " " << name << " " << fmt(s, "%.3f") << " s ("
+       << fmt(100 * s / std::max(total, 1e-300), "%.0f") << "%)";
+  os << "\n  output     " << dir << "/ (case.pvd with " << frames
+     << " frames, history.csv, summary.json)\n";
+  std::cout << os.str();
+}
+
+// Reads the case and builds the model; any bad input becomes one line on stderr and exit 2.
+template <class F>
+int with_bad_input_guard(F&& body) {
+  try {
+    return body();
+  } catch (const CaseError& e) {
+    std::cerr << "tetcontact: error: " << e.what() << "\n";
+  } catch (const SetupError& e) {
+    std::cerr << "tetcontact: error: " << e.what() << "\n";
+  } catch (const OutputError& e) {
+    std::cerr << "tetcontact: error: " << e.what() << "\n";
+  }
+  return 2;
+}
+
+}  // namespace
+
+int check_case(const RunOptions& o) {
+  return with_bad_input_guard([&] {
+    const Case c = load_case(o.case_path, o.overrides);
+    std::vector<std::string> notes;
+    Model model = build_model(c, &notes);
+    for (const std::string& n : notes) std::cerr << "tetcontact: note: " << n << "\n";
+    const std::size_t nodes = model.mesh.x.size(), tets = model.mesh.tets.size();
+    std::vector<std::string> names;
+    for (const BodyRange& b : model.mesh.bodies) names.push_back(b.name);
+    try {
+      Simulation sim(std::move(model), solver_settings(c));
+      std::cout << c.file << ": ok — case '" << c.name << "', " << names.size() << " bodies, "
+                << nodes << " nodes, " << tets << " tets; first time step " << fmt(sim.state().dt)
+                << " s, about " << fmt(std::ceil(c.end_time / sim.state().dt), "%.0f")
+                << " steps to " << fmt(c.end_time) << " s\n";
+    } catch (const RunFailure& e) {
+      throw SetupError(c.file + ": " + e.what());
+    }
+    return 0;
+  });
+}
+
+int run_case(const RunOptions& o) {
+  Case c;
+  std::unique_ptr<Simulation> sim;
+  std::string dir;
+  const int setup = with_bad_input_guard([&] {
+    c = load_case(o.case_path, o.overrides);
+    std::vector<std::string> notes;
+    Model model = build_model(c, &notes);
+    if (!o.quiet)
+      for (const std::string& n : notes) std::cerr << "tetcontact: note: " << n << "\n";
+    try {
+      sim = std::make_unique<Simulation>(std::move(model), solver_settings(c));
+    } catch (const RunFailure& e) {  // an element inverted in the initial geometry
+      throw SetupError(c.file + ": " + e.what());
+    }
+    dir = o.out_dir.empty() ? "results/" + c.name : o.out_dir;
+    prepare_output_dir(dir, o.force);  // only now, when the input is known to be good
+    return 0;
+  });
+  if (setup != 0) return setup;
+
+  const auto t0 = Clock::now();
+  OutputWriter writer(sim->model(), c.output, dir, c.end_time, &sim->profile());
+  sim->add_observer(&writer, "output:vtu+history");
+  Progress progress(o.quiet, c.end_time);
+  std::string status = "ok";
+  int code = 0;
+  try {
+    while (!sim->done()) {
+      sim->step();
+      progress.update(sim->state());
+    }
+    sim->finish();
+  } catch (const RunFailure& e) {
+    status = std::string("failed: ") + e.what();
+    code = 1;
+  }
+  progress.done();
+  writer.close();
+  const double wall = seconds_since(t0);
+  write_file_atomic(dir + "/summary.json", summary_json(c, *sim, status, wall).dump());
+  if (!o.quiet || code != 0) print_table(c, *sim, status, dir, writer.frames(), wall);
+  if (code != 0) std::cerr << "tetcontact: run failed: " << status.substr(8) << "\n";
+  return code;
+}
+
+}  // namespace tc

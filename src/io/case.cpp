@@ -1,0 +1,529 @@
+#include "tetcontact/io/case.hpp"
+
+#include <yaml-cpp/yaml.h>
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <filesystem>
+#include <set>
+#include <sstream>
+
+namespace tc {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::size_t edit_distance(const std::string& a, const std::string& b) {
+  std::vector<std::size_t> row(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    std::size_t diag = row[0];
+    row[0] = i;
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      const std::size_t up = row[j];
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diag + (a[i - 1] != b[j - 1])});
+      diag = up;
+    }
+  }
+  return row[b.size()];
+}
+
+std::string join(const std::string& path, const std::string& key) {
+  return path.empty() ? key : path + "." + key;
+}
+
+// Validation context: the file, and which key paths came from --set.
+class Reader {
+ public:
+  Reader(std::string file, std::set<std::string> overridden)
+      : file_(std::move(file)), overridden_(std::move(overridden)) {}
+
+  [[noreturn]] void fail(const YAML::Node& node, const std::string& path,
+                         const std::string& msg) const {
+    std::ostringstream os;
+    for (const std::string& o : overridden_)
+      if (path == o || path.rfind(o + ".", 0) == 0) {
+        os << file_ << ": --set " << o << ": key '" << path << "': " << msg;
+        throw CaseError(os.str());
+      }
+    const YAML::Mark mark = node.Mark();
+    os << file_;
+    if (mark.line >= 0) os << ":" << mark.line + 1 << ":" << mark.column + 1;
+    os << ": key '" << (path.empty() ? "(top level)" : path) << "': " << msg;
+    throw CaseError(os.str());
+  }
+
+  void map(const YAML::Node& node, const std::string& path) const {
+    if (!node.IsMap()) fail(node, path, "expected a mapping (key: value pairs)");
+  }
+
+  // Unknown and duplicate keys.
+  void keys(const YAML::Node& node, const std::string& path,
+            const std::vector<std::string>& allowed) const {
+    map(node, path);
+    std::set<std::string> seen;
+    for (auto it = node.begin(); it != node.end(); ++it) {
+      const std::string key = it->first.Scalar();
+      if (!seen.insert(key).second) fail(it->first, join(path, key), "duplicate key");
+      if (std::find(allowed.begin(), allowed.end(), key) == allowed.end()) {
+        std::string best;
+        std::size_t best_d = 3;
+        for (const std::string& a : allowed)
+          if (std::size_t d = edit_distance(key, a); d < best_d) best_d = d, best = a;
+        std::string msg = "unknown key";
+        if (!best.empty()) msg += " (did you mean '" + best + "'?)";
+        msg += "; allowed here: ";
+        for (std::size_t i = 0; i < allowed.size(); ++i) msg += (i ? ", " : "") + allowed[i];
+        fail(it->first, join(path, key), msg);
+      }
+    }
+  }
+
+  YAML::Node require(const YAML::Node& node, const std::string& path,
+                     const std::string& key) const {
+    map(node, path);
+    const YAML::Node child = node[key];
+    if (!child) fail(node, join(path, key), "missing required key");
+    return child;
+  }
+
+  double number(const YAML::Node& node, const std::string& path) const {
+    if (!node.IsScalar()) fail(node, path, "expected a number");
+    const std::string& s = node.Scalar();
+    double v = 0.0;
+    auto [p, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
+    if (ec != std::errc() || p != s.data() + s.size() || s.empty())
+      fail(node, path, "expected a number, got '" + s + "'");
+    if (!std::isfinite(v)) fail(node, path, "must be finite, got '" + s + "'");
+    return v;
+  }
+
+  long integer(const YAML::Node& node, const std::string& path) const {
+    if (!node.IsScalar()) fail(node, path, "expected an integer");
+    const std::string& s = node.Scalar();
+    long v = 0;
+    auto [p, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
+    if (ec != std::errc() || p != s.data() + s.size() || s.empty())
+      fail(node, path, "expected an integer, got '" + s + "'");
+    return v;
+  }
+
+  std::string string(const YAML::Node& node, const std::string& path) const {
+    if (!node.IsScalar()) fail(node, path, "expected a string");
+    return node.Scalar();
+  }
+
+  bool boolean(const YAML::Node& node, const std::string& path) const {
+    const std::string s = node.IsScalar() ? node.Scalar() : "";
+    if (s == "true") return true;
+    if (s == "false") return false;
+    fail(node, path, "expected true or false");
+  }
+
+  Vec3 vec3(const YAML::Node& node, const std::string& path) const {
+    if (!node.IsSequence() || node.size() != 3)
+      fail(node, path, "expected a list of three numbers [x, y, z]");
+    Vec3 v;
+    for (int i = 0; i < 3; ++i) v[i] = number(node[i], join(path, std::to_string(i)));
+    return v;
+  }
+
+  double positive(const YAML::Node& node, const std::string& path, const char* unit) const {
+    const double v = number(node, path);
+    if (!(v > 0.0))
+      fail(node, path, "must be positive (" + std::string(unit) + "), got " + node.Scalar());
+    return v;
+  }
+
+  int count(const YAML::Node& node, const std::string& path, long lo, long hi) const {
+    const long v = integer(node, path);
+    if (v < lo || v > hi)
+      fail(node, path,
+           "must be in [" + std::to_string(lo) + ", " + std::to_string(hi) + "], got " +
+               std::to_string(v));
+    return static_cast<int>(v);
+  }
+
+ private:
+  std::string file_;
+  std::set<std::string> overridden_;
+};
+
+// --set path.to.key=value: navigate (creating maps where keys are missing) and assign.
+std::string apply_override(YAML::Node root, const std::string& file, const std::string& text) {
+  const auto eq = text.find('=');
+  auto bad = [&](const std::string& msg) -> CaseError {
+    return CaseError(file + ": --set " + text + ": " + msg);
+  };
+  if (eq == std::string::npos || eq == 0) throw bad("expected path.to.key=value");
+  const std::string path = text.substr(0, eq), value = text.substr(eq + 1);
+  std::vector<std::string> segs;
+  std::stringstream ss(path);
+  for (std::string seg; std::getline(ss, seg, '.');) {
+    if (seg.empty()) throw bad("empty key in path '" + path + "'");
+    segs.push_back(seg);
+  }
+  YAML::Node parsed;
+  try {
+    parsed = YAML::Load(value);
+  } catch (const YAML::Exception& e) {
+    throw bad("cannot parse value '" + value + "' as YAML: " + e.msg);
+  }
+  if (!parsed || parsed.IsNull()) throw bad("empty value");
+
+  YAML::Node cur = root;
+  std::string walked;
+  for (std::size_t i = 0; i < segs.size(); ++i) {
+    const std::string& seg = segs[i];
+    const bool last = i + 1 == segs.size();
+    YAML::Node next;
+    if (cur.IsSequence()) {
+      long idx = -1;
+      auto [p, ec] = std::from_chars(seg.data(), seg.data() + seg.size(), idx);
+      if (ec != std::errc() || p != seg.data() + seg.size() || idx < 0 ||
+          static_cast<std::size_t>(idx) >= cur.size())
+        throw bad("'" + walked + "' is a list of " + std::to_string(cur.size()) + " entries; '" +
+                  seg + "' is not an index into it");
+      next.reset(cur[static_cast<std::size_t>(idx)]);
+      if (last) {
+        cur[static_cast<std::size_t>(idx)] = parsed;
+        return path;
+      }
+    } else if (cur.IsMap() || cur.IsNull() || !cur.IsDefined()) {
+      if (last) {
+        cur[seg] = parsed;
+        return path;
+      }
+      if (!cur[seg]) cur[seg] = YAML::Node(YAML::NodeType::Map);
+      next.reset(cur[seg]);
+    } else {
+      throw bad("'" + walked + "' is a value, not a mapping or list");
+    }
+    walked = join(walked, seg);
+    cur.reset(next);
+  }
+  return path;
+}
+
+Region parse_region(const Reader& r, const YAML::Node& n, const std::string& path,
+                    const std::vector<std::string>& extra_keys = {}) {
+  std::vector<std::string> allowed{"min", "max"};
+  allowed.insert(allowed.end(), extra_keys.begin(), extra_keys.end());
+  r.keys(n, path, allowed);
+  Region reg;
+  reg.min = r.vec3(r.require(n, path, "min"), join(path, "min"));
+  reg.max = r.vec3(r.require(n, path, "max"), join(path, "max"));
+  for (int i = 0; i < 3; ++i)
+    if (reg.min[i] > reg.max[i]) r.fail(n, path, "min must not exceed max in any coordinate");
+  return reg;
+}
+
+int parse_split(const Reader& r, const YAML::Node& n, const std::string& path) {
+  if (!n[std::string("split")]) return 6;
+  const std::string p = join(path, "split");
+  const long s = r.integer(n["split"], p);
+  if (s != 5 && s != 6 && s != 12)
+    r.fail(n["split"], p, "hex split must be 5, 6 or 12, got " + std::to_string(s));
+  return static_cast<int>(s);
+}
+
+MeshSpec parse_mesh(const Reader& r, const YAML::Node& n, const std::string& path,
+                    const fs::path& case_dir) {
+  r.keys(n, path, {"box", "plate", "cylinder", "sphere", "file"});
+  if (n.size() != 1)
+    r.fail(n, path, "give exactly one mesh source: box, plate, cylinder, sphere or file");
+  const std::string kind = n.begin()->first.Scalar();
+  const YAML::Node g = n.begin()->second;
+  const std::string gp = join(path, kind);
+  MeshSpec m;
+  auto cells3 = [&](const YAML::Node& c, const std::string& p) {
+    if (!c.IsSequence() || c.size() != 3) r.fail(c, p, "expected three cell counts [nx, ny, nz]");
+    std::array<int, 3> out;
+    for (int i = 0; i < 3; ++i) out[i] = r.count(c[i], join(p, std::to_string(i)), 1, 4096);
+    return out;
+  };
+  auto size3 = [&](const YAML::Node& s, const std::string& p) {
+    const Vec3 v = r.vec3(s, p);
+    if (!(v.minCoeff() > 0.0)) r.fail(s, p, "sizes must be positive (m)");
+    return v;
+  };
+  if (kind == "box") {
+    m.kind = MeshSpec::Kind::box;
+    r.keys(g, gp, {"size", "cells", "split"});
+    m.size = size3(r.require(g, gp, "size"), join(gp, "size"));
+    m.cells = cells3(r.require(g, gp, "cells"), join(gp, "cells"));
+    m.split = parse_split(r, g, gp);
+  } else if (kind == "plate") {
+    m.kind = MeshSpec::Kind::plate;
+    r.keys(g, gp, {"size", "cells_through_thickness", "split"});
+    m.size = size3(r.require(g, gp, "size"), join(gp, "size"));
+    m.cells_through_thickness = r.count(r.require(g, gp, "cells_through_thickness"),
+                                        join(gp, "cells_through_thickness"), 1, 4096);
+    m.split = parse_split(r, g, gp);
+  } else if (kind == "cylinder" || kind == "sphere") {
+    const bool cyl = kind == "cylinder";
+    m.kind = cyl ? MeshSpec::Kind::cylinder : MeshSpec::Kind::sphere;
+    if (cyl)
+      r.keys(g, gp, {"radius", "height", "cells_across", "cells_axial", "split"});
+    else
+      r.keys(g, gp, {"radius", "cells_across", "split"});
+    m.radius = r.positive(r.require(g, gp, "radius"), join(gp, "radius"), "m");
+    m.cells_across = r.count(r.require(g, gp, "cells_across"), join(gp, "cells_across"), 1, 4096);
+    if (cyl) {
+      m.height = r.positive(r.require(g, gp, "height"), join(gp, "height"), "m");
+      m.cells_axial = r.count(r.require(g, gp, "cells_axial"), join(gp, "cells_axial"), 1, 4096);
+    }
+    m.split = parse_split(r, g, gp);
+    if (m.split != 6)
+      r.fail(g["split"], join(gp, "split"),
+             "a " + kind +
+                 " is offered with split 6 only (5 and 12 put slivers in the "
+                 "wedge-shaped cells under its curved surface)");
+  } else {
+    m.kind = MeshSpec::Kind::file;
+    std::string rel;
+    if (g.IsScalar()) {
+      rel = r.string(g, gp);
+    } else {
+      r.keys(g, gp, {"path", "physical"});
+      rel = r.string(r.require(g, gp, "path"), join(gp, "path"));
+      if (g["physical"]) m.physical = r.string(g["physical"], join(gp, "physical"));
+    }
+    const fs::path p =
+        (fs::path(rel).is_absolute() ? fs::path(rel) : case_dir / rel).lexically_normal();
+    if (!fs::is_regular_file(p)) r.fail(g, gp, "mesh file not found: " + p.string());
+    m.file = p.string();
+  }
+  return m;
+}
+
+std::vector<TransformOp> parse_transform(const Reader& r, const YAML::Node& n,
+                                         const std::string& path) {
+  if (!n.IsSequence())
+    r.fail(n, path, "expected a list of operations, e.g. [{scale: 0.001}, {translate: [0,0,0]}]");
+  std::vector<TransformOp> ops;
+  for (std::size_t i = 0; i < n.size(); ++i) {
+    const std::string p = join(path, std::to_string(i));
+    const YAML::Node op = n[i];
+    r.keys(op, p, {"translate", "rotate", "scale"});
+    if (op.size() != 1) r.fail(op, p, "one operation per list entry");
+    const std::string kind = op.begin()->first.Scalar();
+    const YAML::Node v = op.begin()->second;
+    const std::string vp = join(p, kind);
+    TransformOp t;
+    if (kind == "translate") {
+      t.kind = TransformOp::Kind::translate;
+      t.vector = r.vec3(v, vp);
+    } else if (kind == "scale") {
+      t.kind = TransformOp::Kind::scale;
+      t.value = r.positive(v, vp, "dimensionless factor");
+    } else {
+      t.kind = TransformOp::Kind::rotate;
+      r.keys(v, vp, {"axis", "degrees"});
+      t.vector = r.vec3(r.require(v, vp, "axis"), join(vp, "axis"));
+      if (t.vector.norm() == 0.0) r.fail(v["axis"], join(vp, "axis"), "axis must be non-zero");
+      t.value = r.number(r.require(v, vp, "degrees"), join(vp, "degrees"));
+    }
+    ops.push_back(t);
+  }
+  return ops;
+}
+
+}  // namespace
+
+const std::vector<std::string>& known_output_fields() {
+  static const std::vector<std::string> f = {"displacement", "velocity", "stress",
+                                             "pressure",     "body",     "von_mises"};
+  return f;
+}
+
+const Material& Case::material(const std::string& n) const {
+  for (const Material& m : materials)
+    if (m.name == n) return m;
+  throw CaseError(file + ": unknown material '" + n + "'");
+}
+
+Case load_case(const std::string& path, const std::vector<std::string>& overrides) {
+  if (!fs::exists(path)) throw CaseError(path + ": case file not found");
+  if (!fs::is_regular_file(path)) throw CaseError(path + ": not a regular file");
+  YAML::Node root;
+  try {
+    root = YAML::LoadFile(path);
+  } catch (const YAML::ParserException& e) {
+    std::ostringstream os;
+    os << path << ":" << e.mark.line + 1 << ":" << e.mark.column + 1
+       << ": YAML syntax error: " << e.msg;
+    throw CaseError(os.str());
+  } catch (const YAML::Exception& e) {
+    throw CaseError(path + ": cannot read case file: " + e.msg);
+  }
+  if (!root || root.IsNull()) throw CaseError(path + ": empty case file");
+  std::set<std::string> overridden;
+  for (const std::string& o : overrides) overridden.insert(apply_override(root, path, o));
+
+  const Reader r(path, overridden);
+  const fs::path case_dir = fs::absolute(path).parent_path();
+  Case c;
+  c.file = path;
+  r.keys(root, "",
+         {"name", "description", "end_time", "solver", "materials", "bodies", "boundary_conditions",
+          "output", "contact", "fracture"});
+  c.name = root["name"] ? r.string(root["name"], "name") : fs::path(path).stem().string();
+  if (root["description"]) c.description = r.string(root["description"], "description");
+  c.end_time = r.positive(r.require(root, "", "end_time"), "end_time", "s");
+
+  if (const YAML::Node s = root["solver"]) {
+    r.keys(s, "solver", {"cfl", "max_steps"});
+    if (s["cfl"]) {
+      c.cfl = r.number(s["cfl"], "solver.cfl");
+      if (!(c.cfl > 0.0 && c.cfl <= 1.0))
+        r.fail(s["cfl"], "solver.cfl", "CFL factor must be in (0, 1], got " + s["cfl"].Scalar());
+    }
+    if (s["max_steps"]) {
+      c.max_steps = r.integer(s["max_steps"], "solver.max_steps");
+      if (c.max_steps < 1) r.fail(s["max_steps"], "solver.max_steps", "must be at least 1");
+    }
+  }
+
+  // Materials.
+  const YAML::Node mats = r.require(root, "", "materials");
+  r.map(mats, "materials");
+  if (mats.size() == 0) r.fail(mats, "materials", "define at least one material");
+  for (auto it = mats.begin(); it != mats.end(); ++it) {
+    const std::string name = it->first.Scalar();
+    const std::string p = join("materials", name);
+    const YAML::Node m = it->second;
+    r.keys(m, p, {"density", "youngs_modulus", "poisson_ratio"});
+    Material mat;
+    mat.name = name;
+    mat.density = r.positive(r.require(m, p, "density"), join(p, "density"), "kg/m^3");
+    mat.youngs_modulus =
+        r.positive(r.require(m, p, "youngs_modulus"), join(p, "youngs_modulus"), "Pa");
+    const YAML::Node nu = r.require(m, p, "poisson_ratio");
+    mat.poisson_ratio = r.number(nu, join(p, "poisson_ratio"));
+    if (!(mat.poisson_ratio > -1.0 && mat.poisson_ratio < 0.5))
+      r.fail(nu, join(p, "poisson_ratio"),
+             "Poisson's ratio must be in (-1, 0.5), got " + nu.Scalar());
+    for (const Material& other : c.materials)
+      if (other.name == name) r.fail(it->first, p, "duplicate material name");
+    c.materials.push_back(mat);
+  }
+
+  // Bodies.
+  const YAML::Node bodies = r.require(root, "", "bodies");
+  if (!bodies.IsSequence() || bodies.size() == 0)
+    r.fail(bodies, "bodies", "expected a non-empty list of bodies");
+  for (std::size_t i = 0; i < bodies.size(); ++i) {
+    const std::string p = join("bodies", std::to_string(i));
+    const YAML::Node b = bodies[i];
+    r.keys(b, p, {"name", "material", "mesh", "transform", "velocity", "velocity_regions"});
+    BodySpec body;
+    body.name = r.string(r.require(b, p, "name"), join(p, "name"));
+    for (const BodySpec& other : c.bodies)
+      if (other.name == body.name) r.fail(b["name"], join(p, "name"), "duplicate body name");
+    const YAML::Node mat = r.require(b, p, "material");
+    body.material = r.string(mat, join(p, "material"));
+    if (std::none_of(c.materials.begin(), c.materials.end(),
+                     [&](const Material& m) { return m.name == body.material; }))
+      r.fail(mat, join(p, "material"), "no material named '" + body.material + "' in materials");
+    body.mesh = parse_mesh(r, r.require(b, p, "mesh"), join(p, "mesh"), case_dir);
+    if (b["transform"]) body.transform = parse_transform(r, b["transform"], join(p, "transform"));
+    if (b["velocity"]) body.velocity = r.vec3(b["velocity"], join(p, "velocity"));
+    if (const YAML::Node vr = b["velocity_regions"]) {
+      const std::string vp = join(p, "velocity_regions");
+      if (!vr.IsSequence()) r.fail(vr, vp, "expected a list of {min, max, velocity}");
+      for (std::size_t k = 0; k < vr.size(); ++k) {
+        const std::string kp = join(vp, std::to_string(k));
+        VelocityRegion reg;
+        reg.region = parse_region(r, vr[k], kp, {"velocity"});
+        reg.velocity = r.vec3(r.require(vr[k], kp, "velocity"), join(kp, "velocity"));
+        body.velocity_regions.push_back(reg);
+      }
+    }
+    c.bodies.push_back(std::move(body));
+  }
+
+  // Boundary conditions.
+  if (const YAML::Node bcs = root["boundary_conditions"]) {
+    if (!bcs.IsSequence()) r.fail(bcs, "boundary_conditions", "expected a list");
+    for (std::size_t i = 0; i < bcs.size(); ++i) {
+      const std::string p = join("boundary_conditions", std::to_string(i));
+      const YAML::Node n = bcs[i];
+      r.keys(n, p, {"body", "region", "type", "velocity", "components"});
+      BoundarySpec bc;
+      bc.key = p;
+      const YAML::Node body = r.require(n, p, "body");
+      bc.body = r.string(body, join(p, "body"));
+      if (std::none_of(c.bodies.begin(), c.bodies.end(),
+                       [&](const BodySpec& b) { return b.name == bc.body; }))
+        r.fail(body, join(p, "body"), "no body named '" + bc.body + "'");
+      if (n["region"]) bc.region = parse_region(r, n["region"], join(p, "region"));
+      const YAML::Node type = r.require(n, p, "type");
+      const std::string t = r.string(type, join(p, "type"));
+      if (t != "fixed" && t != "velocity")
+        r.fail(type, join(p, "type"), "type must be 'fixed' or 'velocity', got '" + t + "'");
+      bc.fixed = t == "fixed";
+      if (bc.fixed && n["velocity"])
+        r.fail(n["velocity"], join(p, "velocity"), "a fixed condition takes no velocity");
+      if (!bc.fixed) bc.velocity = r.vec3(r.require(n, p, "velocity"), join(p, "velocity"));
+      if (const YAML::Node comp = n["components"]) {
+        const std::string cp = join(p, "components");
+        if (!comp.IsSequence() || comp.size() == 0)
+          r.fail(comp, cp, "expected a list of components, e.g. [x, z]");
+        bc.components = {false, false, false};
+        for (std::size_t k = 0; k < comp.size(); ++k) {
+          const std::string s = r.string(comp[k], join(cp, std::to_string(k)));
+          if (s != "x" && s != "y" && s != "z")
+            r.fail(comp[k], join(cp, std::to_string(k)), "component must be x, y or z");
+          bc.components[s[0] - 'x'] = true;
+        }
+      }
+      c.boundary_conditions.push_back(bc);
+    }
+  }
+
+  // Output.
+  c.output.interval = c.end_time / 20.0;
+  c.output.fields = {"displacement", "velocity", "stress", "pressure", "body"};
+  if (const YAML::Node o = root["output"]) {
+    r.keys(o, "output", {"interval", "fields", "history_every"});
+    if (o["interval"]) c.output.interval = r.positive(o["interval"], "output.interval", "s");
+    if (o["history_every"]) {
+      c.output.history_every = r.integer(o["history_every"], "output.history_every");
+      if (c.output.history_every < 1)
+        r.fail(o["history_every"], "output.history_every", "must be at least 1");
+    }
+    if (const YAML::Node f = o["fields"]) {
+      if (!f.IsSequence()) r.fail(f, "output.fields", "expected a list of field names");
+      c.output.fields.clear();
+      for (std::size_t k = 0; k < f.size(); ++k) {
+        const std::string fp = join("output.fields", std::to_string(k));
+        const std::string name = r.string(f[k], fp);
+        const auto& known = known_output_fields();
+        if (std::find(known.begin(), known.end(), name) == known.end()) {
+          std::string list;
+          for (const auto& k2 : known) list += (list.empty() ? "" : ", ") + k2;
+          r.fail(f[k], fp, "unknown field '" + name + "'; known fields: " + list);
+        }
+        c.output.fields.push_back(name);
+      }
+    }
+  }
+
+  // Stages filled by later versions: accepted only switched off, so nothing is ignored silently.
+  for (const char* stage : {"contact", "fracture"}) {
+    if (const YAML::Node s = root[stage]) {
+      r.keys(s, stage, {"enabled"});
+      const bool on = s["enabled"] ? r.boolean(s["enabled"], join(stage, "enabled")) : false;
+      if (on)
+        r.fail(s["enabled"], join(stage, "enabled"),
+               std::string("the ") + stage +
+                   " stage is not available in this version of tetcontact; set it to false");
+      (stage[0] == 'c' ? c.contact : c.fracture) = on;
+    }
+  }
+  return c;
+}
+
+}  // namespace tc

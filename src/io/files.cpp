@@ -1,0 +1,69 @@
+#include "tetcontact/io/files.hpp"
+
+#include <charconv>
+#include <cmath>
+#include <filesystem>
+#include <regex>
+
+namespace tc {
+
+namespace fs = std::filesystem;
+
+void prepare_output_dir(const std::string& dir, bool force) {
+  std::error_code ec;
+  if (fs::exists(dir, ec)) {
+    if (!fs::is_directory(dir, ec)) throw OutputError(dir + ": exists and is not a directory");
+    if (!fs::is_empty(dir, ec)) {
+      if (!force)
+        throw OutputError(dir +
+                          ": output directory is not empty; choose another --out or pass "
+                          "--force to replace the results of a previous run");
+      static const std::regex ours(
+          R"((case\.pvd|frame_\d+\.vtu|history\.csv|summary\.json)(\.tmp)?)");
+      for (const auto& entry : fs::directory_iterator(dir))
+        if (entry.is_regular_file() && std::regex_match(entry.path().filename().string(), ours))
+          fs::remove(entry.path());
+    }
+  }
+  fs::create_directories(dir, ec);
+  if (ec) throw OutputError(dir + ": cannot create output directory: " + ec.message());
+}
+
+void write_file_atomic(const std::string& path, const std::string& content) {
+  AtomicFile f(path);
+  f.stream() << content;
+  f.commit();
+}
+
+AtomicFile::AtomicFile(std::string path) : path_(std::move(path)), tmp_(path_ + ".tmp") {
+  out_.open(tmp_, std::ios::binary | std::ios::trunc);
+  if (!out_) throw OutputError(tmp_ + ": cannot open for writing");
+}
+
+AtomicFile::~AtomicFile() {
+  if (!committed_) {
+    out_.close();
+    std::error_code ec;
+    fs::remove(tmp_, ec);
+  }
+}
+
+void AtomicFile::commit() {
+  out_.flush();
+  if (!out_) throw OutputError(tmp_ + ": write failed");
+  out_.close();
+  std::error_code ec;
+  fs::rename(tmp_, path_, ec);
+  if (ec) throw OutputError(path_ + ": cannot rename into place: " + ec.message());
+  committed_ = true;
+}
+
+std::string format_double(double v) {
+  if (std::isnan(v)) return "nan";
+  if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
+  char buf[32];
+  auto [p, ec] = std::to_chars(buf, buf + sizeof buf, v);
+  return std::string(buf, p);
+}
+
+}  // namespace tc

@@ -1,0 +1,65 @@
+#include "tetcontact/io/output.hpp"
+
+#include <cstdio>
+
+#include "tetcontact/io/vtk.hpp"
+
+namespace tc {
+
+OutputWriter::OutputWriter(const Model& model, const OutputSpec& spec, std::string dir,
+                           double end_time, const StepProfile* profile)
+    : model_(model),
+      spec_(spec),
+      dir_(std::move(dir)),
+      end_time_(end_time),
+      profile_(profile),
+      history_(dir_ + "/history.csv") {
+  auto& h = history_.stream();
+  h << "step,t,dt,kinetic,internal,boundary_work,total,balance_error,momentum_x,momentum_y,"
+       "momentum_z";
+  for (const auto& [name, seconds] : profile_->stages) {
+    h << ",seconds_" << name;
+    stage_seconds_.push_back(seconds);
+  }
+  h << '\n';
+}
+
+void OutputWriter::observe(const State& st, const Sample& s) {
+  const bool final = s.t >= end_time_;
+  if (s.step % spec_.history_every == 0 || final) {
+    auto& h = history_.stream();
+    h << s.step << ',' << format_double(s.t) << ',' << format_double(s.dt) << ','
+      << format_double(s.kinetic) << ',' << format_double(s.internal) << ','
+      << format_double(s.boundary_work) << ',' << format_double(s.total) << ','
+      << format_double(s.balance_error) << ',' << format_double(s.momentum.x()) << ','
+      << format_double(s.momentum.y()) << ',' << format_double(s.momentum.z());
+    for (std::size_t k = 0; k < profile_->stages.size(); ++k) {
+      const double now = profile_->stages[k].second;
+      h << ',' << format_double(now - stage_seconds_[k]);
+      stage_seconds_[k] = now;
+    }
+    h << '\n';
+    ++rows_;
+  }
+  // A frame at the first sample at or after each multiple of the interval, and at the end.
+  if (s.t >= next_frame_ - 1e-9 * spec_.interval || final) {
+    write_frame(st, s.t);
+    while (next_frame_ <= s.t + 1e-9 * spec_.interval) next_frame_ += spec_.interval;
+  }
+}
+
+void OutputWriter::write_frame(const State& st, double t) {
+  if (!frames_.empty() && frames_.back().first == t) return;
+  char name[32];
+  std::snprintf(name, sizeof name, "frame_%04zu.vtu", frames_.size());
+  write_file_atomic(dir_ + "/" + name, vtu_frame(model_, st, spec_.fields));
+  frames_.emplace_back(t, name);
+  // Keep the series current so that a run stopped midway still opens in ParaView.
+  write_file_atomic(dir_ + "/case.pvd", pvd_series(frames_));
+}
+
+void OutputWriter::close() {
+  history_.commit();
+}
+
+}  // namespace tc

@@ -1,0 +1,108 @@
+#include "tetcontact/io/vtk.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "tetcontact/diagnostics/balance.hpp"
+#include "tetcontact/io/files.hpp"
+
+namespace tc {
+namespace {
+
+bool wants(const std::vector<std::string>& fields, const char* name) {
+  return std::find(fields.begin(), fields.end(), name) != fields.end();
+}
+
+// `count` lines of `per_line` values; the array declares `components` per tuple (the cell
+// connectivity is a flat array of one component, written four node ids a line).
+template <class F>
+void data_array(std::string& out, const char* type, const char* name, int per_line,
+                std::size_t count, F&& value, int components = 0) {
+  if (components == 0) components = per_line;
+  out += "        <DataArray type=\"";
+  out += type;
+  out += "\" Name=\"";
+  out += name;
+  out += "\" NumberOfComponents=\"" + std::to_string(components) + "\" format=\"ascii\">\n";
+  for (std::size_t i = 0; i < count; ++i) {
+    out += "          ";
+    for (int c = 0; c < per_line; ++c) {
+      if (c) out += ' ';
+      out += format_double(value(i, c));
+    }
+    out += '\n';
+  }
+  out += "        </DataArray>\n";
+}
+
+}  // namespace
+
+std::string vtu_frame(const Model& model, const State& st, const std::vector<std::string>& fields) {
+  const Mesh& mesh = model.mesh;
+  const std::size_t n = mesh.x.size(), m = mesh.tets.size();
+  std::string out;
+  out.reserve(200 * (n + m));
+  out +=
+      "<?xml version=\"1.0\"?>\n"
+      "<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" "
+      "header_type=\"UInt64\">\n"
+      "  <UnstructuredGrid>\n";
+  out += "    <Piece NumberOfPoints=\"" + std::to_string(n) + "\" NumberOfCells=\"" +
+         std::to_string(m) + "\">\n";
+
+  out += "      <PointData>\n";
+  if (wants(fields, "displacement"))
+    data_array(out, "Float64", "displacement", 3, n,
+               [&](std::size_t i, int c) { return st.x[i][c] - mesh.x[i][c]; });
+  if (wants(fields, "velocity"))
+    data_array(out, "Float64", "velocity", 3, n, [&](std::size_t i, int c) {
+      return centred_velocity(st, static_cast<Index>(i))[c];
+    });
+  if (wants(fields, "body"))
+    data_array(out, "Int32", "body", 1, n,
+               [&](std::size_t i, int) { return static_cast<double>(mesh.node_body[i]); });
+  out += "      </PointData>\n";
+
+  out += "      <CellData>\n";
+  if (wants(fields, "stress"))
+    data_array(out, "Float64", "stress", 6, m,
+               [&](std::size_t t, int c) { return st.s[t][c] - (c < 3 ? st.p[t] : 0.0); });
+  if (wants(fields, "pressure"))
+    data_array(out, "Float64", "pressure", 1, m, [&](std::size_t t, int) { return st.p[t]; });
+  if (wants(fields, "von_mises"))
+    data_array(out, "Float64", "von_mises", 1, m, [&](std::size_t t, int) {
+      const Mat3 s = to_mat3(st.s[t]);
+      return std::sqrt(1.5 * s.cwiseProduct(s).sum());
+    });
+  if (wants(fields, "body"))
+    data_array(out, "Int32", "body", 1, m,
+               [&](std::size_t t, int) { return static_cast<double>(mesh.tet_body[t]); });
+  out += "      </CellData>\n";
+
+  out += "      <Points>\n";
+  data_array(out, "Float64", "Points", 3, n, [&](std::size_t i, int c) { return st.x[i][c]; });
+  out += "      </Points>\n";
+  out += "      <Cells>\n";
+  data_array(
+      out, "Int64", "connectivity", 4, m,
+      [&](std::size_t t, int c) { return static_cast<double>(mesh.tets[t][c]); }, 1);
+  data_array(out, "Int64", "offsets", 1, m,
+             [&](std::size_t t, int) { return static_cast<double>(4 * (t + 1)); });
+  data_array(out, "UInt8", "types", 1, m, [](std::size_t, int) { return 10.0; });  // VTK_TETRA
+  out += "      </Cells>\n";
+  out += "    </Piece>\n  </UnstructuredGrid>\n</VTKFile>\n";
+  return out;
+}
+
+std::string pvd_series(const std::vector<std::pair<double, std::string>>& frames) {
+  std::string out =
+      "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"1.0\" "
+      "byte_order=\"LittleEndian\">\n  <Collection>\n";
+  for (const auto& [t, file] : frames)
+    out +=
+        "    <DataSet timestep=\"" + format_double(t) + "\" part=\"0\" file=\"" + file + "\"/>\n";
+  out += "  </Collection>\n</VTKFile>\n";
+  return out;
+}
+
+}  // namespace tc

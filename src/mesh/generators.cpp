@@ -1,0 +1,193 @@
+#include "tetcontact/mesh/generators.hpp"
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <stdexcept>
+
+#include "tetcontact/mesh/surface.hpp"
+
+namespace tc {
+namespace {
+
+using Map = std::function<Vec3(const Vec3&)>;  // lattice point in [-1,1]^3 → space
+
+// Blend between the identity (centre) and the radial projection onto the unit ball (surface)
+// for the coordinates selected by `dims` (2 for a disk, 3 for a ball):
+//   p' = p (1 - b + b r∞/r₂),  b = r∞,
+// where r∞ and r₂ are the max- and 2-norms of p. Along a ray p = s·u the mapped radius
+// k s + (1 - k) s² (k = r₂/r∞ ≤ √3) grows monotonically, so the map keeps tets positive.
+Vec3 blend_to_ball(Vec3 p, int dims) {
+  double rinf = 0.0, r2 = 0.0;
+  for (int d = 0; d < dims; ++d) {
+    rinf = std::max(rinf, std::abs(p[d]));
+    r2 += p[d] * p[d];
+  }
+  r2 = std::sqrt(r2);
+  if (r2 == 0.0) return p;
+  const double factor = 1.0 - rinf + rinf * rinf / r2;
+  for (int d = 0; d < dims; ++d) p[d] *= factor;
+  return p;
+}
+
+void check_cells(std::array<int, 3> n, const char* what) {
+  for (int c : n)
+    if (c < 1 || c > 4096)
+      throw std::invalid_argument(std::string(what) + ": cell counts must be in [1, 4096]");
+}
+
+void push_oriented(TetMesh& m, Tet t) {
+  const double v = tet_signed_volume(m.x[t[0]], m.x[t[1]], m.x[t[2]], m.x[t[3]]);
+  if (v < 0.0) std::swap(t[2], t[3]);
+  m.tets.push_back(t);
+}
+
+// Lattice of n[0]×n[1]×n[2] hex cells over [-1,1]^3, mapped by `map`, each hex split.
+TetMesh lattice(std::array<int, 3> n, HexSplit split, const Map& map) {
+  TetMesh m;
+  const int nx = n[0], ny = n[1], nz = n[2];
+  auto param = [&](double i, double j, double k) {
+    return Vec3(2.0 * i / nx - 1.0, 2.0 * j / ny - 1.0, 2.0 * k / nz - 1.0);
+  };
+  auto node = [&](int i, int j, int k) { return i + (nx + 1) * (j + (ny + 1) * k); };
+  m.x.reserve(static_cast<std::size_t>(nx + 1) * (ny + 1) * (nz + 1));
+  for (int k = 0; k <= nz; ++k)
+    for (int j = 0; j <= ny; ++j)
+      for (int i = 0; i <= nx; ++i) m.x.push_back(map(param(i, j, k)));
+
+  for (int k = 0; k < nz; ++k)
+    for (int j = 0; j < ny; ++j)
+      for (int i = 0; i < nx; ++i) {
+        // Corner of the cell at local offsets (a, b, c) ∈ {0,1}^3.
+        auto v = [&](int a, int b, int c) { return node(i + a, j + b, k + c); };
+        if (split == HexSplit::six) {
+          // Mirror the local frame in each axis whose cell centre lies below the centre plane,
+          // so the Kuhn diagonal runs from the corner nearest the centre to the farthest.
+          const int fx = (2 * i + 1 < nx), fy = (2 * j + 1 < ny), fz = (2 * k + 1 < nz);
+          auto w = [&](std::array<int, 3> o) { return v(o[0] ^ fx, o[1] ^ fy, o[2] ^ fz); };
+          static constexpr std::array<std::array<int, 3>, 6> perms = {
+              {{0, 1, 2}, {0, 2, 1}, {1, 0, 2}, {1, 2, 0}, {2, 0, 1}, {2, 1, 0}}};
+          for (const auto& p : perms) {
+            std::array<int, 3> o{0, 0, 0};
+            Tet t;
+            t[0] = w(o);
+            for (int s = 0; s < 3; ++s) {
+              o[p[s]] = 1;
+              t[s + 1] = w(o);
+            }
+            push_oriented(m, t);
+          }
+        } else if (split == HexSplit::five) {
+          // Alternate cells are mirrored in x so that face diagonals match.
+          const int f = (i + j + k) & 1;
+          auto w = [&](int a, int b, int c) { return v(a ^ f, b, c); };
+          push_oriented(m, {w(1, 0, 0), w(0, 1, 0), w(0, 0, 1), w(1, 1, 1)});
+          push_oriented(m, {w(0, 0, 0), w(1, 0, 0), w(0, 1, 0), w(0, 0, 1)});
+          push_oriented(m, {w(1, 1, 0), w(1, 0, 0), w(0, 1, 0), w(1, 1, 1)});
+          push_oriented(m, {w(1, 0, 1), w(1, 0, 0), w(0, 0, 1), w(1, 1, 1)});
+          push_oriented(m, {w(0, 1, 1), w(0, 1, 0), w(0, 0, 1), w(1, 1, 1)});
+        } else {
+          const Index centre = static_cast<Index>(m.x.size());
+          m.x.push_back(map(param(i + 0.5, j + 0.5, k + 0.5)));
+          // The six faces as corner cycles.
+          static constexpr std::array<std::array<std::array<int, 3>, 4>, 6> faces = {{
+              {{{0, 0, 0}, {0, 1, 0}, {0, 1, 1}, {0, 0, 1}}},
+              {{{1, 0, 0}, {1, 1, 0}, {1, 1, 1}, {1, 0, 1}}},
+              {{{0, 0, 0}, {1, 0, 0}, {1, 0, 1}, {0, 0, 1}}},
+              {{{0, 1, 0}, {1, 1, 0}, {1, 1, 1}, {0, 1, 1}}},
+              {{{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}}},
+              {{{0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}}},
+          }};
+          for (const auto& f : faces) {
+            std::array<Index, 4> q;
+            for (int c = 0; c < 4; ++c) q[c] = v(f[c][0], f[c][1], f[c][2]);
+            // Cut along the diagonal whose corners have even global parity: the rule is the
+            // same for both cells sharing the face, so the mesh conforms.
+            const auto& c0 = f[0];
+            const bool even0 = ((i + c0[0] + j + c0[1] + k + c0[2]) & 1) == 0;
+            if (even0) {
+              push_oriented(m, {centre, q[0], q[1], q[2]});
+              push_oriented(m, {centre, q[0], q[2], q[3]});
+            } else {
+              push_oriented(m, {centre, q[1], q[2], q[3]});
+              push_oriented(m, {centre, q[1], q[3], q[0]});
+            }
+          }
+        }
+      }
+  return m;
+}
+
+}  // namespace
+
+TetMesh make_box(const Vec3& size, std::array<int, 3> cells, HexSplit split) {
+  check_cells(cells, "box");
+  const Vec3 half = size / 2.0;
+  return lattice(cells, split, [&](const Vec3& p) { return Vec3(p.cwiseProduct(half)); });
+}
+
+TetMesh make_plate(const Vec3& size, int cells_through_thickness, HexSplit split) {
+  if (cells_through_thickness < 1)
+    throw std::invalid_argument("plate: cells_through_thickness must be at least 1");
+  const double h = size.z() / cells_through_thickness;
+  std::array<int, 3> cells{std::max(1, static_cast<int>(std::lround(size.x() / h))),
+                           std::max(1, static_cast<int>(std::lround(size.y() / h))),
+                           cells_through_thickness};
+  return make_box(size, cells, split);
+}
+
+TetMesh make_cylinder(double radius, double height, int cells_across, int cells_axial,
+                      HexSplit split) {
+  if (split != HexSplit::six)
+    throw std::invalid_argument(
+        "cylinder: only split 6 is offered; 5 and 12 put slivers in the "
+        "wedge-shaped cells at the rim");
+  check_cells({cells_across, cells_across, cells_axial}, "cylinder");
+  return lattice({cells_across, cells_across, cells_axial}, split, [&](const Vec3& p) {
+    Vec3 q = blend_to_ball(p, 2);
+    return Vec3(radius * q.x(), radius * q.y(), 0.5 * height * q.z());
+  });
+}
+
+TetMesh make_sphere(double radius, int cells_across, HexSplit split) {
+  if (split != HexSplit::six)
+    throw std::invalid_argument(
+        "sphere: only split 6 is offered; 5 and 12 put slivers in the "
+        "wedge-shaped cells under the surface");
+  check_cells({cells_across, cells_across, cells_across}, "sphere");
+  return lattice({cells_across, cells_across, cells_across}, split,
+                 [&](const Vec3& p) { return Vec3(radius * blend_to_ball(p, 3)); });
+}
+
+void translate(TetMesh& mesh, const Vec3& offset) {
+  for (Vec3& p : mesh.x) p += offset;
+}
+
+void rotate(TetMesh& mesh, const Vec3& axis, double radians) {
+  const Mat3 r = Eigen::AngleAxisd(radians, axis.normalized()).toRotationMatrix();
+  for (Vec3& p : mesh.x) p = r * p;
+}
+
+void scale(TetMesh& mesh, double factor) {
+  for (Vec3& p : mesh.x) p *= factor;
+}
+
+double min_dihedral_angle_deg(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
+  const std::array<Vec3, 4> p{a, b, c, d};
+  std::array<Vec3, 4> n;  // outward face normals, face i opposite node i
+  for (int i = 0; i < 4; ++i) {
+    const auto& f = k_tet_faces[i];
+    n[i] = (p[f[1]] - p[f[0]]).cross(p[f[2]] - p[f[0]]).normalized();
+  }
+  double worst = 180.0;
+  for (int i = 0; i < 4; ++i)
+    for (int j = i + 1; j < 4; ++j) {
+      // Interior dihedral angle along the edge shared by faces i and j.
+      const double cosang = std::clamp(-n[i].dot(n[j]), -1.0, 1.0);
+      worst = std::min(worst, std::acos(cosang) * 180.0 / M_PI);
+    }
+  return worst;
+}
+
+}  // namespace tc

@@ -1,0 +1,141 @@
+#include "tetcontact/mesh/surface.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+namespace tc {
+namespace {
+
+struct FaceKey {
+  Face sorted;    // sorted node triple: identifies the face
+  Face oriented;  // as seen from its tet (outward)
+  Index tet;
+  bool operator<(const FaceKey& o) const {
+    return sorted != o.sorted ? sorted < o.sorted : tet < o.tet;
+  }
+};
+
+Face sorted_face(Face f) {
+  std::sort(f.begin(), f.end());
+  return f;
+}
+
+}  // namespace
+
+std::vector<Surface> build_surfaces(const Mesh& mesh) {
+  std::vector<Surface> surfaces;
+  surfaces.reserve(mesh.bodies.size());
+  for (Index b = 0; b < static_cast<Index>(mesh.bodies.size()); ++b) {
+    const BodyRange& r = mesh.bodies[b];
+    Surface s;
+    s.body = b;
+
+    // Boundary faces appear once among the faces of the body's tets.
+    std::vector<FaceKey> keys;
+    keys.reserve(4 * static_cast<std::size_t>(r.tet_count()));
+    double edge_sum = 0.0;
+    std::size_t edge_count = 0;
+    for (Index t = r.tet_begin; t < r.tet_end; ++t) {
+      const Tet& k = mesh.tets[t];
+      for (const auto& lf : k_tet_faces) {
+        Face f{k[lf[0]], k[lf[1]], k[lf[2]]};
+        keys.push_back({sorted_face(f), f, t});
+      }
+      for (const auto& le : k_tet_edges) {
+        const double len = (mesh.x[k[le[0]]] - mesh.x[k[le[1]]]).norm();
+        edge_sum += len;  // interior edges are counted once per tet that holds them
+        s.max_edge_length = std::max(s.max_edge_length, len);
+        ++edge_count;
+      }
+    }
+    s.mean_edge_length = edge_count ? edge_sum / static_cast<double>(edge_count) : 0.0;
+    std::sort(keys.begin(), keys.end());
+    for (std::size_t i = 0; i < keys.size();) {
+      std::size_t j = i + 1;
+      while (j < keys.size() && keys[j].sorted == keys[i].sorted) ++j;
+      if (j - i == 1) {
+        s.faces.push_back(keys[i].oriented);
+        s.face_tet.push_back(keys[i].tet);
+      } else if (j - i > 2) {
+        std::ostringstream os;
+        os << "body '" << r.name << "': face (" << keys[i].sorted[0] - r.node_begin << ", "
+           << keys[i].sorted[1] - r.node_begin << ", " << keys[i].sorted[2] - r.node_begin
+           << ") is shared by " << (j - i) << " tets (first tet " << keys[i].tet - r.tet_begin
+           << "); a conforming mesh shares a face between at most two";
+        throw MeshError(os.str());
+      }
+      i = j;
+    }
+
+    // Boundary edges and nodes.
+    for (const Face& f : s.faces) {
+      for (int e = 0; e < 3; ++e) {
+        Index a = f[e], c = f[(e + 1) % 3];
+        s.edges.push_back({std::min(a, c), std::max(a, c)});
+      }
+      s.nodes.insert(s.nodes.end(), f.begin(), f.end());
+    }
+    std::sort(s.edges.begin(), s.edges.end());
+    s.edges.erase(std::unique(s.edges.begin(), s.edges.end()), s.edges.end());
+    std::sort(s.nodes.begin(), s.nodes.end());
+    s.nodes.erase(std::unique(s.nodes.begin(), s.nodes.end()), s.nodes.end());
+
+    // node→faces in CSR form.
+    s.node_face_offsets.assign(s.nodes.size() + 1, 0);
+    auto slot = [&](Index node) {
+      return static_cast<std::size_t>(std::lower_bound(s.nodes.begin(), s.nodes.end(), node) -
+                                      s.nodes.begin());
+    };
+    for (const Face& f : s.faces)
+      for (Index v : f) ++s.node_face_offsets[slot(v) + 1];
+    for (std::size_t i = 0; i < s.nodes.size(); ++i)
+      s.node_face_offsets[i + 1] += s.node_face_offsets[i];
+    s.node_faces.resize(s.node_face_offsets.back());
+    std::vector<Index> fill(s.node_face_offsets.begin(), s.node_face_offsets.end() - 1);
+    for (Index fi = 0; fi < static_cast<Index>(s.faces.size()); ++fi)
+      for (Index v : s.faces[fi]) s.node_faces[fill[slot(v)]++] = fi;
+
+    surfaces.push_back(std::move(s));
+  }
+  return surfaces;
+}
+
+Vec3 face_normal(const Face& f, const std::vector<Vec3>& x) {
+  const Vec3 n = (x[f[1]] - x[f[0]]).cross(x[f[2]] - x[f[0]]);
+  const double len = n.norm();
+  return len > 0.0 ? Vec3(n / len) : Vec3::Zero();
+}
+
+std::vector<Vec3> node_normals(const Surface& s, const std::vector<Vec3>& x) {
+  std::vector<Vec3> normals(s.nodes.size(), Vec3::Zero());
+  for (std::size_t i = 0; i < s.nodes.size(); ++i) {
+    Vec3 sum = Vec3::Zero();
+    for (Index k = s.node_face_offsets[i]; k < s.node_face_offsets[i + 1]; ++k)
+      sum += face_normal(s.faces[s.node_faces[k]], x);
+    const double len = sum.norm();
+    if (len > 0.0) normals[i] = sum / len;
+  }
+  return normals;
+}
+
+Index non_manifold_edges(const Surface& s) {
+  std::vector<Edge> all;
+  all.reserve(3 * s.faces.size());
+  for (const Face& f : s.faces)
+    for (int e = 0; e < 3; ++e) {
+      Index a = f[e], c = f[(e + 1) % 3];
+      all.push_back({std::min(a, c), std::max(a, c)});
+    }
+  std::sort(all.begin(), all.end());
+  Index bad = 0;
+  for (std::size_t i = 0; i < all.size();) {
+    std::size_t j = i + 1;
+    while (j < all.size() && all[j] == all[i]) ++j;
+    bad += (j - i != 2);
+    i = j;
+  }
+  return bad;
+}
+
+}  // namespace tc

@@ -1,0 +1,31 @@
+#include "tetcontact/solver/integrator.hpp"
+
+namespace tc {
+
+void predict(State& st, const std::vector<VelocityConstraint>& constraints) {
+  const double tau_v = 0.5 * (st.dt_prev + st.dt);
+  const std::size_t n = st.x.size();
+  for (std::size_t i = 0; i < n; ++i) st.v_star[i] = st.v[i] + (tau_v / st.m[i]) * st.f[i];
+  for (Vec3& j : st.bc_impulse) j.setZero();
+  for (const VelocityConstraint& c : constraints)
+    for (Index node : c.nodes)
+      for (int d = 0; d < 3; ++d)
+        if (c.components[d]) {
+          st.bc_impulse[node][d] += st.m[node] * (c.velocity[d] - st.v_star[node][d]);
+          st.v_star[node][d] = c.velocity[d];
+        }
+  for (std::size_t i = 0; i < n; ++i) st.x_star[i] = st.x[i] + st.dt * st.v_star[i];
+}
+
+void commit(State& st) {
+  const std::size_t n = st.x.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    st.v[i] = st.v_star[i];
+    st.x[i] += st.dt * st.v[i];
+  }
+  st.t += st.dt;
+  st.dt_prev = st.dt;
+  ++st.step;
+}
+
+}  // namespace tc

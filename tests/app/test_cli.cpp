@@ -1,0 +1,195 @@
+// The command line: outputs, refusals, exit codes, determinism.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <regex>
+
+#include "../test_util.hpp"
+
+using namespace tc;
+namespace fs = std::filesystem;
+
+namespace {
+
+const std::string k_case = test::source_path("data/cases/elastic-vibration.yaml");
+// A short version of the vibration case for CLI tests.
+const std::string k_short = "--set end_time=2.0e-5 --set output.interval=1.0e-5";
+
+std::string quote(const std::string& s) {
+  return "'" + s + "'";
+}
+
+// The value of a top-level number or string in summary.json (enough for our flat checks).
+std::string json_value(const std::string& json, const std::string& key) {
+  const std::regex re("\"" + key + "\": (\"[^\"]*\"|[-0-9.eE+]+|null|true|false)");
+  std::smatch m;
+  return std::regex_search(json, m, re) ? m[1].str() : "";
+}
+
+}  // namespace
+
+TEST(Cli, RunWritesSeriesHistoryAndSummary) {
+  test::TempDir dir("cli-run");
+  const std::string out = dir / "out";
+  const auto r = test::run_cli(
+      "run " + quote(k_case) + " " + k_short + " --quiet --out " + quote(out), dir.str());
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_TRUE(r.out.empty()) << "--quiet prints nothing: " << r.out;
+  EXPECT_TRUE(fs::exists(out + "/case.pvd"));
+  EXPECT_TRUE(fs::exists(out + "/frame_0000.vtu"));
+  EXPECT_TRUE(fs::exists(out + "/frame_0002.vtu"));  // t = 0, 1e-5, 2e-5
+  EXPECT_FALSE(fs::exists(out + "/frame_0003.vtu"));
+  const std::string summary = test::read_text(out + "/summary.json");
+  EXPECT_EQ(json_value(summary, "schema"), "\"tetcontact.summary/1\"");
+  EXPECT_EQ(json_value(summary, "status"), "\"ok\"");
+  EXPECT_GE(std::stod(json_value(summary, "time")), 2.0e-5);
+  EXPECT_LT(std::stod(json_value(summary, "balance_error_max")), 0.005);
+  EXPECT_LT(std::stod(json_value(summary, "relative_error")), 1e-12);
+  for (const char* key : {"wall_seconds", "modules", "surface_faces", "surface_edges", "timings",
+                          "contact_work", "total_initial", "bodies", "bbox_min", "node_face",
+                          "edge_edge", "max_depth_over_h", "max_crossings", "first_time"})
+    EXPECT_NE(summary.find("\"" + std::string(key) + "\""), std::string::npos) << key;
+  // History: a header and one row per 10 steps plus the final one.
+  const std::string history = test::read_text(out + "/history.csv");
+  EXPECT_EQ(history.rfind("step,t,dt,kinetic,internal,", 0), 0u);
+  EXPECT_NE(history.find("seconds_elements"), std::string::npos);
+  EXPECT_GT(std::count(history.begin(), history.end(), '\n'), 10);
+  // No temporary file is left behind.
+  for (const auto& e : fs::directory_iterator(out))
+    EXPECT_NE(e.path().extension(), ".tmp") << e.path();
+}
+
+TEST(Cli, FinalTableOnStdout) {
+  test::TempDir dir("cli-table");
+  const auto r = test::run_cli(
+      "run " + quote(k_case) + " " + k_short + " --out " + quote(dir / "o"), dir.str());
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.out.find("status     ok"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("balance error"), std::string::npos) << r.out;
+  EXPECT_NE(r.err.find("progress:"), std::string::npos) << "plain progress lines off a terminal";
+}
+
+TEST(Cli, NonEmptyOutputIsRefusedUnlessForced) {
+  test::TempDir dir("cli-force");
+  const std::string out = dir / "out";
+  fs::create_directories(out);
+  test::write_text(out + "/notes.txt", "mine");
+  test::write_text(out + "/frame_0042.vtu", "stale");
+  auto r = test::run_cli("run " + quote(k_case) + " " + k_short + " --quiet --out " + quote(out),
+                         dir.str());
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("not empty"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(out + "/summary.json"));
+  r = test::run_cli("run " + quote(k_case) + " " + k_short + " --quiet --force --out " + quote(out),
+                    dir.str());
+  EXPECT_EQ(r.code, 0) << r.err;
+  EXPECT_TRUE(fs::exists(out + "/summary.json"));
+  EXPECT_TRUE(fs::exists(out + "/notes.txt"));        // not ours: kept
+  EXPECT_FALSE(fs::exists(out + "/frame_0042.vtu"));  // a stale frame of ours: removed
+}
+
+TEST(Cli, BadInputExitsTwoAndWritesNothing) {
+  test::TempDir dir("cli-bad");
+  const std::string text = test::read_text(k_case);
+  struct Bad {
+    std::string args, expect;
+  };
+  test::write_text(dir / "neg.yaml",
+                   std::regex_replace(text, std::regex("density: 2700"), "density: -2700"));
+  test::write_text(dir / "syntax.yaml", text + "\nbodies: [\n");
+  const std::vector<Bad> cases = {
+      {quote(dir / "neg.yaml"), ":17:14: key 'materials.aluminium.density': must be positive"},
+      {quote(dir / "syntax.yaml"), "YAML syntax error"},
+      {quote(dir / "absent.yaml"), "case file not found"},
+      {quote(k_case) + " --set solver.cfl=0", "--set solver.cfl"},
+      {quote(k_case) + " --set bodies.0.mesh.box.cells=[40,0,4]", "must be in [1, 4096]"},
+  };
+  for (const Bad& b : cases) {
+    const std::string out = dir / "out";
+    const auto r = test::run_cli("run " + b.args + " --out " + quote(out), dir.str());
+    EXPECT_EQ(r.code, 2) << b.args << "\n" << r.err;
+    EXPECT_NE(r.err.find(b.expect), std::string::npos) << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << "one message: " << r.err;
+    EXPECT_FALSE(fs::exists(out)) << "nothing written for " << b.args;
+    const auto c = test::run_cli("check " + b.args, dir.str());
+    EXPECT_EQ(c.code, 2) << b.args;
+  }
+}
+
+TEST(Cli, InvertedInputElementIsBadInput) {
+  test::TempDir dir("cli-inverted");
+  // A 2.2 mesh with two tets of opposite orientation: the second is folded.
+  test::write_text(dir / "folded.msh",
+                   "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n5\n1 0 0 0\n2 1 0 0\n3 0 1 0\n"
+                   "4 0 0 1\n5 0.2 0.2 0.5\n$EndNodes\n$Elements\n3\n1 4 0 1 2 3 4\n"
+                   "2 4 0 1 2 3 5\n3 4 0 1 3 2 5\n$EndElements\n");
+  std::string text = test::read_text(k_case);
+  text = std::regex_replace(text, std::regex("box: \\{size: .*\\}"), "file: folded.msh");
+  text = std::regex_replace(text, std::regex("    velocity_regions:\\n.*\\n.*\\n"), "");
+  test::write_text(dir / "c.yaml", text);
+  const auto r =
+      test::run_cli("run " + quote(dir / "c.yaml") + " --out " + quote(dir / "out"), dir.str());
+  EXPECT_EQ(r.code, 2) << r.err;
+  EXPECT_NE(r.err.find("body 'bar', tet 2: inverted element"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(dir / "out"));
+}
+
+TEST(Cli, RunFailureExitsOneWithStatus) {
+  test::TempDir dir("cli-fail");
+  // CFL 1 is past the stability limit of this mesh: the run blows up and says so.
+  const auto r = test::run_cli(
+      "run " + quote(k_case) + " --set solver.cfl=1 --quiet --out " + quote(dir / "o"), dir.str());
+  EXPECT_EQ(r.code, 1) << r.err;
+  const std::string summary = test::read_text(dir / "o/summary.json");
+  EXPECT_EQ(json_value(summary, "status").rfind("\"failed: ", 0), 0u) << summary;
+  EXPECT_NE(r.err.find("run failed"), std::string::npos) << r.err;
+  EXPECT_TRUE(fs::exists(dir / "o/history.csv"));
+}
+
+TEST(Cli, SameCaseGivesBitIdenticalResults) {
+  test::TempDir dir("cli-determinism");
+  for (const char* o : {"a", "b"}) {
+    const auto r = test::run_cli(
+        "run " + quote(k_case) + " " + k_short + " --quiet --out " + quote(dir / o), dir.str());
+    ASSERT_EQ(r.code, 0) << r.err;
+  }
+  for (const char* f : {"frame_0000.vtu", "frame_0001.vtu", "frame_0002.vtu", "case.pvd"})
+    EXPECT_EQ(test::read_text(dir / ("a/" + std::string(f))),
+              test::read_text(dir / ("b/" + std::string(f))))
+        << f;
+  // history.csv: identical but for the wall-clock stage timings (the last columns).
+  auto strip = [](const std::string& csv) {
+    std::string out;
+    std::istringstream in(csv);
+    for (std::string line; std::getline(in, line);) {
+      std::size_t commas = 0, cut = line.size();
+      for (std::size_t i = 0; i < line.size(); ++i)
+        if (line[i] == ',' && ++commas == 11) cut = i;
+      out += line.substr(0, cut) + "\n";
+    }
+    return out;
+  };
+  EXPECT_EQ(strip(test::read_text(dir / "a/history.csv")),
+            strip(test::read_text(dir / "b/history.csv")));
+}
+
+TEST(Cli, HelpVersionAndUsageErrors) {
+  test::TempDir dir("cli-help");
+  auto r = test::run_cli("--version", dir.str());
+  EXPECT_EQ(r.code, 0);
+  EXPECT_EQ(r.out.rfind("tetcontact ", 0), 0u);
+  r = test::run_cli("run --help", dir.str());
+  EXPECT_EQ(r.code, 0);
+  EXPECT_NE(r.out.find("--force"), std::string::npos);
+  r = test::run_cli("check --help", dir.str());
+  EXPECT_EQ(r.code, 0);
+  EXPECT_NE(r.out.find("usage: tetcontact check"), std::string::npos);
+  r = test::run_cli("frobnicate", dir.str());
+  EXPECT_EQ(r.code, 2);
+  r = test::run_cli("run " + quote(k_case) + " --bogus", dir.str());
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("unknown option '--bogus'"), std::string::npos);
+  r = test::run_cli("check " + quote(k_case), dir.str());
+  EXPECT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.out.find(": ok"), std::string::npos);
+}

@@ -1,0 +1,282 @@
+// Case files: every error class gives one message with file, line and key path.
+#include <gtest/gtest.h>
+
+#include "../test_util.hpp"
+#include "tetcontact/io/case.hpp"
+
+using namespace tc;
+
+namespace {
+
+const char* k_valid = R"(name: tiny
+end_time: 1.0e-6
+solver:
+  cfl: 0.5
+materials:
+  al:
+    density: 2700
+    youngs_modulus: 70.0e9
+    poisson_ratio: 0.3
+bodies:
+  - name: block
+    material: al
+    mesh:
+      box: {size: [0.01, 0.01, 0.01], cells: [2, 2, 2], split: 6}
+    velocity: [0, 0, -10]
+boundary_conditions:
+  - body: block
+    region: {min: [-1, -1, -0.005], max: [1, 1, -0.005]}
+    type: fixed
+output:
+  interval: 1.0e-7
+  fields: [velocity, stress]
+)";
+
+struct ErrorCase {
+  const char* name;
+  std::string text;  // whole file
+  std::vector<std::string> overrides;
+  std::string expect_location;  // ":LINE:" or "--set ..."
+  std::string expect_key;       // key path in the message
+  std::string expect_what;      // what is wrong
+};
+
+std::string replace(std::string s, const std::string& from, const std::string& to) {
+  const auto pos = s.find(from);
+  EXPECT_NE(pos, std::string::npos) << from;
+  return pos == std::string::npos ? s : s.replace(pos, from.size(), to);
+}
+
+}  // namespace
+
+TEST(CaseFile, ValidFileLoadsWithDefaults) {
+  test::TempDir dir("case-valid");
+  test::write_text(dir / "c.yaml", k_valid);
+  const Case c = load_case(dir / "c.yaml");
+  EXPECT_EQ(c.name, "tiny");
+  EXPECT_DOUBLE_EQ(c.end_time, 1e-6);
+  ASSERT_EQ(c.bodies.size(), 1u);
+  EXPECT_EQ(c.bodies[0].mesh.kind, MeshSpec::Kind::box);
+  EXPECT_EQ(c.bodies[0].mesh.cells, (std::array<int, 3>{2, 2, 2}));
+  EXPECT_EQ(c.bodies[0].velocity, Vec3(0, 0, -10));
+  ASSERT_EQ(c.boundary_conditions.size(), 1u);
+  EXPECT_TRUE(c.boundary_conditions[0].fixed);
+  EXPECT_EQ(c.output.fields, (std::vector<std::string>{"velocity", "stress"}));
+  EXPECT_EQ(c.output.history_every, 1);
+  EXPECT_FALSE(c.contact);
+}
+
+TEST(CaseFile, SetOverridesAnyKey) {
+  test::TempDir dir("case-set");
+  test::write_text(dir / "c.yaml", k_valid);
+  const Case c = load_case(dir / "c.yaml", {"solver.cfl=0.25", "bodies.0.velocity=[1, 2, 3]",
+                                            "bodies.0.mesh.box.cells=[4,4,4]",
+                                            "output.history_every=5", "name=renamed"});
+  EXPECT_DOUBLE_EQ(c.cfl, 0.25);
+  EXPECT_EQ(c.bodies[0].velocity, Vec3(1, 2, 3));
+  EXPECT_EQ(c.bodies[0].mesh.cells[0], 4);
+  EXPECT_EQ(c.output.history_every, 5);
+  EXPECT_EQ(c.name, "renamed");
+}
+
+TEST(CaseFile, EveryErrorClassNamesFileLineAndKey) {
+  const std::string v = k_valid;
+  const std::vector<ErrorCase> cases = {
+      {"yaml syntax", replace(v, "cfl: 0.5", "cfl: [0.5"), {}, ":", "", "YAML syntax error"},
+      {"unknown top-level key",
+       replace(v, "end_time:", "end_tme:"),
+       {},
+       ":2:",
+       "end_tme",
+       "unknown key (did you mean 'end_time'?)"},
+      {"unknown nested key",
+       replace(v, "    density: 2700", "    densty: 2700"),
+       {},
+       ":7:",
+       "materials.al.densty",
+       "unknown key (did you mean 'density'?)"},
+      {"missing key",
+       replace(v, "    youngs_modulus: 70.0e9\n", ""),
+       {},
+       ":7:",
+       "materials.al.youngs_modulus",
+       "missing required key"},
+      {"missing top-level key",
+       replace(v, "end_time: 1.0e-6\n", ""),
+       {},
+       ":1:",
+       "end_time",
+       "missing required key"},
+      {"wrong type (number)",
+       replace(v, "density: 2700", "density: heavy"),
+       {},
+       ":7:",
+       "materials.al.density",
+       "expected a number, got 'heavy'"},
+      {"wrong type (list)",
+       replace(v, "velocity: [0, 0, -10]", "velocity: 10"),
+       {},
+       ":15:",
+       "bodies.0.velocity",
+       "expected a list of three numbers"},
+      {"wrong type (map)",
+       replace(v, "solver:\n  cfl: 0.5", "solver: fast"),
+       {},
+       ":3:",
+       "solver",
+       "expected a mapping"},
+      {"negative density",
+       replace(v, "density: 2700", "density: -2700"),
+       {},
+       ":7:",
+       "materials.al.density",
+       "must be positive"},
+      {"cfl above one",
+       replace(v, "cfl: 0.5", "cfl: 1.5"),
+       {},
+       ":4:",
+       "solver.cfl",
+       "CFL factor must be in (0, 1]"},
+      {"cfl zero",
+       replace(v, "cfl: 0.5", "cfl: 0"),
+       {},
+       ":4:",
+       "solver.cfl",
+       "CFL factor must be in (0, 1]"},
+      {"poisson ratio",
+       replace(v, "poisson_ratio: 0.3", "poisson_ratio: 0.5"),
+       {},
+       ":9:",
+       "materials.al.poisson_ratio",
+       "must be in (-1, 0.5)"},
+      {"negative end time",
+       replace(v, "end_time: 1.0e-6", "end_time: -1"),
+       {},
+       ":2:",
+       "end_time",
+       "must be positive"},
+      {"not finite",
+       replace(v, "end_time: 1.0e-6", "end_time: .inf"),
+       {},
+       ":2:",
+       "end_time",
+       "expected a number"},
+      {"zero cells",
+       replace(v, "cells: [2, 2, 2]", "cells: [2, 0, 2]"),
+       {},
+       ":14:",
+       "bodies.0.mesh.box.cells.1",
+       "must be in [1, 4096]"},
+      {"bad split",
+       replace(v, "split: 6", "split: 7"),
+       {},
+       ":14:",
+       "bodies.0.mesh.box.split",
+       "hex split must be 5, 6 or 12"},
+      {"unknown material",
+       replace(v, "material: al", "material: steel"),
+       {},
+       ":12:",
+       "bodies.0.material",
+       "no material named 'steel'"},
+      {"unknown bc body",
+       replace(v, "  - body: block", "  - body: brick"),
+       {},
+       ":17:",
+       "boundary_conditions.0.body",
+       "no body named 'brick'"},
+      {"bc type",
+       replace(v, "type: fixed", "type: glued"),
+       {},
+       ":19:",
+       "boundary_conditions.0.type",
+       "must be 'fixed' or 'velocity'"},
+      {"region min > max",
+       replace(v, "min: [-1, -1, -0.005]", "min: [2, -1, -0.005]"),
+       {},
+       ":18:",
+       "boundary_conditions.0.region",
+       "min must not exceed max"},
+      {"unknown field",
+       replace(v, "fields: [velocity, stress]", "fields: [velocity, heat]"),
+       {},
+       ":22:",
+       "output.fields.1",
+       "unknown field 'heat'"},
+      {"missing mesh file",
+       replace(v, "box: {size: [0.01, 0.01, 0.01], cells: [2, 2, 2], split: 6}",
+               "file: nowhere.msh"),
+       {},
+       ":14:",
+       "bodies.0.mesh.file",
+       "mesh file not found"},
+      {"duplicate key",
+       replace(v, "    density: 2700", "    density: 2700\n    density: 2800"),
+       {},
+       ":8:",
+       "materials.al.density",
+       "duplicate key"},
+      {"stage not available",
+       v + "contact:\n  enabled: true\n",
+       {},
+       ":24:",
+       "contact.enabled",
+       "not available in this version"},
+      {"override wrong type",
+       v,
+       {"solver.cfl=fast"},
+       "--set solver.cfl",
+       "solver.cfl",
+       "expected a number, got 'fast'"},
+      {"override out of range",
+       v,
+       {"solver.cfl=2"},
+       "--set solver.cfl",
+       "solver.cfl",
+       "CFL factor must be in (0, 1]"},
+      {"override bad index",
+       v,
+       {"bodies.3.velocity=[0,0,0]"},
+       "--set bodies.3",
+       "",
+       "is a list of 1 entries"},
+      {"override syntax", v, {"solver.cfl"}, "--set solver.cfl", "", "expected path.to.key=value"},
+      {"override unknown key",
+       v,
+       {"solver.cfll=0.3"},
+       "--set solver.cfll",
+       "solver.cfll",
+       "unknown key (did you mean 'cfl'?)"},
+  };
+  test::TempDir dir("case-errors");
+  const std::string path = dir / "bad.yaml";
+  for (const ErrorCase& c : cases) {
+    test::write_text(path, c.text);
+    try {
+      load_case(path, c.overrides);
+      ADD_FAILURE() << c.name << ": accepted";
+    } catch (const CaseError& e) {
+      const std::string msg = e.what();
+      EXPECT_EQ(msg.rfind(path, 0), 0u) << c.name << ": " << msg;
+      EXPECT_NE(msg.find(c.expect_location), std::string::npos) << c.name << ": " << msg;
+      if (!c.expect_key.empty()) {
+        EXPECT_NE(msg.find("key '" + c.expect_key + "'"), std::string::npos)
+            << c.name << ": " << msg;
+      }
+      EXPECT_NE(msg.find(c.expect_what), std::string::npos) << c.name << ": " << msg;
+    }
+  }
+}
+
+TEST(CaseFile, MissingAndEmptyFiles) {
+  test::TempDir dir("case-missing");
+  EXPECT_THROW(load_case(dir / "none.yaml"), CaseError);
+  test::write_text(dir / "empty.yaml", "");
+  EXPECT_THROW(load_case(dir / "empty.yaml"), CaseError);
+}
+
+TEST(CaseFile, ShippedCasesAreValid) {
+  for (const char* f : {"data/cases/elastic-vibration.yaml", "data/cases/two-blocks-msh.yaml"}) {
+    EXPECT_NO_THROW(load_case(test::source_path(f))) << f;
+  }
+}

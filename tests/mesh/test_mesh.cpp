@@ -1,0 +1,277 @@
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "tetcontact/mesh/generators.hpp"
+#include "tetcontact/mesh/mesh.hpp"
+#include "tetcontact/mesh/surface.hpp"
+
+using namespace tc;
+
+namespace {
+
+double total_volume(const TetMesh& m) {
+  double v = 0.0;
+  for (const Tet& t : m.tets) v += tet_signed_volume(m.x[t[0]], m.x[t[1]], m.x[t[2]], m.x[t[3]]);
+  return v;
+}
+
+double min_volume(const TetMesh& m) {
+  double v = 1e300;
+  for (const Tet& t : m.tets)
+    v = std::min(v, tet_signed_volume(m.x[t[0]], m.x[t[1]], m.x[t[2]], m.x[t[3]]));
+  return v;
+}
+
+double min_dihedral(const TetMesh& m) {
+  double a = 180.0;
+  for (const Tet& t : m.tets)
+    a = std::min(a, min_dihedral_angle_deg(m.x[t[0]], m.x[t[1]], m.x[t[2]], m.x[t[3]]));
+  return a;
+}
+
+TetMesh unit_tet() {
+  TetMesh m;
+  m.x = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(0, 0, 1)};
+  m.tets = {{0, 1, 2, 3}};
+  return m;
+}
+
+}  // namespace
+
+TEST(Mesh, SignedVolumeOfUnitTet) {
+  const TetMesh m = unit_tet();
+  EXPECT_DOUBLE_EQ(tet_signed_volume(m.x[0], m.x[1], m.x[2], m.x[3]), 1.0 / 6.0);
+  EXPECT_DOUBLE_EQ(tet_signed_volume(m.x[0], m.x[2], m.x[1], m.x[3]), -1.0 / 6.0);
+}
+
+TEST(Mesh, AllNegativeBodyIsReorderedToPositive) {
+  TetMesh m = make_box(Vec3(1, 2, 3), {2, 2, 2}, HexSplit::six);
+  for (Tet& t : m.tets) std::swap(t[1], t[2]);  // a file with the opposite convention
+  const OrientReport r = orient_tets(m, "b");
+  EXPECT_TRUE(r.flipped_all);
+  EXPECT_GT(min_volume(m), 0.0);
+  EXPECT_NEAR(total_volume(m), 6.0, 1e-12);
+}
+
+TEST(Mesh, InvertedTetIsRejectedNamingTetAndBody) {
+  TetMesh m = make_box(Vec3(1, 1, 1), {2, 2, 2}, HexSplit::six);
+  std::swap(m.tets[7][0], m.tets[7][1]);  // one folded element among positive ones
+  try {
+    orient_tets(m, "plate");
+    FAIL() << "an inverted tet was accepted";
+  } catch (const MeshError& e) {
+    const std::string msg = e.what();
+    EXPECT_NE(msg.find("body 'plate'"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("tet 7"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("inverted"), std::string::npos) << msg;
+  }
+}
+
+TEST(Mesh, ZeroVolumeTetIsRejected) {
+  TetMesh m = unit_tet();
+  m.x.push_back(Vec3(0.5, 0.5, 0.0));
+  m.tets.push_back({0, 1, 2, 4});  // four points in the plane z = 0
+  try {
+    orient_tets(m, "flat");
+    FAIL() << "a zero-volume tet was accepted";
+  } catch (const MeshError& e) {
+    const std::string msg = e.what();
+    EXPECT_NE(msg.find("body 'flat', tet 1"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("zero volume"), std::string::npos) << msg;
+  }
+}
+
+TEST(Mesh, AddBodyKeepsRangesAndOffsets) {
+  Mesh mesh;
+  add_body(mesh, "a", make_box(Vec3(1, 1, 1), {1, 1, 1}, HexSplit::five));
+  TetMesh b = make_box(Vec3(1, 1, 1), {2, 1, 1}, HexSplit::six);
+  translate(b, Vec3(3, 0, 0));
+  add_body(mesh, "b", b);
+  ASSERT_EQ(mesh.bodies.size(), 2u);
+  EXPECT_EQ(mesh.bodies[0].tet_count(), 5);
+  EXPECT_EQ(mesh.bodies[1].tet_count(), 12);
+  EXPECT_EQ(mesh.bodies[1].node_begin, 8);
+  for (Index t = mesh.bodies[1].tet_begin; t < mesh.bodies[1].tet_end; ++t)
+    for (Index v : mesh.tets[t]) EXPECT_GE(v, 8);
+  EXPECT_NEAR(body_volume(mesh, 0, mesh.x), 1.0, 1e-14);
+  EXPECT_NEAR(body_volume(mesh, 1, mesh.x), 1.0, 1e-14);
+  EXPECT_EQ(mesh.tet_body.back(), 1);
+  EXPECT_EQ(mesh.node_body.front(), 0);
+}
+
+// Every split of the box fills it exactly with positive tets.
+class BoxSplit : public ::testing::TestWithParam<HexSplit> {};
+
+TEST_P(BoxSplit, VolumeExactAndPositive) {
+  const TetMesh m = make_box(Vec3(0.3, 0.2, 0.1), {3, 4, 5}, GetParam());
+  EXPECT_EQ(m.tets.size(), 60u * static_cast<std::size_t>(GetParam()));
+  EXPECT_NEAR(total_volume(m), 0.3 * 0.2 * 0.1, 1e-15);
+  EXPECT_GT(min_volume(m), 0.0);
+}
+
+TEST_P(BoxSplit, SurfaceClosedManifoldAndOutward) {
+  Mesh mesh;
+  add_body(mesh, "box", make_box(Vec3(2, 3, 4), {3, 2, 5}, GetParam()));
+  const Surface s = build_surfaces(mesh).front();
+  EXPECT_EQ(s.euler_characteristic(), 2);
+  EXPECT_EQ(non_manifold_edges(s), 0);
+  // Divergence theorem: ∮ x·n dA = 3V holds only if every face normal points outward.
+  double flux = 0.0, area = 0.0;
+  for (const Face& f : s.faces) {
+    const Vec3 an = 0.5 * (mesh.x[f[1]] - mesh.x[f[0]]).cross(mesh.x[f[2]] - mesh.x[f[0]]);
+    flux += (mesh.x[f[0]] + mesh.x[f[1]] + mesh.x[f[2]]).dot(an) / 3.0;
+    area += an.norm();
+  }
+  EXPECT_NEAR(flux, 3.0 * 24.0, 1e-10);
+  EXPECT_NEAR(area, 2 * (6.0 + 8.0 + 12.0), 1e-10);
+}
+
+INSTANTIATE_TEST_SUITE_P(Splits, BoxSplit,
+                         ::testing::Values(HexSplit::five, HexSplit::six, HexSplit::twelve));
+
+TEST(Generators, PaperCubeIsTwelveTets) {
+  const TetMesh m = make_box(Vec3(0.02, 0.02, 0.02), {1, 1, 1}, HexSplit::twelve);
+  EXPECT_EQ(m.tets.size(), 12u);
+  EXPECT_EQ(m.x.size(), 9u);  // 8 corners + the centre
+  EXPECT_NEAR(total_volume(m), 8e-6, 1e-18);
+}
+
+TEST(Generators, SixSplitIsMirrorSymmetric) {
+  // Diagonals point away from the centre: reflecting x → −x maps the mesh onto itself.
+  const TetMesh m = make_box(Vec3(2, 2, 2), {4, 4, 4}, HexSplit::six);
+  std::vector<std::array<double, 12>> a, b;
+  for (const Tet& t : m.tets)
+    for (int mirror = 0; mirror < 2; ++mirror) {
+      std::array<Vec3, 4> p;
+      for (int i = 0; i < 4; ++i) {
+        p[i] = m.x[t[i]];
+        if (mirror) p[i].x() = -p[i].x();
+      }
+      std::sort(p.begin(), p.end(), [](const Vec3& u, const Vec3& v) {
+        return std::lexicographical_compare(u.data(), u.data() + 3, v.data(), v.data() + 3);
+      });
+      std::array<double, 12> key;
+      for (int i = 0; i < 4; ++i)
+        for (int d = 0; d < 3; ++d) key[3 * i + d] = p[i][d] + 0.0;
+      (mirror ? b : a).push_back(key);
+    }
+  std::sort(a.begin(), a.end());
+  std::sort(b.begin(), b.end());
+  EXPECT_EQ(a, b);
+}
+
+TEST(Generators, PlateKeepsCellsNearCubic) {
+  const TetMesh m = make_plate(Vec3(0.1, 0.05, 0.002), 2, HexSplit::six);
+  EXPECT_EQ(m.tets.size(), 6u * 100 * 50 * 2);
+  EXPECT_NEAR(total_volume(m), 0.1 * 0.05 * 0.002, 1e-15);
+}
+
+TEST(Generators, CylinderVolumeConvergesToPiR2H) {
+  const double r = 0.01, h = 0.02;
+  double prev_err = 1.0;
+  for (int n : {4, 8, 16}) {
+    const TetMesh m = make_cylinder(r, h, n, n, HexSplit::six);
+    const double err = std::abs(total_volume(m) - M_PI * r * r * h) / (M_PI * r * r * h);
+    EXPECT_LT(err, prev_err) << "n = " << n;
+    prev_err = err;
+    EXPECT_GT(min_volume(m), 0.0);
+  }
+  // Inscribed polygon of 4·16 sides: area error ≈ (2π/64)²/6 = 1.6e-3.
+  EXPECT_LT(prev_err, 3e-3);
+  // Rim nodes lie on the circle.
+  const TetMesh m = make_cylinder(r, h, 8, 8, HexSplit::six);  // near-cubic cells
+  EXPECT_GT(min_dihedral(m), 20.0);
+  EXPECT_THROW(make_cylinder(r, h, 8, 4, HexSplit::twelve), std::invalid_argument);
+  double max_r = 0.0;
+  for (const Vec3& p : m.x) max_r = std::max(max_r, std::hypot(p.x(), p.y()));
+  EXPECT_NEAR(max_r, r, 1e-15);
+}
+
+TEST(Generators, SphereVolumeAndQualityNoSlivers) {
+  const double r = 0.005;
+  for (int n : {4, 12}) {
+    const TetMesh m = make_sphere(r, n, HexSplit::six);
+    const double exact = 4.0 / 3.0 * M_PI * r * r * r;
+    EXPECT_NEAR(total_volume(m), exact, (n == 4 ? 0.1 : 0.01) * exact);
+    EXPECT_GT(min_volume(m), 0.0);
+    // A sliver has a dihedral angle near 0°; the blended map keeps every angle well open.
+    EXPECT_GT(min_dihedral(m), 30.0) << "cells across " << n;
+    Mesh mesh;
+    add_body(mesh, "ball", m);
+    const Surface s = build_surfaces(mesh).front();
+    EXPECT_EQ(s.euler_characteristic(), 2);
+    EXPECT_EQ(non_manifold_edges(s), 0);
+    for (Index v : s.nodes) EXPECT_NEAR(mesh.x[v].norm(), r, 1e-15);
+  }
+  EXPECT_THROW(make_sphere(r, 4, HexSplit::five), std::invalid_argument);
+  EXPECT_THROW(make_sphere(r, 4, HexSplit::twelve), std::invalid_argument);
+}
+
+TEST(Generators, CylinderSurfaceIsClosed) {
+  Mesh mesh;
+  add_body(mesh, "rod", make_cylinder(0.0032, 0.0324, 6, 20, HexSplit::six));
+  const Surface s = build_surfaces(mesh).front();
+  EXPECT_EQ(s.euler_characteristic(), 2);
+  EXPECT_EQ(non_manifold_edges(s), 0);
+}
+
+TEST(Generators, TransformsComposeAsExpected) {
+  TetMesh m = unit_tet();
+  scale(m, 2.0);
+  rotate(m, Vec3(0, 0, 1), M_PI / 2);  // x → y
+  translate(m, Vec3(1, 0, 0));
+  EXPECT_NEAR((m.x[1] - Vec3(1, 2, 0)).norm(), 0.0, 1e-15);
+  EXPECT_NEAR((m.x[3] - Vec3(1, 0, 2)).norm(), 0.0, 1e-15);
+  EXPECT_NEAR(total_volume(m), 8.0 / 6.0, 1e-14);
+}
+
+TEST(Surface, AdjacencyNormalsAndEdgeLengths) {
+  Mesh mesh;
+  add_body(mesh, "box", make_box(Vec3(1, 1, 1), {2, 2, 2}, HexSplit::six));
+  const Surface s = build_surfaces(mesh).front();
+  EXPECT_EQ(s.nodes.size(), 26u);  // 27 lattice nodes minus the centre
+  EXPECT_EQ(s.faces.size(), 6u * 4 * 2);
+  // Every face listed around each of its nodes, once.
+  std::size_t entries = 0;
+  for (std::size_t i = 0; i < s.nodes.size(); ++i)
+    for (Index k = s.node_face_offsets[i]; k < s.node_face_offsets[i + 1]; ++k) {
+      const Face& f = s.faces[s.node_faces[k]];
+      EXPECT_TRUE(f[0] == s.nodes[i] || f[1] == s.nodes[i] || f[2] == s.nodes[i]);
+      ++entries;
+    }
+  EXPECT_EQ(entries, 3 * s.faces.size());
+  // Node at the centre of the +x face: its normal is +x; a corner node's has all three
+  // components positive and unit length.
+  const auto normals = node_normals(s, mesh.x);
+  for (std::size_t i = 0; i < s.nodes.size(); ++i) {
+    const Vec3& p = mesh.x[s.nodes[i]];
+    EXPECT_NEAR(normals[i].norm(), 1.0, 1e-14);
+    if ((p - Vec3(0.5, 0, 0)).norm() < 1e-12) {
+      EXPECT_NEAR((normals[i] - Vec3(1, 0, 0)).norm(), 0, 1e-14);
+    }
+    if ((p - Vec3(0.5, 0.5, 0.5)).norm() < 1e-12) {
+      EXPECT_GT(normals[i].minCoeff(), 0.3);
+    }
+  }
+  // Cells of side 0.5: edges 0.5, face diagonals 0.707, body diagonal 0.866.
+  EXPECT_NEAR(s.max_edge_length, std::sqrt(0.75), 1e-14);
+  EXPECT_GT(s.mean_edge_length, 0.5);
+  EXPECT_LT(s.mean_edge_length, std::sqrt(0.75));
+}
+
+TEST(Surface, FaceSharedByThreeTetsIsRejected) {
+  Mesh mesh;
+  TetMesh m = unit_tet();
+  m.x.push_back(Vec3(-1, -1, -1));
+  m.x.push_back(Vec3(0.3, 0.3, -1));
+  m.tets.push_back({0, 2, 1, 4});  // below face (0,1,2)
+  m.tets.push_back({0, 2, 1, 5});  // below it again: a third tet on that face
+  Mesh bad;
+  bad.x = m.x;
+  bad.tets = m.tets;
+  bad.bodies.push_back({"bad", 0, 6, 0, 3});
+  bad.tet_body.assign(3, 0);
+  bad.node_body.assign(6, 0);
+  EXPECT_THROW(build_surfaces(bad), MeshError);
+}

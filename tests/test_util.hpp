@@ -1,0 +1,69 @@
+// Helpers shared by the tests: paths, temporary folders, running the CLI.
+#pragma once
+
+#include <sys/wait.h>
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+namespace tc::test {
+
+inline std::string source_path(const std::string& rel) {
+  return std::string(TETCONTACT_SOURCE_DIR) + "/" + rel;
+}
+
+/// A fresh folder under the build tree's test-output/, removed on destruction.
+class TempDir {
+ public:
+  explicit TempDir(const std::string& name) {
+    path_ = std::filesystem::absolute("test-output") / name;
+    std::filesystem::remove_all(path_);
+    std::filesystem::create_directories(path_);
+  }
+  ~TempDir() {
+    std::error_code ec;
+    std::filesystem::remove_all(path_, ec);
+  }
+  std::string str() const { return path_.string(); }
+  std::string operator/(const std::string& rel) const { return (path_ / rel).string(); }
+
+ private:
+  std::filesystem::path path_;
+};
+
+inline void write_text(const std::string& path, const std::string& text) {
+  std::ofstream(path) << text;
+}
+
+inline std::string read_text(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+struct CliResult {
+  int code = -1;
+  std::string out, err;
+};
+
+/// Runs `tetcontact ARGS` (ARGS already shell-quoted) and captures exit code, stdout, stderr.
+inline CliResult run_cli(const std::string& args, const std::string& scratch) {
+  const std::string out = scratch + "/.stdout", err = scratch + "/.stderr";
+  const std::string cmd = std::string("'") + TETCONTACT_BINARY + "' " + args + " >'" + out +
+                          "' 2>'" + err + "' </dev/null";
+  const int status = std::system(cmd.c_str());
+  CliResult r;
+  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  r.out = read_text(out);
+  r.err = read_text(err);
+  std::filesystem::remove(out);
+  std::filesystem::remove(err);
+  return r;
+}
+
+}  // namespace tc::test

@@ -1,0 +1,80 @@
+#!/usr/bin/python3
+"""Opens a tetcontact ParaView series with VTK's own XML reader (the one ParaView uses) and
+checks it: every frame of case.pvd reads, has the mesh of summary.json, linear tetrahedra
+only, the requested arrays with their component counts, finite values, positive volumes.
+
+    check_vtu.py OUTDIR                        check an existing result folder
+    check_vtu.py --run BINARY CASE OUTDIR      run a short version of CASE first
+
+Needs Debian's python3-vtk9 (run with /usr/bin/python3). Exit code 0 when all checks pass."""
+import json
+import math
+import os
+import subprocess
+import sys
+import xml.etree.ElementTree as ET
+
+import vtk
+from vtk.util.numpy_support import vtk_to_numpy
+
+checks = {"passed": 0, "failed": 0}
+
+
+def check(cond, what):
+    if cond:
+        checks["passed"] += 1
+    else:
+        checks["failed"] += 1
+        print("FAIL:", what)
+
+
+def main(argv):
+    if argv[:1] == ["--run"]:
+        binary, case, out = argv[1:4]
+        subprocess.run([binary, "run", case, "--out", out, "--force", "--quiet",
+                        "--set", "end_time=2.0e-5", "--set", "output.interval=1.0e-5",
+                        "--set", "output.fields=[displacement,velocity,stress,pressure,body,von_mises]"],
+                       check=True)
+    else:
+        (out,) = argv
+    summary = json.load(open(os.path.join(out, "summary.json")))
+    nodes, tets = summary["mesh"]["nodes"], summary["mesh"]["tets"]
+    series = ET.parse(os.path.join(out, "case.pvd")).getroot().find("Collection")
+    frames = [(float(d.get("timestep")), d.get("file")) for d in series.findall("DataSet")]
+    check(len(frames) >= 2, "at least two frames in case.pvd")
+    check(all(a[0] < b[0] for a, b in zip(frames, frames[1:])), "frame times increase")
+    expected_point = {"displacement": 3, "velocity": 3, "body": 1}
+    expected_cell = {"stress": 6, "pressure": 1, "von_mises": 1, "body": 1}
+    for t, name in frames:
+        reader = vtk.vtkXMLUnstructuredGridReader()
+        reader.SetFileName(os.path.join(out, name))
+        reader.Update()
+        grid = reader.GetOutput()
+        check(reader.GetErrorCode() == 0, f"{name}: VTK reads it")
+        check(grid.GetNumberOfPoints() == nodes, f"{name}: {nodes} points")
+        check(grid.GetNumberOfCells() == tets, f"{name}: {tets} cells")
+        types = vtk_to_numpy(grid.GetCellTypesArray())
+        check((types == vtk.VTK_TETRA).all(), f"{name}: only linear tetrahedra")
+        for data, expected in ((grid.GetPointData(), expected_point), (grid.GetCellData(), expected_cell)):
+            for array, comps in expected.items():
+                a = data.GetArray(array)
+                check(a is not None and a.GetNumberOfComponents() == comps,
+                      f"{name}: array {array} with {comps} components")
+                if a is not None:
+                    values = vtk_to_numpy(a)
+                    check(all(math.isfinite(v) for v in values.ravel()), f"{name}: {array} finite")
+        quality = vtk.vtkMeshQuality()
+        quality.SetInputData(grid)
+        quality.SetTetQualityMeasureToVolume()
+        quality.Update()
+        vol = vtk_to_numpy(quality.GetOutput().GetCellData().GetArray("Quality"))
+        check(vol.min() > 0, f"{name}: every tet has positive volume in VTK's convention")
+        if t == 0.0:
+            disp = vtk_to_numpy(grid.GetPointData().GetArray("displacement"))
+            check(abs(disp).max() == 0.0, f"{name}: zero displacement at t = 0")
+    print(f"check_vtu: {checks['passed']} passed, {checks['failed']} failed")
+    return 1 if checks["failed"] else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv[1:]))
