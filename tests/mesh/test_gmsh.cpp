@@ -50,7 +50,10 @@ TEST_P(GmshFormats, ReadsTetsGroupsAndSkipsOtherElements) {
 
 INSTANTIATE_TEST_SUITE_P(Files, GmshFormats,
                          ::testing::Values("data/meshes/two-blocks-v22.msh",
-                                           "data/meshes/two-blocks-v41.msh"));
+                                           "data/meshes/two-blocks-v41.msh"),
+                         [](const auto& info) {
+                           return std::string(info.index == 0 ? "v22" : "v41");
+                         });
 
 TEST(Gmsh, BothFormatsGiveTheSameMesh) {
   const GmshMesh a = read_gmsh(test::source_path("data/meshes/two-blocks-v22.msh"));

@@ -128,7 +128,10 @@ TEST_P(BoxSplit, SurfaceClosedManifoldAndOutward) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Splits, BoxSplit,
-                         ::testing::Values(HexSplit::five, HexSplit::six, HexSplit::twelve));
+                         ::testing::Values(HexSplit::five, HexSplit::six, HexSplit::twelve),
+                         [](const auto& info) {
+                           return "split" + std::to_string(static_cast<int>(info.param));
+                         });
 
 TEST(Generators, PaperCubeIsTwelveTets) {
   const TetMesh m = make_box(Vec3(0.02, 0.02, 0.02), {1, 1, 1}, HexSplit::twelve);

@@ -1,0 +1,63 @@
+// Element update cost: ns per tet per step (stress update + internal forces + stable step).
+// Not a test: `make bench` prints the figures; the README quotes them with machine and date.
+#include <benchmark/benchmark.h>
+
+#include "tetcontact/mesh/generators.hpp"
+#include "tetcontact/solver/simulation.hpp"
+
+using namespace tc;
+
+namespace {
+
+Model bar_model(int cells) {
+  Model model;
+  add_body(model.mesh, "bar",
+           make_box(Vec3(0.1, 0.01, 0.01), {10 * cells, cells, cells}, HexSplit::six));
+  Material al{"aluminium", 2700, 70e9, 0.3};
+  model.materials = {al};
+  model.body_material = {0};
+  model.initial_velocity.assign(model.mesh.x.size(), Vec3::Zero());
+  for (std::size_t i = 0; i < model.mesh.x.size(); ++i)
+    model.initial_velocity[i] = Vec3(model.mesh.x[i].x() < 0 ? 1.0 : -1.0, 0, 0);
+  return model;
+}
+
+// Whole steps of the elastic pipeline (predict, balance, commit, elements) per tet.
+void BM_Step(benchmark::State& state) {
+  Model model = bar_model(static_cast<int>(state.range(0)));
+  const std::size_t tets = model.mesh.tets.size();
+  SolverSettings settings;
+  settings.end_time = 1.0;
+  settings.max_steps = 1L << 40;
+  Simulation sim(std::move(model), settings);
+  for (auto _ : state) sim.step();
+  state.counters["tets"] = static_cast<double>(tets);
+  state.counters["ns_per_tet_step"] =
+      benchmark::Counter(static_cast<double>(tets) * state.iterations(),
+                         benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+}
+
+// The element stage alone: update_stress + compute_forces.
+void BM_ElementStage(benchmark::State& state) {
+  Model model = bar_model(static_cast<int>(state.range(0)));
+  const std::size_t tets = model.mesh.tets.size();
+  SolverSettings settings;
+  settings.end_time = 1.0;
+  Simulation sim(std::move(model), settings);
+  sim.step();
+  State st = sim.state();
+  for (auto _ : state) {
+    update_stress(sim.model().mesh.tets, sim.model().materials, st.dt_prev, st);
+    benchmark::DoNotOptimize(compute_forces(sim.model().mesh.tets, sim.model().materials, st));
+  }
+  state.counters["tets"] = static_cast<double>(tets);
+  state.counters["ns_per_tet_step"] =
+      benchmark::Counter(static_cast<double>(tets) * state.iterations(),
+                         benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+}
+
+}  // namespace
+
+// 6 tets per hex: cells=4 → 3,840 tets; 8 → 30,720; 12 → 103,680.
+BENCHMARK(BM_Step)->Arg(4)->Arg(12)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_ElementStage)->Arg(4)->Arg(12)->Unit(benchmark::kMillisecond);
