@@ -33,7 +33,7 @@ deps:
 	  if [ "$$(id -u)" = "0" ]; then \
 	    echo "make: installing missing Debian packages:$$missing"; \
 	    DEBIAN_FRONTEND=noninteractive apt-get update -qq && \
-	    DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends $$missing >/dev/null || exit 1; \
+	    DEBIAN_FRONTEND=noninteractive apt-get install -y -qq $$missing >/dev/null || exit 1; \
 	  else \
 	    echo "make: missing Debian packages:$$missing"; \
 	    echo "make: install them with: sudo apt-get install$$missing"; \

@@ -89,6 +89,13 @@ std::vector<double> tet_volumes(const std::vector<Vec3>& x, const std::vector<Te
   return v;
 }
 
+double total_volume(const TetMesh& mesh) {
+  double sum = 0.0;
+  for (const Tet& k : mesh.tets)
+    sum += tet_signed_volume(mesh.x[k[0]], mesh.x[k[1]], mesh.x[k[2]], mesh.x[k[3]]);
+  return sum;
+}
+
 double body_volume(const Mesh& mesh, Index body, const std::vector<Vec3>& x) {
   const BodyRange& r = mesh.bodies.at(body);
   double sum = 0.0;

@@ -6,16 +6,6 @@
 
 using namespace tc;
 
-namespace {
-
-double volume(const TetMesh& m) {
-  double v = 0.0;
-  for (const Tet& t : m.tets) v += tet_signed_volume(m.x[t[0]], m.x[t[1]], m.x[t[2]], m.x[t[3]]);
-  return v;
-}
-
-}  // namespace
-
 class GmshFormats : public ::testing::TestWithParam<const char*> {};
 
 TEST_P(GmshFormats, ReadsTetsGroupsAndSkipsOtherElements) {
@@ -32,13 +22,13 @@ TEST_P(GmshFormats, ReadsTetsGroupsAndSkipsOtherElements) {
 
   TetMesh left = gmsh_body(g, "left");
   EXPECT_EQ(left.x.size(), 8u);  // unused nodes dropped
-  EXPECT_NEAR(volume(left), 1.0, 1e-14);
+  EXPECT_NEAR(total_volume(left), 1.0, 1e-14);
   for (const Vec3& p : left.x) EXPECT_LE(p.x(), 1.0);
   TetMesh right = gmsh_body(g, "right");
   for (const Vec3& p : right.x) EXPECT_GE(p.x(), 1.0);
   TetMesh all = gmsh_body(g, "");
   EXPECT_EQ(all.tets.size(), 12u);
-  EXPECT_NEAR(volume(all), 2.0, 1e-14);
+  EXPECT_NEAR(total_volume(all), 2.0, 1e-14);
 
   // The whole file as one body: a closed 2×1×1 box.
   Mesh mesh;

@@ -10,12 +10,6 @@ using namespace tc;
 
 namespace {
 
-double total_volume(const TetMesh& m) {
-  double v = 0.0;
-  for (const Tet& t : m.tets) v += tet_signed_volume(m.x[t[0]], m.x[t[1]], m.x[t[2]], m.x[t[3]]);
-  return v;
-}
-
 double min_volume(const TetMesh& m) {
   double v = 1e300;
   for (const Tet& t : m.tets)

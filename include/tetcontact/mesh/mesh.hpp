@@ -73,6 +73,9 @@ Index add_body(Mesh& mesh, const std::string& name, TetMesh body);
 /// Volume of every tet at positions x.
 std::vector<double> tet_volumes(const std::vector<Vec3>& x, const std::vector<Tet>& tets);
 
+/// Total signed volume of a body's tets.
+double total_volume(const TetMesh& mesh);
+
 /// Total volume of one body at positions x.
 double body_volume(const Mesh& mesh, Index body, const std::vector<Vec3>& x);
 
