@@ -71,7 +71,8 @@ class Progress {
   double last_ = -1e300, next_mark_ = 0.0;
 };
 
-Json summary_json(const Case& c, const Simulation& sim, const std::string& status, double wall) {
+Json summary_json(const Case& c, const Simulation& sim, const std::string& status, double wall,
+                  const std::vector<std::string>& warnings_in) {
   const Model& model = sim.model();
   const State& st = sim.state();
   const Sample& first = sim.first_sample();
@@ -103,8 +104,11 @@ Json summary_json(const Case& c, const Simulation& sim, const std::string& statu
   Json& e = j["energy"];
   e["kinetic"] = last.kinetic;
   e["internal"] = last.internal;
+  e["plastic_work"] = last.plastic_work;
+  e["viscous_work"] = last.viscous_work;
   e["contact_work"] = nullptr;  // no contact stage in this version: not measured
-  e["boundary_work"] = last.boundary_work;
+  e["boundary_work"] = last.boundary.work;
+  e["wall_work"] = last.walls.work;
   e["total_initial"] = first.total;
   e["total_final"] = last.total;
   e["balance_error"] = last.balance_error;
@@ -113,10 +117,11 @@ Json summary_json(const Case& c, const Simulation& sim, const std::string& statu
   Json& p = j["momentum"];
   p["initial"] = first.momentum;
   p["final"] = last.momentum;
-  p["boundary_impulse"] = last.boundary_impulse;
+  p["boundary_impulse"] = last.boundary.impulse;
+  p["wall_impulse"] = last.walls.impulse;
   const double scale = std::max(first.momentum_scale, last.momentum_scale);
   p["relative_error"] =
-      scale > 0 ? (last.momentum - first.momentum - last.boundary_impulse).norm() / scale : 0.0;
+      scale > 0 ? (last.momentum - first.momentum - last.external_impulse()).norm() / scale : 0.0;
 
   Json& mass = j["mass"];
   mass["initial"] = first.mass;
@@ -133,6 +138,20 @@ Json summary_json(const Case& c, const Simulation& sim, const std::string& statu
     bodies.push_back(o);
   }
   j["bodies"] = bodies;
+
+  Json walls = Json::array();
+  for (std::size_t w = 0; w < model.walls.size(); ++w) {
+    Json o = Json::object();
+    o["name"] = model.walls[w].name;
+    o["max_force"] = sim.wall_force_max()[w];
+    o["impulse"] = last.walls.impulse;  // all walls together
+    walls.push_back(o);
+  }
+  j["walls"] = walls;
+  Json warnings = Json::array();
+  for (const std::string& w : warnings_in) warnings.push_back(w);
+  j["warnings"] = warnings;
+  j["material_library"] = c.material_library.empty() ? Json() : Json(c.material_library);
 
   Json& ts = j["time_step"];
   ts["last"] = last.dt;
@@ -159,9 +178,16 @@ void print_table(const Case& c, const Simulation& sim, const std::string& status
   os << "  steps      " << sim.state().step << "   t = " << fmt(last.t) << " s   wall "
      << fmt(wall, "%.3f") << " s\n";
   os << "  energy     initial " << fmt(first.total, "%.6g") << " J   final "
-     << fmt(last.total, "%.6g") << " J   boundary work " << fmt(last.boundary_work, "%.4g")
+     << fmt(last.total, "%.6g") << " J   external work " << fmt(last.external_work(), "%.4g")
      << " J   balance error " << fmt(last.balance_error, "%.2e") << " (max "
      << fmt(sim.balance_error_max(), "%.2e") << ")\n";
+  if (last.plastic_work > 0 || last.viscous_work > 0)
+    os << "  internal   " << fmt(last.internal, "%.6g") << " J, of which plastic work "
+       << fmt(last.plastic_work, "%.4g") << " J, viscous heat " << fmt(last.viscous_work, "%.4g")
+       << " J\n";
+  for (std::size_t w = 0; w < sim.model().walls.size(); ++w)
+    os << "  wall       " << sim.model().walls[w].name << ": max reaction force "
+       << fmt(sim.wall_force_max()[w]) << " N\n";
   os << "  momentum   initial " << fmt3(first.momentum) << "   final " << fmt3(last.momentum)
      << " kg m/s\n";
   for (const BodyStats& b : body_stats(sim.model(), sim.state()))
@@ -205,6 +231,8 @@ int check_case(const RunOptions& o) {
     std::vector<std::string> names;
     for (const BodyRange& b : model.mesh.bodies) names.push_back(b.name);
     try {
+      for (const std::string& w : mach_warnings(c, model))
+        std::cerr << "tetcontact: warning: " << w << "\n";
       Simulation sim(std::move(model), solver_settings(c));
       std::cout << c.file << ": ok — case '" << c.name << "', " << names.size() << " bodies, "
                 << nodes << " nodes, " << tets << " tets; first time step " << fmt(sim.state().dt)
@@ -221,6 +249,7 @@ int run_case(const RunOptions& o) {
   Case c;
   std::unique_ptr<Simulation> sim;
   std::string dir;
+  std::vector<std::string> warnings;
   const int setup = with_bad_input_guard([&] {
     c = load_case(o.case_path, o.overrides);
     std::vector<std::string> notes;
@@ -232,6 +261,9 @@ int run_case(const RunOptions& o) {
     } catch (const RunFailure& e) {  // an element inverted in the initial geometry
       throw SetupError(c.file + ": " + e.what());
     }
+    warnings = mach_warnings(c, sim->model());
+    if (!o.quiet)
+      for (const std::string& w : warnings) std::cerr << "tetcontact: warning: " << w << "\n";
     dir = o.out_dir.empty() ? "results/" + c.name : o.out_dir;
     prepare_output_dir(dir, o.force);  // only now, when the input is known to be good
     return 0;
@@ -257,7 +289,7 @@ int run_case(const RunOptions& o) {
   progress.done();
   writer.close();
   const double wall = seconds_since(t0);
-  write_file_atomic(dir + "/summary.json", summary_json(c, *sim, status, wall).dump());
+  write_file_atomic(dir + "/summary.json", summary_json(c, *sim, status, wall, warnings).dump());
   if (!o.quiet || code != 0) print_table(c, *sim, status, dir, writer.frames(), wall);
   if (code != 0) std::cerr << "tetcontact: run failed: " << status.substr(8) << "\n";
   return code;

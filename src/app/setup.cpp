@@ -1,6 +1,7 @@
 #include "tetcontact/app/setup.hpp"
 
 #include <cmath>
+#include <cstdio>
 
 #include "tetcontact/mesh/generators.hpp"
 #include "tetcontact/mesh/gmsh.hpp"
@@ -145,7 +146,67 @@ Model build_model(const Case& c, std::vector<std::string>* notes) {
         if (vc.components[d]) model.initial_velocity[n][d] = vc.velocity[d];
     model.constraints.push_back(std::move(vc));
   }
+
+  model.walls = c.walls;
+  model.element.viscosity_linear = c.viscosity_linear;
+  model.element.viscosity_quadratic = c.viscosity_quadratic;
+  for (const Material& m : model.materials)
+    model.element.average_nodal_pressure.push_back(
+        c.average_nodal_pressure == AnpMode::on ||
+        (c.average_nodal_pressure == AnpMode::automatic && m.plastic()));
   return model;
+}
+
+std::vector<std::string> mach_warnings(const Case& c, const Model& model) {
+  std::vector<std::string> out;
+  const std::size_t nb = model.mesh.bodies.size();
+  std::vector<Vec3> velocity(nb, Vec3::Zero());
+  std::vector<double> mass(nb, 0.0);
+  for (std::size_t b = 0; b < nb; ++b) {
+    const BodyRange& r = model.mesh.bodies[b];
+    const Material& mat = model.materials[model.body_material[b]];
+    for (Index t = r.tet_begin; t < r.tet_end; ++t) {
+      const Tet& k = model.mesh.tets[t];
+      const double m = mat.density * tet_signed_volume(model.mesh.x[k[0]], model.mesh.x[k[1]],
+                                                       model.mesh.x[k[2]], model.mesh.x[k[3]]);
+      for (Index n : k) {
+        velocity[b] += 0.25 * m * model.initial_velocity[n];
+        mass[b] += 0.25 * m;
+      }
+    }
+    velocity[b] /= mass[b];
+  }
+  auto check = [&](std::size_t b, double u0, const std::string& against) {
+    const Material& mat = model.materials[model.body_material[b]];
+    const double m0 = u0 / mat.bulk_sound_speed();
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "%.3g", m0);
+    const std::string head =
+        "body '" + model.mesh.bodies[b].name + "' against " + against +
+        ": impact Mach number M0 = " + buf +
+        " (U0 = " + std::to_string(static_cast<long>(std::lround(u0))) +
+        " m/s, C0 = " + std::to_string(static_cast<long>(std::lround(mat.bulk_sound_speed()))) +
+        " m/s)";
+    if (m0 >= 1.5)
+      out.push_back(head + " is beyond the paper's models (M0 < 1.5)");
+    else if (m0 > 0.75 && mat.eos == EosKind::linear)
+      out.push_back(head +
+                    " is above 0.75, where the paper leaves the elastic-plastic model with "
+                    "a linear EOS for a hydrodynamic one: give material '" +
+                    mat.name + "' a mie_gruneisen eos");
+  };
+  for (std::size_t a = 0; a < nb; ++a) {
+    for (std::size_t b = a + 1; b < nb; ++b) {
+      const double u0 = (velocity[a] - velocity[b]).norm();
+      check(a, u0, "body '" + model.mesh.bodies[b].name + "'");
+      check(b, u0, "body '" + model.mesh.bodies[a].name + "'");
+    }
+    for (const RigidWall& w : c.walls) {
+      const double u0 = std::max(0.0, -velocity[a].dot(w.normal));
+      if (u0 > 0.0) check(a, u0, "wall '" + w.name + "'");
+    }
+  }
+  return out;
 }
 
 }  // namespace tc

@@ -2,13 +2,30 @@
 
 namespace tc {
 
+namespace {
+
+void account(const std::vector<Vec3>& impulse, const State& st, const ImpulseLedger* previous,
+             ImpulseLedger& out) {
+  double power_behind = 0.0;  // Σ J^n·U^n
+  for (std::size_t i = 0; i < impulse.size(); ++i) {
+    power_behind += impulse[i].dot(st.v[i]);
+    out.power_ahead += impulse[i].dot(st.v_star[i]);
+    out.now += impulse[i];
+  }
+  if (previous) {
+    out.work = previous->work + 0.5 * (previous->power_ahead + power_behind);
+    out.impulse = previous->impulse + 0.5 * (previous->now + out.now);
+  }
+}
+
+}  // namespace
+
 Sample sample_balance(const State& st, const Sample* previous) {
   Sample s;
   s.step = st.step;
   s.t = st.t;
   s.dt = st.dt;
-  double power_behind = 0.0;  // Σ J^n·U^n
-  // U* − U^n = τ_v a^n (prescribed impulses included); the left step τ^{n-1/2} scales it.
+  // U* − U^n = τ_v a^n (external impulses included); the left step τ^{n-1/2} scales it.
   const double tau_v = 0.5 * (st.dt_prev + st.dt);
   const double w = tau_v > 0.0 ? st.dt_prev / tau_v : 0.0;
   for (std::size_t i = 0; i < st.x.size(); ++i) {
@@ -17,17 +34,14 @@ Sample sample_balance(const State& st, const Sample* previous) {
     const Vec3 p = 0.5 * st.m[i] * (st.v[i] + st.v_star[i]);
     s.momentum += p;
     s.momentum_scale += p.norm();
-    s.bc_impulse_now += st.bc_impulse[i];
-    power_behind += st.bc_impulse[i].dot(st.v[i]);
-    s.bc_power_ahead += st.bc_impulse[i].dot(st.v_star[i]);
   }
-  for (double e : st.e_int) s.internal += e;
-  // Centred momentum moves by ½ (J^n + J^{n+1}) between samples (internal forces cancel).
-  if (previous) {
-    s.boundary_work = previous->boundary_work + 0.5 * (previous->bc_power_ahead + power_behind);
-    s.boundary_impulse =
-        previous->boundary_impulse + 0.5 * (previous->bc_impulse_now + s.bc_impulse_now);
+  for (std::size_t t = 0; t < st.e_int.size(); ++t) {
+    s.internal += st.e_int[t];
+    s.plastic_work += st.w_plastic[t];
+    s.viscous_work += st.w_viscous[t];
   }
+  account(st.bc_impulse, st, previous ? &previous->boundary : nullptr, s.boundary);
+  account(st.wall_impulse, st, previous ? &previous->walls : nullptr, s.walls);
   s.total = s.kinetic + s.internal;
   return s;
 }

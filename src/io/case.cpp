@@ -136,6 +136,12 @@ class Reader {
     return v;
   }
 
+  double non_negative(const YAML::Node& node, const std::string& path) const {
+    const double v = number(node, path);
+    if (v < 0.0) fail(node, path, "must not be negative, got " + node.Scalar());
+    return v;
+  }
+
   int count(const YAML::Node& node, const std::string& path, long lo, long hi) const {
     const long v = integer(node, path);
     if (v < lo || v > hi)
@@ -330,11 +336,103 @@ std::vector<TransformOp> parse_transform(const Reader& r, const YAML::Node& n,
   return ops;
 }
 
+// One material's keys: density; elasticity as (youngs_modulus, poisson_ratio) or
+// (shear_modulus [, bulk_modulus]); optional strength; optional EOS.
+Material parse_material(const Reader& r, const YAML::Node& m, const std::string& p) {
+  r.keys(m, p,
+         {"from", "density", "youngs_modulus", "poisson_ratio", "shear_modulus", "bulk_modulus",
+          "yield_stress", "hardening_modulus", "eos"});
+  Material mat;
+  mat.density = r.positive(r.require(m, p, "density"), join(p, "density"), "kg/m^3");
+  const bool by_young = m["youngs_modulus"] || m["poisson_ratio"];
+  const bool by_shear = m["shear_modulus"] || m["bulk_modulus"];
+  if (by_young && by_shear)
+    r.fail(m, p,
+           "give either youngs_modulus and poisson_ratio, or shear_modulus (and bulk_modulus)");
+  if (by_young) {
+    const double e = r.positive(r.require(m, p, "youngs_modulus"), join(p, "youngs_modulus"), "Pa");
+    const YAML::Node nu = r.require(m, p, "poisson_ratio");
+    const double v = r.number(nu, join(p, "poisson_ratio"));
+    if (!(v > -1.0 && v < 0.5))
+      r.fail(nu, join(p, "poisson_ratio"),
+             "Poisson's ratio must be in (-1, 0.5), got " + nu.Scalar());
+    set_elastic_constants(mat, e, v);
+  } else if (by_shear) {
+    mat.shear_modulus =
+        r.positive(r.require(m, p, "shear_modulus"), join(p, "shear_modulus"), "Pa");
+    if (m["bulk_modulus"])
+      mat.bulk_modulus = r.positive(m["bulk_modulus"], join(p, "bulk_modulus"), "Pa");
+  } else {
+    r.fail(m, p, "missing elastic constants: youngs_modulus and poisson_ratio, or shear_modulus");
+  }
+  if (m["yield_stress"])
+    mat.yield_stress = r.non_negative(m["yield_stress"], join(p, "yield_stress"));
+  if (m["hardening_modulus"]) {
+    mat.hardening_modulus = r.non_negative(m["hardening_modulus"], join(p, "hardening_modulus"));
+    if (mat.yield_stress == 0.0)
+      r.fail(m["hardening_modulus"], join(p, "hardening_modulus"),
+             "hardening needs a yield_stress > 0");
+  }
+  if (const YAML::Node e = m["eos"]) {
+    const std::string ep = join(p, "eos");
+    r.map(e, ep);
+    const std::string type = r.string(r.require(e, ep, "type"), join(ep, "type"));
+    if (type == "linear") {
+      r.keys(e, ep, {"type"});
+    } else if (type == "mie_gruneisen") {
+      r.keys(e, ep, {"type", "c0", "s", "gamma0"});
+      mat.eos = EosKind::mie_gruneisen;
+      mat.c0 = r.positive(r.require(e, ep, "c0"), join(ep, "c0"), "m/s");
+      mat.s = r.non_negative(r.require(e, ep, "s"), join(ep, "s"));
+      mat.gamma0 = r.non_negative(r.require(e, ep, "gamma0"), join(ep, "gamma0"));
+      mat.bulk_modulus = mat.density * mat.c0 * mat.c0;  // K0 = ρ0 c0²
+    } else {
+      r.fail(e["type"], join(ep, "type"),
+             "EOS type must be linear or mie_gruneisen, got '" + type + "'");
+    }
+  }
+  if (mat.bulk_modulus <= 0.0)
+    r.fail(m, p,
+           "no bulk modulus: give bulk_modulus, youngs_modulus and poisson_ratio, or a "
+           "mie_gruneisen eos");
+  return mat;
+}
+
 }  // namespace
 
+std::string default_material_library() {
+  return std::string(TETCONTACT_DATA_DIR) + "/materials.yaml";
+}
+
+std::vector<Material> load_material_library(const std::string& path) {
+  if (!fs::is_regular_file(path)) throw CaseError(path + ": material library not found");
+  YAML::Node root;
+  try {
+    root = YAML::LoadFile(path);
+  } catch (const YAML::ParserException& e) {
+    std::ostringstream os;
+    os << path << ":" << e.mark.line + 1 << ":" << e.mark.column + 1
+       << ": YAML syntax error: " << e.msg;
+    throw CaseError(os.str());
+  }
+  const Reader r(path, {});
+  r.map(root, "");
+  std::vector<Material> out;
+  for (auto it = root.begin(); it != root.end(); ++it) {
+    const YAML::Node entry = it->second;
+    if (entry.IsMap() && entry["from"])
+      r.fail(entry["from"], it->first.Scalar() + ".from", "a library entry cannot use from");
+    Material m = parse_material(r, entry, it->first.Scalar());
+    m.name = it->first.Scalar();
+    out.push_back(m);
+  }
+  return out;
+}
+
 const std::vector<std::string>& known_output_fields() {
-  static const std::vector<std::string> f = {"displacement", "velocity", "stress",
-                                             "pressure",     "body",     "von_mises"};
+  static const std::vector<std::string> f = {
+      "displacement", "velocity",       "stress",          "pressure", "body",
+      "von_mises",    "plastic_strain", "internal_energy", "viscosity"};
   return f;
 }
 
@@ -374,7 +472,7 @@ Case load_case(const std::string& path, const std::vector<std::string>& override
   c.end_time = r.positive(r.require(root, "", "end_time"), "end_time", "s");
 
   if (const YAML::Node s = root["solver"]) {
-    r.keys(s, "solver", {"cfl", "max_steps"});
+    r.keys(s, "solver", {"cfl", "max_steps", "viscosity", "average_nodal_pressure"});
     if (s["cfl"]) {
       c.cfl = r.number(s["cfl"], "solver.cfl");
       if (!(c.cfl > 0.0 && c.cfl <= 1.0))
@@ -384,27 +482,66 @@ Case load_case(const std::string& path, const std::vector<std::string>& override
       c.max_steps = r.integer(s["max_steps"], "solver.max_steps");
       if (c.max_steps < 1) r.fail(s["max_steps"], "solver.max_steps", "must be at least 1");
     }
+    if (const YAML::Node q = s["viscosity"]) {
+      r.keys(q, "solver.viscosity", {"linear", "quadratic"});
+      if (q["linear"]) c.viscosity_linear = r.non_negative(q["linear"], "solver.viscosity.linear");
+      if (q["quadratic"])
+        c.viscosity_quadratic = r.non_negative(q["quadratic"], "solver.viscosity.quadratic");
+    }
+    if (const YAML::Node a = s["average_nodal_pressure"]) {
+      const std::string v = a.IsScalar() ? a.Scalar() : "";
+      if (v == "auto")
+        c.average_nodal_pressure = AnpMode::automatic;
+      else if (v == "true")
+        c.average_nodal_pressure = AnpMode::on;
+      else if (v == "false")
+        c.average_nodal_pressure = AnpMode::off;
+      else
+        r.fail(a, "solver.average_nodal_pressure", "expected auto, true or false");
+    }
   }
 
-  // Materials.
+  // Materials (a library entry named by `from`, with the case's keys over it).
   const YAML::Node mats = r.require(root, "", "materials");
   r.map(mats, "materials");
   if (mats.size() == 0) r.fail(mats, "materials", "define at least one material");
+  std::string library_path;
+  if (root["material_library"]) {
+    const std::string rel = r.string(root["material_library"], "material_library");
+    library_path =
+        (fs::path(rel).is_absolute() ? fs::path(rel) : case_dir / rel).lexically_normal().string();
+    if (!fs::is_regular_file(library_path))
+      r.fail(root["material_library"], "material_library", "file not found: " + library_path);
+  } else {
+    library_path = default_material_library();
+  }
+  YAML::Node library;
   for (auto it = mats.begin(); it != mats.end(); ++it) {
     const std::string name = it->first.Scalar();
     const std::string p = join("materials", name);
-    const YAML::Node m = it->second;
-    r.keys(m, p, {"density", "youngs_modulus", "poisson_ratio"});
-    Material mat;
+    YAML::Node m = it->second;
+    if (m.IsMap() && m["from"]) {
+      const std::string from = r.string(m["from"], join(p, "from"));
+      if (!library) {
+        load_material_library(library_path);  // validates it, naming its own lines
+        library = YAML::LoadFile(library_path);
+        c.material_library = library_path;
+      }
+      const YAML::Node& lib = library;  // const: a lookup must not add the key
+      if (!lib[from]) {
+        std::string names;
+        for (auto e = library.begin(); e != library.end(); ++e)
+          names += (names.empty() ? "" : ", ") + e->first.Scalar();
+        r.fail(m["from"], join(p, "from"),
+               "no material '" + from + "' in " + library_path + " (it has: " + names + ")");
+      }
+      YAML::Node merged = YAML::Clone(lib[from]);
+      for (auto kv = m.begin(); kv != m.end(); ++kv)
+        if (kv->first.Scalar() != "from") merged[kv->first.Scalar()] = kv->second;
+      m = merged;
+    }
+    Material mat = parse_material(r, m, p);
     mat.name = name;
-    mat.density = r.positive(r.require(m, p, "density"), join(p, "density"), "kg/m^3");
-    mat.youngs_modulus =
-        r.positive(r.require(m, p, "youngs_modulus"), join(p, "youngs_modulus"), "Pa");
-    const YAML::Node nu = r.require(m, p, "poisson_ratio");
-    mat.poisson_ratio = r.number(nu, join(p, "poisson_ratio"));
-    if (!(mat.poisson_ratio > -1.0 && mat.poisson_ratio < 0.5))
-      r.fail(nu, join(p, "poisson_ratio"),
-             "Poisson's ratio must be in (-1, 0.5), got " + nu.Scalar());
     for (const Material& other : c.materials)
       if (other.name == name) r.fail(it->first, p, "duplicate material name");
     c.materials.push_back(mat);
@@ -480,6 +617,24 @@ Case load_case(const std::string& path, const std::vector<std::string>& override
         }
       }
       c.boundary_conditions.push_back(bc);
+    }
+  }
+
+  // Rigid walls.
+  if (const YAML::Node walls = root["walls"]) {
+    if (!walls.IsSequence()) r.fail(walls, "walls", "expected a list of walls");
+    for (std::size_t i = 0; i < walls.size(); ++i) {
+      const std::string p = join("walls", std::to_string(i));
+      const YAML::Node n = walls[i];
+      r.keys(n, p, {"name", "point", "normal", "friction"});
+      RigidWall w;
+      w.name = n["name"] ? r.string(n["name"], join(p, "name")) : "wall-" + std::to_string(i);
+      w.point = r.vec3(r.require(n, p, "point"), join(p, "point"));
+      w.normal = r.vec3(r.require(n, p, "normal"), join(p, "normal"));
+      if (w.normal.norm() == 0.0) r.fail(n["normal"], join(p, "normal"), "normal must be non-zero");
+      w.normal.normalize();
+      if (n["friction"]) w.friction = r.non_negative(n["friction"], join(p, "friction"));
+      c.walls.push_back(w);
     }
   }
 

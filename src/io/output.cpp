@@ -15,8 +15,9 @@ OutputWriter::OutputWriter(const Model& model, const OutputSpec& spec, std::stri
       profile_(profile),
       history_(dir_ + "/history.csv") {
   auto& h = history_.stream();
-  h << "step,t,dt,kinetic,internal,boundary_work,total,balance_error,momentum_x,momentum_y,"
-       "momentum_z";
+  h << "step,t,dt,kinetic,internal,plastic_work,viscous_work,boundary_work,wall_work,total,"
+       "balance_error,momentum_x,momentum_y,momentum_z";
+  for (const RigidWall& w : model_.walls) h << ",wall_force_" << w.name;
   for (const auto& [name, seconds] : profile_->stages) {
     h << ",seconds_" << name;
     stage_seconds_.push_back(seconds);
@@ -28,11 +29,12 @@ void OutputWriter::observe(const State& st, const Sample& s) {
   const bool final = s.t >= end_time_;
   if (s.step % spec_.history_every == 0 || final) {
     auto& h = history_.stream();
-    h << s.step << ',' << format_double(s.t) << ',' << format_double(s.dt) << ','
-      << format_double(s.kinetic) << ',' << format_double(s.internal) << ','
-      << format_double(s.boundary_work) << ',' << format_double(s.total) << ','
-      << format_double(s.balance_error) << ',' << format_double(s.momentum.x()) << ','
-      << format_double(s.momentum.y()) << ',' << format_double(s.momentum.z());
+    h << s.step;
+    for (double v :
+         {s.t, s.dt, s.kinetic, s.internal, s.plastic_work, s.viscous_work, s.boundary.work,
+          s.walls.work, s.total, s.balance_error, s.momentum.x(), s.momentum.y(), s.momentum.z()})
+      h << ',' << format_double(v);
+    for (double f : s.wall_force) h << ',' << format_double(f);
     for (std::size_t k = 0; k < profile_->stages.size(); ++k) {
       const double now = profile_->stages[k].second;
       h << ',' << format_double(now - stage_seconds_[k]);

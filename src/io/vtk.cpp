@@ -74,6 +74,14 @@ std::string vtu_frame(const Model& model, const State& st, const std::vector<std
       const Mat3 s = to_mat3(st.s[t]);
       return std::sqrt(1.5 * s.cwiseProduct(s).sum());
     });
+  if (wants(fields, "plastic_strain"))
+    data_array(out, "Float64", "plastic_strain", 1, m,
+               [&](std::size_t t, int) { return st.eps_p[t]; });
+  if (wants(fields, "internal_energy"))  // J/m³ of reference volume
+    data_array(out, "Float64", "internal_energy", 1, m,
+               [&](std::size_t t, int) { return st.e_int[t] / st.vol0[t]; });
+  if (wants(fields, "viscosity"))
+    data_array(out, "Float64", "viscosity", 1, m, [&](std::size_t t, int) { return st.q[t]; });
   if (wants(fields, "body"))
     data_array(out, "Int32", "body", 1, m,
                [&](std::size_t t, int) { return static_cast<double>(mesh.tet_body[t]); });

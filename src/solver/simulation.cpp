@@ -1,5 +1,6 @@
 #include "tetcontact/solver/simulation.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -35,37 +36,67 @@ double StepProfile::total() const {
   return t;
 }
 
-Simulation::Simulation(Model model, SolverSettings settings)
-    : model_(std::move(model)), settings_(settings) {
-  const Mesh& mesh = model_.mesh;
+std::vector<Index> all_surface_nodes(const Model& model) {
+  std::vector<Index> nodes;
+  for (const Surface& s : model.surfaces) nodes.insert(nodes.end(), s.nodes.begin(), s.nodes.end());
+  std::sort(nodes.begin(), nodes.end());
+  return nodes;
+}
+
+State initial_state(const Model& model) {
+  const Mesh& mesh = model.mesh;
   const std::size_t n = mesh.x.size(), m = mesh.tets.size();
-  State& st = state_;
+  State st;
   st.x = mesh.x;
-  st.v = model_.initial_velocity;
-  st.v_star.assign(n, Vec3::Zero());
-  st.x_star.assign(n, Vec3::Zero());
-  st.f.assign(n, Vec3::Zero());
-  st.bc_impulse.assign(n, Vec3::Zero());
+  st.v = model.initial_velocity;
+  st.v.resize(n, Vec3::Zero());
+  for (auto* field : {&st.v_star, &st.x_star, &st.f, &st.bc_impulse, &st.wall_impulse})
+    field->assign(n, Vec3::Zero());
   st.m.assign(n, 0.0);
   st.vol0 = tet_volumes(mesh.x, mesh.tets);
   st.vol = st.vol0;
   st.s.assign(m, Sym6{0, 0, 0, 0, 0, 0});
-  st.p.assign(m, 0.0);
-  st.e_int.assign(m, 0.0);
+  for (auto* field :
+       {&st.p, &st.q, &st.e_int, &st.eps_p, &st.w_plastic, &st.w_viscous, &st.sound, &st.trace_d})
+    field->assign(m, 0.0);
   st.tet_material.resize(m);
   // Lumped masses: a quarter of each tet's mass on each of its nodes.
   for (std::size_t t = 0; t < m; ++t) {
-    st.tet_material[t] = model_.body_material[mesh.tet_body[t]];
-    const double quarter = 0.25 * model_.materials[st.tet_material[t]].density * st.vol0[t];
+    st.tet_material[t] = model.body_material[mesh.tet_body[t]];
+    const double quarter = 0.25 * model.materials[st.tet_material[t]].density * st.vol0[t];
     for (Index k : mesh.tets[t]) st.m[k] += quarter;
   }
+  init_sound_speed(model.materials, st);
+  return st;
+}
 
-  modules_ = {"integrator:central_difference", "elements:linear_tet", "material:elastic"};
+Simulation::Simulation(Model model, SolverSettings settings)
+    : model_(std::move(model)), settings_(settings), state_(initial_state(model_)) {
+  State& st = state_;
+  // The modules this case needs, and nothing else.
+  modules_ = {"integrator:central_difference", "elements:linear_tet"};
+  bool plastic = false, mie = false, anp = false;
+  for (std::size_t k = 0; k < model_.materials.size(); ++k) {
+    plastic = plastic || model_.materials[k].plastic();
+    mie = mie || model_.materials[k].eos == EosKind::mie_gruneisen;
+    anp = anp || (k < model_.element.average_nodal_pressure.size() &&
+                  model_.element.average_nodal_pressure[k]);
+  }
+  modules_.push_back(plastic ? "material:elastic_plastic" : "material:elastic");
+  modules_.push_back(mie ? "eos:mie_gruneisen" : "eos:linear");
+  if (anp) modules_.push_back("elements:average_nodal_pressure");
+  if (model_.element.viscosity_linear > 0 || model_.element.viscosity_quadratic > 0)
+    modules_.push_back("elements:bulk_viscosity");
   if (!model_.constraints.empty()) modules_.push_back("boundary_conditions");
+  if (!model_.walls.empty()) {
+    modules_.push_back("response:rigid_walls");
+    surface_nodes_ = all_surface_nodes(model_);
+    wall_force_max_.assign(model_.walls.size(), 0.0);
+  }
   modules_.push_back("diagnostics:balance");
 
-  for (const char* stage : {"predict", "balance", "output", "commit", "elements"})
-    profile_[stage] = 0.0;
+  for (const char* stage : {"predict", "walls", "balance", "output", "commit", "elements"})
+    if (std::string(stage) != "walls" || !model_.walls.empty()) profile_[stage] = 0.0;
   elements_stage();  // F^0 and τ^0; the first step then uses τ_v = τ/2
   st.dt_prev = 0.0;
 }
@@ -79,7 +110,7 @@ bool Simulation::done() const {
   return state_.t >= settings_.end_time;
 }
 
-// The step, in the seed's order: predict, (contact corrections), commit.
+// The step, in the seed's order: predict, corrections (walls; contact later), commit.
 void Simulation::step() {
   if (state_.step >= settings_.max_steps) {
     std::ostringstream os;
@@ -90,8 +121,8 @@ void Simulation::step() {
   {
     StageTimer t(profile_["predict"]);
     predict_stage();
-  }  // U*, x* (eqs. 2, 3)
-  // Contact corrections of U* come here; no contact stage exists in this version.
+  }               // U*, x* (eqs. 2, 3)
+  corrections();  // walls (contact: issues 4, 5)
   {
     StageTimer t(profile_["balance"]);
     sample_stage();
@@ -115,6 +146,7 @@ void Simulation::finish() {
     StageTimer t(profile_["predict"]);
     predict_stage();
   }
+  corrections();
   {
     StageTimer t(profile_["balance"]);
     sample_stage();
@@ -125,13 +157,24 @@ void Simulation::finish() {
   }
 }
 
+void Simulation::corrections() {
+  if (!model_.walls.empty()) {
+    StageTimer t(profile_["walls"]);
+    walls_stage();
+  }
+}
+
 void Simulation::predict_stage() {
   predict(state_, model_.constraints);
 }
 
+void Simulation::walls_stage() {
+  wall_results_ = apply_walls(model_.walls, surface_nodes_, state_);
+}
+
 double Simulation::balance_error(const Sample& s) const {
   if (energy_scale_ <= 0.0) return 0.0;
-  return std::abs(s.total - s.boundary_work - first_.total) / energy_scale_;
+  return std::abs(s.total - s.external_work() - first_.total) / energy_scale_;
 }
 
 void Simulation::sample_stage() {
@@ -141,10 +184,16 @@ void Simulation::sample_stage() {
     os << "non-finite velocity at t = " << state_.t << " s (step " << state_.step << ")";
     throw RunFailure(os.str());
   }
+  for (std::size_t w = 0; w < wall_results_.size(); ++w) {
+    // Reaction on the wall: the impulse it gave, along its normal, per unit time.
+    const double force = wall_results_[w].impulse.dot(model_.walls[w].normal) / state_.dt;
+    s.wall_force.push_back(force);
+    wall_force_max_[w] = std::max(wall_force_max_[w], force);
+  }
   if (!have_sample_) first_ = s;
   have_sample_ = true;
   energy_scale_ = std::max(
-      {energy_scale_, std::abs(first_.total), std::abs(s.boundary_work), s.kinetic + s.internal});
+      {energy_scale_, std::abs(first_.total), std::abs(s.external_work()), s.kinetic + s.internal});
   s.balance_error = balance_error(s);
   balance_error_max_ = std::max(balance_error_max_, s.balance_error);
   last_ = s;
@@ -161,8 +210,9 @@ void Simulation::commit_stage() {
 void Simulation::elements_stage() {
   State& st = state_;
   try {
-    if (st.step > 0) update_stress(model_.mesh.tets, model_.materials, st.dt_prev, st);
-    const ForceResult r = compute_forces(model_.mesh.tets, model_.materials, st);
+    if (st.step > 0)
+      update_material(model_.mesh.tets, model_.materials, model_.element, st.dt_prev, st, scratch_);
+    const ForceResult r = compute_forces(model_.mesh.tets, model_.element, st);
     critical_tet_ = r.critical_tet;
     // No step is shortened to land on end_time: an abrupt change of τ costs the leapfrog
     // its exact energy balance (see sample_balance), so the run ends at the first step at or

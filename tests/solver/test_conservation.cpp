@@ -69,9 +69,9 @@ TEST(Conservation, BoundaryWorkClosesDrivenBar) {
   while (!sim.done()) sim.step();
   sim.finish();
   const Sample& s = sim.last_sample();
-  EXPECT_GT(s.boundary_work, 0.0);
+  EXPECT_GT(s.boundary.work, 0.0);
   EXPECT_LT(sim.balance_error_max(), 0.005);
   // Momentum gained equals the impulse the boundary gave.
-  EXPECT_LT((s.momentum - sim.first_sample().momentum - s.boundary_impulse).norm(),
+  EXPECT_LT((s.momentum - sim.first_sample().momentum - s.boundary.impulse).norm(),
             1e-9 * s.momentum_scale);
 }

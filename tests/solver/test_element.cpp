@@ -1,11 +1,27 @@
 // Constant-strain tetrahedra: the patch test and the element kernel against exact results.
 #include <gtest/gtest.h>
 
+#include <Eigen/Eigenvalues>
+
 #include "solver_fixture.hpp"
 #include "tetcontact/solver/element.hpp"
 #include "tetcontact/solver/simulation.hpp"
 
 using namespace tc;
+
+namespace {
+
+// A distorted 3×3×3 box: interior nodes moved so the patch is irregular.
+TetMesh distorted_box() {
+  TetMesh mesh = make_box(Vec3(1, 1, 1), {3, 3, 3}, HexSplit::six);
+  for (Vec3& p : mesh.x) {
+    if ((p.array().abs() < 0.49).all())
+      p += 0.05 * Vec3(std::sin(7 * p.y()), std::cos(5 * p.z()), std::sin(3 * p.x()));
+  }
+  return mesh;
+}
+
+}  // namespace
 
 TEST(Element, FaceAreaVectorsSumToZeroAndGiveShapeGradients) {
   const Vec3 x0(0.1, 0.2, 0.3), x1(1.3, 0.1, 0.2), x2(0.2, 1.1, 0.4), x3(0.3, 0.4, 0.9);
@@ -20,92 +36,150 @@ TEST(Element, FaceAreaVectorsSumToZeroAndGiveShapeGradients) {
   EXPECT_NEAR((grad - g).norm(), 0.0, 1e-13);
 }
 
-// Patch test: a linear velocity field (uniform strain rate) applied to a distorted mesh gives
-// the same stress in every tet, equal to the exact hypoelastic update; under that uniform
-// stress the internal force on every interior node vanishes.
-TEST(Element, PatchTestUniformStrainGivesUniformStress) {
-  TetMesh mesh = make_box(Vec3(1, 1, 1), {3, 3, 3}, HexSplit::six);
-  // Distort interior nodes so the patch is irregular.
-  for (Vec3& p : mesh.x) {
-    if ((p.array().abs() < 0.49).all())
-      p += 0.05 * Vec3(std::sin(7 * p.y()), std::cos(5 * p.z()), std::sin(3 * p.x()));
-  }
+// Patch test: a linear velocity field (uniform strain rate) on a distorted mesh gives the same
+// stress in every tet, equal to the exact update; under that uniform stress the internal
+// force on every interior node vanishes. Both pressure formulations pass it.
+class Patch : public ::testing::TestWithParam<bool> {};
+
+TEST_P(Patch, UniformStrainGivesUniformStress) {
   const Material mat = test::aluminium();
-  Model model = test::single_body_model(mesh, mat);
-  Mat3 L;  // symmetric: no spin, so the Jaumann terms vanish
+  Model model = test::single_body_model(distorted_box(), mat);
+  model.element.average_nodal_pressure = {static_cast<char>(GetParam())};
+  Mat3 L;  // symmetric: no spin
   L << 1.0, 0.2, -0.1, 0.2, -0.5, 0.3, -0.1, 0.3, 0.4;
   L *= 1e-3;
   for (std::size_t i = 0; i < model.mesh.x.size(); ++i)
     model.initial_velocity[i] = L * model.mesh.x[i];
-
-  State st;
-  st.x = model.mesh.x;
-  st.v = model.initial_velocity;
-  st.f.assign(st.x.size(), Vec3::Zero());
-  st.vol0 = tet_volumes(st.x, model.mesh.tets);
-  st.vol = st.vol0;
-  const std::size_t m = model.mesh.tets.size();
-  st.s.assign(m, Sym6{});
-  st.p.assign(m, 0.0);
-  st.e_int.assign(m, 0.0);
-  st.tet_material.assign(m, 0);
-  const double tau = 1e-9;
+  State st = initial_state(model);
+  const double tau = 1e-3;                  // strain 1e-6: μ = V0/V − 1 well above round-off
   for (Vec3& p : st.x) p += tau * (L * p);  // x^{n+1} = x^n + τ U
-  // The exact update: σ = τ (λ tr D I + 2G D).
-  const double K = mat.bulk_modulus(), G = mat.shear_modulus();
-  const Mat3 D = L;
-  const Mat3 s_exact = tau * 2.0 * G * (D - D.trace() / 3.0 * Mat3::Identity());
-  const double p_exact = -tau * K * D.trace();
-  update_stress(model.mesh.tets, model.materials, tau, st);
-  for (std::size_t t = 0; t < m; ++t) {
+  NodalScratch scratch;
+  update_material(model.mesh.tets, model.materials, model.element, tau, st, scratch);
+  // Exact: the velocity gradient over the mid-step geometry (I + τL/2)X is
+  // L_mid = L (I + τL/2)⁻¹ (symmetric: no spin); s = 2G τ dev L_mid; p = K μ with
+  // μ = V0/V − 1 of the uniform volume change det(I + τL).
+  const Mat3 L_mid = L * (Mat3::Identity() + 0.5 * tau * L).inverse();
+  const Mat3 s_exact =
+      2.0 * mat.shear_modulus * tau * (L_mid - L_mid.trace() / 3.0 * Mat3::Identity());
+  const double mu = 1.0 / (Mat3::Identity() + tau * L).determinant() - 1.0;
+  const double p_exact = mat.bulk_modulus * mu;
+  for (std::size_t t = 0; t < st.s.size(); ++t) {
     EXPECT_NEAR((to_mat3(st.s[t]) - s_exact).norm(), 0.0, 1e-9 * s_exact.norm()) << "tet " << t;
-    EXPECT_NEAR(st.p[t], p_exact, 1e-9 * std::abs(p_exact)) << "tet " << t;
+    EXPECT_NEAR(st.p[t], p_exact, 1e-7 * std::abs(p_exact)) << "tet " << t;
   }
-  compute_forces(model.mesh.tets, model.materials, st);
+  compute_forces(model.mesh.tets, model.element, st);
   const Surface& s = model.surfaces.front();
   double fmax = 0.0;
   for (std::size_t i = 0; i < st.x.size(); ++i) fmax = std::max(fmax, st.f[i].norm());
   int interior = 0;
   for (std::size_t i = 0; i < st.x.size(); ++i) {
     if (std::binary_search(s.nodes.begin(), s.nodes.end(), static_cast<Index>(i))) continue;
-    EXPECT_NEAR(st.f[i].norm(), 0.0, 1e-9 * fmax) << "interior node " << i;
+    EXPECT_NEAR(st.f[i].norm(), 0.0, 1e-6 * fmax) << "interior node " << i;
     ++interior;
   }
   EXPECT_EQ(interior, 8);  // the 2×2×2 interior lattice nodes of a 3×3×3 box
   EXPECT_GT(fmax, 0.0);
 }
 
+INSTANTIATE_TEST_SUITE_P(Pressure, Patch, ::testing::Values(false, true),
+                         [](const auto& info) { return info.param ? "nodal" : "per_tet"; });
+
 TEST(Element, ForcesOfUniformPressureBalanceTractions) {
-  // Uniform pressure p in a cube: nodal forces on each face sum to −p A n (the traction).
+  // Uniform pressure p in a cube: nodal forces on each face sum to p A n (the traction).
   const Material mat = test::aluminium();
   Model model = test::single_body_model(make_box(Vec3(2, 2, 2), {2, 2, 2}, HexSplit::twelve), mat);
-  State st;
-  st.x = model.mesh.x;
-  st.f.assign(st.x.size(), Vec3::Zero());
-  const std::size_t m = model.mesh.tets.size();
-  st.vol0 = tet_volumes(st.x, model.mesh.tets);
-  st.vol = st.vol0;
-  st.s.assign(m, Sym6{});
-  st.p.assign(m, 1e6);
-  st.tet_material.assign(m, 0);
-  const ForceResult r = compute_forces(model.mesh.tets, model.materials, st);
+  State st = initial_state(model);
+  for (double& p : st.p) p = 1e6;
+  const ForceResult r = compute_forces(model.mesh.tets, model.element, st);
   Vec3 on_right = Vec3::Zero(), total = Vec3::Zero();
   for (std::size_t i = 0; i < st.x.size(); ++i) {
     total += st.f[i];
     if (std::abs(st.x[i].x() - 1.0) < 1e-12) on_right += st.f[i];
   }
   EXPECT_NEAR(total.norm(), 0.0, 1e-6);
-  // Pressure pushes the +x face outward with p·A = 1e6 · 4 N.
   EXPECT_NEAR(on_right.x(), 4e6, 1e-3);
   // Stable step: smallest altitude over the dilatational wave speed.
   EXPECT_GT(r.dt_stable, 0.0);
   EXPECT_LT(r.dt_stable, 1.0 / mat.wave_speed());
 }
 
+// Jaumann rate under rigid rotation: a stressed cube spun through a full turn in 1,000 exact
+// rotation steps keeps its principal stresses to 1e-10 relative, and its stress is the
+// initial one rotated (σ = R σ0 Rᵀ). The mid-step velocity gradient of an exact rotation is
+// skew (Cayley), and the Hughes–Winget update rotates by exactly that rotation.
+TEST(Element, SpinningStressedCubeKeepsPrincipalValues) {
+  const Material mat = test::aluminium();
+  Model model =
+      test::single_body_model(make_box(Vec3(0.01, 0.01, 0.01), {2, 2, 2}, HexSplit::six), mat);
+  State st = initial_state(model);
+  // A consistent initial state: compressed by 0.1 % (pressure from the EOS) plus a deviator.
+  for (Vec3& p : st.x) p *= 0.999;
+  const double mu0 = 1.0 / (0.999 * 0.999 * 0.999) - 1.0;
+  Mat3 s0;
+  s0 << 80, 30, -10, 30, -50, 20, -10, 20, -30;
+  s0 *= 1e6;
+  for (std::size_t t = 0; t < st.s.size(); ++t) {
+    st.s[t] = to_sym6(s0);
+    st.p[t] = mat.bulk_modulus * mu0;
+    st.vol[t] = tet_signed_volume(st.x[model.mesh.tets[t][0]], st.x[model.mesh.tets[t][1]],
+                                  st.x[model.mesh.tets[t][2]], st.x[model.mesh.tets[t][3]]);
+  }
+  const Mat3 sigma0 = s0 - st.p[0] * Mat3::Identity();
+  const int steps = 1000;
+  const double omega = 2e4, tau = 2.0 * M_PI / omega / steps;  // one turn
+  const Vec3 axis = Vec3(1, 2, 3).normalized();
+  const Mat3 R = Eigen::AngleAxisd(omega * tau, axis).toRotationMatrix();
+  NodalScratch scratch;
+  for (int n = 0; n < steps; ++n) {
+    for (std::size_t i = 0; i < st.x.size(); ++i) {
+      const Vec3 next = R * st.x[i];
+      st.v[i] = (next - st.x[i]) / tau;
+      st.x[i] = next;
+    }
+    update_material(model.mesh.tets, model.materials, model.element, tau, st, scratch);
+  }
+  Eigen::SelfAdjointEigenSolver<Mat3> e0(sigma0);
+  const Mat3 R_total = Eigen::AngleAxisd(omega * tau * steps, axis).toRotationMatrix();
+  double worst = 0.0;
+  for (std::size_t t = 0; t < st.s.size(); ++t) {
+    const Mat3 sigma = cauchy_stress(st, static_cast<Index>(t));
+    Eigen::SelfAdjointEigenSolver<Mat3> e(sigma);
+    worst = std::max(worst, (e.eigenvalues() - e0.eigenvalues()).norm() / sigma0.norm());
+    EXPECT_NEAR((sigma - R_total * sigma0 * R_total.transpose()).norm(), 0.0, 1e-9 * sigma0.norm());
+  }
+  EXPECT_LT(worst, 1e-10);
+  EXPECT_EQ(st.eps_p[0], 0.0);
+}
+
+TEST(Element, ViscosityZeroInExpansionPositiveInCompression) {
+  Model model = test::single_body_model(make_box(Vec3(0.01, 0.01, 0.01), {2, 2, 2}, HexSplit::six),
+                                        test::aluminium());
+  model.element.viscosity_linear = 0.06;
+  model.element.viscosity_quadratic = 1.5;
+  for (double sign : {+1.0, -1.0}) {
+    State st = initial_state(model);
+    const double tau = 1e-8, rate = sign * 1e4;
+    for (std::size_t i = 0; i < st.x.size(); ++i) {
+      st.v[i] = rate * st.x[i];
+      st.x[i] += tau * st.v[i];
+    }
+    NodalScratch scratch;
+    update_material(model.mesh.tets, model.materials, model.element, tau, st, scratch);
+    for (std::size_t t = 0; t < st.q.size(); ++t) {
+      if (sign > 0) {
+        EXPECT_EQ(st.q[t], 0.0);
+        EXPECT_EQ(st.w_viscous[t], 0.0);
+      } else {
+        EXPECT_GT(st.q[t], 0.0);
+        EXPECT_GT(st.w_viscous[t], 0.0);  // viscous work heats, never cools
+      }
+    }
+  }
+}
+
 TEST(Element, InvertedElementIsReportedWithItsBody) {
   Model model =
       test::single_body_model(make_box(Vec3(1, 1, 1), {2, 2, 2}, HexSplit::six), test::aluminium());
-  // A node driven through the body at 1e6 m/s inverts its tets within a step.
   const Index centre = 13;  // lattice (1,1,1)
   ASSERT_NEAR(model.mesh.x[centre].norm(), 0.0, 1e-15);
   model.initial_velocity[centre] = Vec3(1e12, 0, 0);

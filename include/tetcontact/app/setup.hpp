@@ -21,4 +21,11 @@ Model build_model(const Case& c, std::vector<std::string>* notes = nullptr);
 
 SolverSettings solver_settings(const Case& c);
 
+/// Impact Mach numbers M0 = U0 / C0 outside the range of the model a body uses (seed 000:
+/// elastic-plastic flow with a linear EOS for M0 ≤ 0.75, a hydrodynamic model with a richer
+/// EOS for 0.75 < M0 < 1.5). U0 is the closing speed of each pair of bodies (difference of
+/// their mass-averaged initial velocities) and of each body against each wall; C0 is the
+/// body's bulk sound speed. One line per finding.
+std::vector<std::string> mach_warnings(const Case& c, const Model& model);
+
 }  // namespace tc

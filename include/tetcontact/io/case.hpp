@@ -8,8 +8,9 @@
 #include <string>
 #include <vector>
 
-#include "tetcontact/material/elastic.hpp"
+#include "tetcontact/material/material.hpp"
 #include "tetcontact/mesh/mesh.hpp"
+#include "tetcontact/response/wall.hpp"
 
 namespace tc {
 
@@ -75,6 +76,9 @@ struct OutputSpec {
   long history_every = 1;  // steps between history rows
 };
 
+/// Average nodal pressure (anti-locking): on for plastic materials (auto), all, or none.
+enum class AnpMode { automatic, on, off };
+
 struct Case {
   std::string file;  // path as given
   std::string name;
@@ -82,7 +86,12 @@ struct Case {
   double end_time = 0.0;
   double cfl = 0.5;
   long max_steps = 10'000'000;
+  double viscosity_linear = 0.06;
+  double viscosity_quadratic = 1.5;
+  AnpMode average_nodal_pressure = AnpMode::automatic;
+  std::string material_library;  // resolved path of the library used ("" if none)
   std::vector<Material> materials;
+  std::vector<RigidWall> walls;
   std::vector<BodySpec> bodies;
   std::vector<BoundarySpec> boundary_conditions;
   OutputSpec output;
@@ -94,6 +103,13 @@ struct Case {
 
 /// Output fields a case may ask for.
 const std::vector<std::string>& known_output_fields();
+
+/// The material library shipped with tetcontact (data/materials.yaml).
+std::string default_material_library();
+
+/// Reads and validates a material library: name → material, each validated like a case's
+/// material (the message names the library file).
+std::vector<Material> load_material_library(const std::string& path);
 
 /// Reads and validates a case file, applying `overrides` ("path.to.key=value", the value in
 /// YAML syntax; list entries are addressed by index: bodies.0.velocity=[1,0,0]) first.

@@ -11,8 +11,9 @@
 namespace tc {
 
 /// The .vtu text of the state at t^n. Point data: displacement, velocity (time-centred),
-/// body; cell data: stress (6 components xx, yy, zz, xy, yz, xz), pressure, von_mises, body —
-/// each only when listed in `fields`.
+/// body; cell data: stress (6 components xx, yy, zz, xy, yz, xz, viscosity included),
+/// pressure (EOS), von_mises, plastic_strain, internal_energy (J/m³ of reference volume),
+/// viscosity (q), body — each only when listed in `fields`.
 std::string vtu_frame(const Model& model, const State& st, const std::vector<std::string>& fields);
 
 /// The .pvd collection: (time, file name) per frame.

@@ -1,4 +1,4 @@
-// Constant-strain linear tetrahedra: internal forces, stable time step, stress update.
+// Constant-strain linear tetrahedra: material update, internal forces, stable time step.
 #pragma once
 
 #include <stdexcept>
@@ -25,24 +25,47 @@ struct InvertedElement : RunFailure {
 std::array<Vec3, 4> face_area_vectors(const Vec3& x0, const Vec3& x1, const Vec3& x2,
                                       const Vec3& x3);
 
+/// Options of the element formulation, from the case's `solver` section.
+struct ElementOptions {
+  double viscosity_linear = 0.06;            // C1 of bulk_viscosity
+  double viscosity_quadratic = 1.5;          // C2 of bulk_viscosity
+  std::vector<char> average_nodal_pressure;  // per material: pressure averaged at nodes
+};
+
+/// Scratch arrays of the average-nodal-pressure passes, sized on first use.
+struct NodalScratch {
+  std::vector<double> vol0, vol, energy, pressure;  // per node
+  std::vector<double> tet_dvol;                     // per tet: ΔV of the step
+};
+
 struct ForceResult {
-  double dt_stable = 0.0;   // min over tets of (min altitude / wave speed)
+  double dt_stable = 0.0;   // min over tets of the viscous CFL limit
   Index critical_tet = -1;  // the tet that sets it
 };
 
-/// Internal nodal forces F at the current positions from the current stress, and the stable
+/// Internal nodal forces F at the current positions from σ = s − (p + q) I, and the stable
 /// time step. For a constant-strain tet the force on node i is
 ///   f_i = −V σ ∇N_i = σ a_i / 3,
-/// and the CFL limit uses the smallest altitude h = 3V / max|a_i| and the material's
-/// dilatational wave speed. Throws InvertedElement for a tet with V ≤ 0.
-ForceResult compute_forces(const std::vector<Tet>& tets, const std::vector<Material>& materials,
-                           State& st);
+/// and the CFL limit of a tet with smallest altitude l = 3V / max|a_i|, sound speed c and
+/// viscosity Q = C1 c + C2 l |ε̇v| (compression) is l / (Q + sqrt(Q² + c²)).
+/// Throws InvertedElement for a tet with V ≤ 0.
+ForceResult compute_forces(const std::vector<Tet>& tets, const ElementOptions& options, State& st);
 
-/// Stress update over the step from the committed velocities U^{n+1} (st.v), with the velocity
-/// gradient L = Σ_i U_i ⊗ ∇N_i taken at the mid-step geometry x^{n+1/2} = x^{n+1} − τ/2 U^{n+1}.
-/// Internal energy grows by the trapezoidal work τ V (σ^n + σ^{n+1})/2 : D, which equals the
-/// exact stored energy ½ ε:C:ε of small-strain linear elasticity.
-void update_stress(const std::vector<Tet>& tets, const std::vector<Material>& materials, double tau,
-                   State& st);
+/// Material update over the step from the committed velocities U^{n+1} (st.v):
+///   L = Σ_i U_i ⊗ ∇N_i at the mid-step geometry x^{n+1/2} = x^{n+1} − τ/2 U^{n+1};
+///   deviator by update_deviator (Jaumann rate, radial return);
+///   pressure by the EOS at μ = V0/V^{n+1} − 1 — per tet, or with average nodal pressure
+///   (Bonet & Burton 1998) averaged from nodal pressures p_a = p(V0_a/V_a − 1, E_a) with the
+///   nodal volumes V_a = Σ V/4 of the tets around node a;
+///   viscosity q by bulk_viscosity;
+///   internal energy by the trapezoidal work
+///     ΔE = τ V ½(s^n + s^{n+1}) : D − ½ (p^n + p^{n+1}) ΔV − ½ (q^n + q^{n+1}) ΔV,
+///   solved exactly for E^{n+1} when p depends on E (Mie–Grüneisen, per-tet pressure).
+/// For small-strain linear elasticity ΔE equals the stored energy ½ ε:C:ε.
+void update_material(const std::vector<Tet>& tets, const std::vector<Material>& materials,
+                     const ElementOptions& options, double tau, State& st, NodalScratch& scratch);
+
+/// Sets the per-tet sound speed from the current state (needed before the first forces).
+void init_sound_speed(const std::vector<Material>& materials, State& st);
 
 }  // namespace tc

@@ -5,9 +5,11 @@
 #include <string>
 #include <vector>
 
-#include "tetcontact/material/elastic.hpp"
+#include "tetcontact/material/material.hpp"
 #include "tetcontact/mesh/mesh.hpp"
 #include "tetcontact/mesh/surface.hpp"
+#include "tetcontact/response/wall.hpp"
+#include "tetcontact/solver/element.hpp"
 
 namespace tc {
 
@@ -25,8 +27,13 @@ struct Model {
   std::vector<Material> materials;   // distinct materials used
   std::vector<Index> body_material;  // body → materials index
   std::vector<VelocityConstraint> constraints;
+  std::vector<RigidWall> walls;
   std::vector<Vec3> initial_velocity;  // per node
+  ElementOptions element;              // viscosity, average nodal pressure per material
 };
+
+/// Surface nodes of every body, sorted (the nodes that can touch a wall or another body).
+std::vector<Index> all_surface_nodes(const Model& model);
 
 struct SolverSettings {
   double end_time = 0.0;

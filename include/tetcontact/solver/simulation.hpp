@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "tetcontact/diagnostics/balance.hpp"
+#include "tetcontact/response/wall.hpp"
 #include "tetcontact/solver/element.hpp"
 #include "tetcontact/solver/model.hpp"
 #include "tetcontact/solver/state.hpp"
@@ -28,6 +29,10 @@ class Observer {
   virtual void observe(const State& st, const Sample& sample) = 0;
 };
 
+/// The state at t = 0: reference positions, initial velocities, lumped masses (a quarter of
+/// each tet's mass on each of its nodes), zero stress, sound speeds.
+State initial_state(const Model& model);
+
 class Simulation {
  public:
   Simulation(Model model, SolverSettings settings);
@@ -46,25 +51,33 @@ class Simulation {
   const SolverSettings& settings() const { return settings_; }
   const Sample& first_sample() const { return first_; }
   const Sample& last_sample() const { return last_; }
-  /// |kinetic + internal − boundary work − initial total| / energy scale, max over the run;
-  /// the scale is the largest of |initial total|, |boundary work| and kinetic + internal seen.
+  /// |kinetic + internal − external work − initial total| / energy scale, max over the run;
+  /// the scale is the largest of |initial total|, |external work| and kinetic + internal seen.
   double balance_error_max() const { return balance_error_max_; }
   double balance_error(const Sample& s) const;
+  /// Largest normal reaction force seen on each wall, N.
+  const std::vector<double>& wall_force_max() const { return wall_force_max_; }
   const std::vector<std::string>& modules() const { return modules_; }
   const StepProfile& profile() const { return profile_; }
   Index critical_tet() const { return critical_tet_; }
 
  private:
   void predict_stage();
+  void walls_stage();
   void sample_stage();
   void output_stage();
   void commit_stage();
   void elements_stage();
+  void corrections();
   [[noreturn]] void rethrow_with_body(const InvertedElement& e) const;
 
   Model model_;
   SolverSettings settings_;
   State state_;
+  NodalScratch scratch_;
+  std::vector<Index> surface_nodes_;
+  std::vector<WallResult> wall_results_;
+  std::vector<double> wall_force_max_;
   Sample first_, last_;
   bool have_sample_ = false;
   double energy_scale_ = 0.0;

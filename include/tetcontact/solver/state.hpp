@@ -3,27 +3,34 @@
 
 #include <vector>
 
-#include "tetcontact/material/elastic.hpp"
+#include "tetcontact/material/material.hpp"
 #include "tetcontact/mesh/mesh.hpp"
 
 namespace tc {
 
 struct State {
   // Nodes (N).
-  std::vector<Vec3> x;           // x^n, current positions
-  std::vector<Vec3> v;           // U^n, velocities of the last committed step (t^{n-1/2})
-  std::vector<Vec3> v_star;      // U*, predicted then corrected velocities (eq. 2); U^{n+1} after
-  std::vector<Vec3> x_star;      // x*, predicted positions (eq. 3)
-  std::vector<Vec3> f;           // F^n, internal nodal forces
-  std::vector<double> m;         // lumped nodal masses
-  std::vector<Vec3> bc_impulse;  // reaction impulse of prescribed velocities this step
+  std::vector<Vec3> x;             // x^n, current positions
+  std::vector<Vec3> v;             // U^n, velocities of the last committed step (t^{n-1/2})
+  std::vector<Vec3> v_star;        // U*, predicted then corrected velocities (eq. 2); U^{n+1} after
+  std::vector<Vec3> x_star;        // x*, predicted positions (eq. 3)
+  std::vector<Vec3> f;             // F^n, internal nodal forces
+  std::vector<double> m;           // lumped nodal masses
+  std::vector<Vec3> bc_impulse;    // impulse of prescribed velocities this step
+  std::vector<Vec3> wall_impulse;  // impulse of rigid walls this step
 
   // Tets (M).
-  std::vector<double> vol0;   // reference volume
-  std::vector<double> vol;    // current volume
-  std::vector<Sym6> s;        // deviatoric stress
-  std::vector<double> p;      // pressure (positive in compression)
-  std::vector<double> e_int;  // internal energy, J (per tet, not per unit mass)
+  std::vector<double> vol0;       // reference volume
+  std::vector<double> vol;        // current volume
+  std::vector<Sym6> s;            // deviatoric stress
+  std::vector<double> p;          // pressure from the EOS (positive in compression)
+  std::vector<double> q;          // artificial bulk viscosity (a pressure, ≥ 0)
+  std::vector<double> e_int;      // internal energy, J (elastic + plastic work + viscous heat)
+  std::vector<double> eps_p;      // equivalent plastic strain ε̄p
+  std::vector<double> w_plastic;  // plastic work, J
+  std::vector<double> w_viscous;  // viscous dissipation, J
+  std::vector<double> sound;      // current dilatational sound speed, m/s
+  std::vector<double> trace_d;    // tr D of the last step (volumetric strain rate), 1/s
   std::vector<Index> tet_material;
 
   double t = 0.0;        // t^n
@@ -32,9 +39,9 @@ struct State {
   long step = 0;
 };
 
-/// Cauchy stress σ = s − p I of a tet.
+/// Cauchy stress σ = s − (p + q) I of a tet (the viscosity acts as a pressure).
 inline Mat3 cauchy_stress(const State& st, Index t) {
-  return to_mat3(st.s[t]) - st.p[t] * Mat3::Identity();
+  return to_mat3(st.s[t]) - (st.p[t] + st.q[t]) * Mat3::Identity();
 }
 
 }  // namespace tc

@@ -1,0 +1,175 @@
+// Materials: hypoelastic-plastic solid (Jaumann rate, von Mises, linear isotropic hardening)
+// with a pressure from an equation of state (linear, or Mie–Grüneisen with a linear Us–up
+// Hugoniot). Seed 000, "Основные соотношения": Prandtl–Reuss flow for impact Mach number
+// M0 ≤ 0.75, a hydrodynamic model with a richer equation of state for 0.75 < M0 < 1.5.
+//
+// Each model is a small pure function; the element kernel (solver/element.cpp) calls them.
+#pragma once
+
+#include <array>
+#include <cmath>
+#include <string>
+
+#include "tetcontact/mesh/mesh.hpp"
+
+namespace tc {
+
+enum class EosKind { linear, mie_gruneisen };
+
+struct Material {
+  std::string name;
+  double density = 0.0;        // ρ0, kg/m³
+  double shear_modulus = 0.0;  // G, Pa
+  double bulk_modulus = 0.0;   // K, Pa (linear EOS; ρ0 c0² for Mie–Grüneisen)
+  // Strength: plastic when yield_stress > 0 (von Mises, σy = σy0 + H ε̄p).
+  double yield_stress = 0.0;       // σy0, Pa
+  double hardening_modulus = 0.0;  // H, Pa
+  // Equation of state.
+  EosKind eos = EosKind::linear;
+  double c0 = 0.0;      // bulk sound speed, m/s (Mie–Grüneisen)
+  double s = 0.0;       // Us = c0 + s up
+  double gamma0 = 0.0;  // Grüneisen coefficient Γ0
+
+  bool plastic() const { return yield_stress > 0.0; }
+  /// Young's modulus and Poisson's ratio from G and K.
+  double youngs_modulus() const {
+    return 9.0 * bulk_modulus * shear_modulus / (3.0 * bulk_modulus + shear_modulus);
+  }
+  double poisson_ratio() const {
+    return (3.0 * bulk_modulus - 2.0 * shear_modulus) /
+           (2.0 * (3.0 * bulk_modulus + shear_modulus));
+  }
+  /// Dilatational (P-wave) speed at the reference state, sqrt((K + 4G/3) / ρ0).
+  double wave_speed() const {
+    return std::sqrt((bulk_modulus + 4.0 / 3.0 * shear_modulus) / density);
+  }
+  /// Bulk sound speed at the reference state, sqrt(K / ρ0): the C0 of the impact Mach number.
+  double bulk_sound_speed() const { return std::sqrt(bulk_modulus / density); }
+};
+
+/// G and K from Young's modulus and Poisson's ratio.
+inline void set_elastic_constants(Material& m, double youngs, double poisson) {
+  m.shear_modulus = youngs / (2.0 * (1.0 + poisson));
+  m.bulk_modulus = youngs / (3.0 * (1.0 - 2.0 * poisson));
+}
+
+/// Symmetric tensor stored as (xx, yy, zz, xy, yz, xz): VTK's component order.
+using Sym6 = std::array<double, 6>;
+
+inline Mat3 to_mat3(const Sym6& s) {
+  Mat3 m;
+  m << s[0], s[3], s[5], s[3], s[1], s[4], s[5], s[4], s[2];
+  return m;
+}
+inline Sym6 to_sym6(const Mat3& m) {
+  return {m(0, 0),
+          m(1, 1),
+          m(2, 2),
+          0.5 * (m(0, 1) + m(1, 0)),
+          0.5 * (m(1, 2) + m(2, 1)),
+          0.5 * (m(0, 2) + m(2, 0))};
+}
+
+/// Objective rotation of the deviatoric stress over a step (Hughes–Winget):
+///   s ← Q s Qᵀ,  Q = (I − τW/2)⁻¹ (I + τW/2),
+/// which is exactly orthogonal for a skew W (the spin), so the principal values are kept to
+/// round-off. With ω the axial vector of A = τW/2 (|ω| = θ): Q = I + 2 (A + A²) / (1 + θ²).
+inline Mat3 jaumann_rotation(const Mat3& W, double tau) {
+  const Mat3 A = 0.5 * tau * W;
+  const double theta2 = A(2, 1) * A(2, 1) + A(0, 2) * A(0, 2) + A(1, 0) * A(1, 0);
+  return Mat3::Identity() + (2.0 / (1.0 + theta2)) * (A + A * A);
+}
+
+/// Result of the deviatoric update of one step.
+struct DeviatorUpdate {
+  Mat3 s;                 // deviatoric stress at the end of the step
+  double dplastic = 0.0;  // Δε̄p, equivalent plastic strain increment
+  double yield = 0.0;     // σy at the end of the step (0 for an elastic material)
+};
+
+/// Hypoelastic-plastic deviator, one step:
+///   trial  s* = Q s Qᵀ + 2G τ dev D                      (Jaumann rate, Hughes–Winget)
+///   σ_eq = sqrt(3/2 s*:s*),  σy = σy0 + H ε̄p
+///   if σ_eq > σy:  Δε̄p = (σ_eq − σy) / (3G + H),  s = s* (σy + H Δε̄p) / σ_eq   (radial return)
+/// The returned stress lies on the updated yield surface exactly (to round-off).
+inline DeviatorUpdate update_deviator(const Material& m, const Mat3& s_old, const Mat3& D,
+                                      const Mat3& W, double tau, double eps_p) {
+  const Mat3 Q = jaumann_rotation(W, tau);
+  const Mat3 devD = D - (D.trace() / 3.0) * Mat3::Identity();
+  DeviatorUpdate r;
+  r.s = Q * s_old * Q.transpose() + (2.0 * m.shear_modulus * tau) * devD;
+  if (!m.plastic()) return r;
+  const double yield = m.yield_stress + m.hardening_modulus * eps_p;
+  const double eq = std::sqrt(1.5 * r.s.cwiseProduct(r.s).sum());
+  r.yield = yield;
+  if (eq > yield) {
+    r.dplastic = (eq - yield) / (3.0 * m.shear_modulus + m.hardening_modulus);
+    r.yield = yield + m.hardening_modulus * r.dplastic;
+    r.s *= r.yield / eq;
+  }
+  return r;
+}
+
+/// The equation of state as p = A(μ) + B E, with μ = V0/V − 1 (compression > 0) and E the
+/// internal energy per unit reference volume (J/m³). Linear: A = K μ, B = 0.
+/// Mie–Grüneisen with a linear Us–up Hugoniot (the form of LS-DYNA's *EOS_GRUNEISEN with
+/// S2 = S3 = a = 0):
+///   μ > 0:  A = ρ0 c0² μ [1 + (1 − Γ0/2) μ] / [1 − (s − 1) μ]²
+///   μ ≤ 0:  A = ρ0 c0² μ
+///   B = Γ0
+/// On the Hugoniot (E = E_H = ½ p_H μ/(1+μ)) this gives p_H = ρ0 Us up with Us = c0 + s up.
+struct EosTerms {
+  double a = 0.0;       // A(μ), Pa
+  double b = 0.0;       // B = ∂p/∂E
+  double da_dmu = 0.0;  // A'(μ), for the sound speed
+};
+
+inline EosTerms eos_terms(const Material& m, double mu) {
+  EosTerms t;
+  if (m.eos == EosKind::linear) {
+    t.a = m.bulk_modulus * mu;
+    t.da_dmu = m.bulk_modulus;
+    return t;
+  }
+  const double k0 = m.density * m.c0 * m.c0;
+  t.b = m.gamma0;
+  if (mu <= 0.0) {
+    t.a = k0 * mu;
+    t.da_dmu = k0;
+    return t;
+  }
+  const double num = mu * (1.0 + (1.0 - 0.5 * m.gamma0) * mu);
+  const double den = 1.0 - (m.s - 1.0) * mu;
+  t.a = k0 * num / (den * den);
+  const double dnum = 1.0 + 2.0 * (1.0 - 0.5 * m.gamma0) * mu;
+  t.da_dmu = k0 * (dnum * den + 2.0 * (m.s - 1.0) * num) / (den * den * den);
+  return t;
+}
+
+/// Pressure from compression μ and internal energy per reference volume E.
+inline double eos_pressure(const Material& m, double mu, double energy_density) {
+  const EosTerms t = eos_terms(m, mu);
+  return t.a + t.b * energy_density;
+}
+
+/// Isentropic bulk stiffness ρ c_b² = (1+μ) dp/dμ|_s, with dE/dμ|_s = p/(1+μ)²:
+///   ρ c_b² = (1+μ) A'(μ) + B p / (1+μ).
+/// Floored at 1e-3 K0 so that a material in tension keeps a usable sound speed.
+inline double bulk_stiffness(const Material& m, double mu, double p) {
+  const EosTerms t = eos_terms(m, mu);
+  const double k = (1.0 + mu) * t.da_dmu + t.b * p / (1.0 + mu);
+  return std::max(k, 1e-3 * m.bulk_modulus);
+}
+
+/// Artificial bulk viscosity (von Neumann–Richtmyer quadratic + Landshoff linear), on
+/// compression only:
+///   q = ρ l (C2 l ε̇v² − C1 c ε̇v)  for ε̇v = tr D < 0,   q = 0 otherwise,
+/// with l the element's characteristic length (smallest altitude) and c its sound speed.
+inline double bulk_viscosity(double rho, double length, double sound_speed, double trace_d,
+                             double c_linear, double c_quadratic) {
+  if (trace_d >= 0.0) return 0.0;  // expansion: no viscosity
+  return rho * length *
+         (c_quadratic * length * trace_d * trace_d - c_linear * sound_speed * trace_d);
+}
+
+}  // namespace tc

@@ -1,0 +1,184 @@
+// Material models against exact results.
+#include <gtest/gtest.h>
+
+#include <Eigen/Eigenvalues>
+
+#include "tetcontact/material/material.hpp"
+
+using namespace tc;
+
+namespace {
+
+Material elastic(double e, double nu, double rho) {
+  Material m;
+  m.name = "m";
+  m.density = rho;
+  set_elastic_constants(m, e, nu);
+  return m;
+}
+
+Material al6061() {  // Steinberg (1996), as in data/materials.yaml
+  Material m;
+  m.name = "al6061-t6";
+  m.density = 2703;
+  m.shear_modulus = 27.6e9;
+  m.yield_stress = 0.29e9;
+  m.eos = EosKind::mie_gruneisen;
+  m.c0 = 5240;
+  m.s = 1.40;
+  m.gamma0 = 1.97;
+  m.bulk_modulus = m.density * m.c0 * m.c0;
+  return m;
+}
+
+double von_mises(const Mat3& s) {
+  return std::sqrt(1.5 * s.cwiseProduct(s).sum());
+}
+
+}  // namespace
+
+TEST(Material, ModuliFromYoungAndPoisson) {
+  const Material m = elastic(210e9, 0.3, 7850);
+  EXPECT_NEAR(m.bulk_modulus, 175e9, 1e-3 * 175e9);
+  EXPECT_NEAR(m.shear_modulus, 210e9 / 2.6, 1.0);
+  EXPECT_NEAR(m.youngs_modulus(), 210e9, 1.0);
+  EXPECT_NEAR(m.poisson_ratio(), 0.3, 1e-12);
+  // c_p² = E (1-ν) / (ρ (1+ν)(1-2ν))
+  EXPECT_NEAR(m.wave_speed(), std::sqrt(210e9 * 0.7 / (7850 * 1.3 * 0.4)), 1e-9);
+}
+
+TEST(Material, ElasticUniaxialStrainGivesLameStresses) {
+  const Material m = elastic(70e9, 0.3, 2700);
+  const double lambda = m.bulk_modulus - 2.0 / 3.0 * m.shear_modulus;
+  Mat3 D = Mat3::Zero();
+  D(0, 0) = 100.0;  // 1/s
+  const double tau = 1e-7, e = 100.0 * tau;
+  const DeviatorUpdate r = update_deviator(m, Mat3::Zero(), D, Mat3::Zero(), tau, 0.0);
+  const double p = -m.bulk_modulus * e;  // linear EOS, small strain
+  EXPECT_NEAR(r.s(0, 0) - p, (lambda + 2 * m.shear_modulus) * e, 1e-6);
+  EXPECT_NEAR(r.s(1, 1) - p, lambda * e, 1e-6);
+  EXPECT_NEAR(r.s(0, 1), 0.0, 1e-12);
+  EXPECT_EQ(r.dplastic, 0.0);
+}
+
+// Uniaxial strain (compression along x) through yield, many small steps. Exact solution of
+// J2 flow with linear hardening for this proportional path: σ_eq = 2G|ε| while elastic; past
+// yield ε̄p = (2G|ε| − σy0) / (3G + H), σ_eq = σy0 + H ε̄p, and s_xx = −(2/3) σ_eq.
+class UniaxialStrain : public ::testing::TestWithParam<double> {};
+
+TEST_P(UniaxialStrain, RadialReturnExactAndOnYieldSurface) {
+  Material m = elastic(117e9, 0.35, 8930);
+  m.yield_stress = 400e6;
+  m.hardening_modulus = GetParam();
+  const double G = m.shear_modulus, tau = 1e-8, rate = -1e4;  // 1e-4 strain per step
+  Mat3 D = Mat3::Zero();
+  D(0, 0) = rate;
+  Mat3 s = Mat3::Zero();
+  double eps_p = 0.0;
+  bool yielded = false;
+  for (int n = 1; n <= 100; ++n) {
+    const DeviatorUpdate r = update_deviator(m, s, D, Mat3::Zero(), tau, eps_p);
+    s = r.s;
+    eps_p += r.dplastic;
+    const double strain = -rate * tau * n;  // |ε|
+    const double elastic_eq = 2.0 * G * strain;
+    if (elastic_eq <= m.yield_stress) {
+      EXPECT_NEAR(von_mises(s), elastic_eq, 1e-6 * elastic_eq);
+      EXPECT_EQ(eps_p, 0.0);
+      continue;
+    }
+    yielded = true;
+    const double exact_ep = (elastic_eq - m.yield_stress) / (3.0 * G + m.hardening_modulus);
+    const double yield = m.yield_stress + m.hardening_modulus * exact_ep;
+    EXPECT_NEAR(eps_p, exact_ep, 1e-12) << "step " << n;
+    // On the yield surface, and the exact deviator of uniaxial compression.
+    EXPECT_NEAR(von_mises(s), yield, 1e-9 * yield) << "step " << n;
+    EXPECT_NEAR(s(0, 0), -2.0 / 3.0 * yield, 1e-9 * yield);
+    EXPECT_NEAR(s(1, 1), 1.0 / 3.0 * yield, 1e-9 * yield);
+    EXPECT_NEAR(s(0, 1), 0.0, 1e-9);
+  }
+  EXPECT_TRUE(yielded);
+}
+
+INSTANTIATE_TEST_SUITE_P(Hardening, UniaxialStrain, ::testing::Values(0.0, 100e6, 10e9),
+                         [](const auto& info) {
+                           return info.param == 0.0
+                                      ? std::string("perfect")
+                                      : "H" + std::to_string(static_cast<long>(info.param / 1e6)) +
+                                            "MPa";
+                         });
+
+TEST(Material, RadialReturnFromAnyTrialLandsOnTheSurface) {
+  Material m = elastic(200e9, 0.3, 7800);
+  m.yield_stress = 1e9;
+  m.hardening_modulus = 2e9;
+  Mat3 D;
+  D << 3, 1, -2, 1, -1, 0.5, -2, 0.5, 4;
+  for (double scale : {1e4, 1e5, 1e6}) {
+    const DeviatorUpdate r = update_deviator(m, Mat3::Zero(), scale * D, Mat3::Zero(), 1e-6, 0.05);
+    ASSERT_GT(r.dplastic, 0.0);
+    const double yield = m.yield_stress + m.hardening_modulus * (0.05 + r.dplastic);
+    EXPECT_NEAR(von_mises(r.s), yield, 1e-12 * yield);
+    EXPECT_NEAR(r.s.trace(), 0.0, 1e-3);
+  }
+}
+
+TEST(Material, JaumannRotationIsOrthogonalAndKeepsPrincipalValues) {
+  Mat3 W;
+  W << 0, -3, 1, 3, 0, -2, -1, 2, 0;
+  W *= 1e4;
+  const Mat3 Q = jaumann_rotation(W, 1e-5);
+  EXPECT_NEAR((Q * Q.transpose() - Mat3::Identity()).norm(), 0.0, 1e-15);
+  EXPECT_NEAR(Q.determinant(), 1.0, 1e-15);
+  Mat3 s;
+  s << 2, 1, 0, 1, -1, 0.5, 0, 0.5, -1;
+  Material m = elastic(70e9, 0.3, 2700);
+  Mat3 cur = s;
+  for (int n = 0; n < 10000; ++n) cur = update_deviator(m, cur, Mat3::Zero(), W, 1e-5, 0).s;
+  Eigen::SelfAdjointEigenSolver<Mat3> a(s), b(cur);
+  EXPECT_NEAR((a.eigenvalues() - b.eigenvalues()).norm(), 0.0, 1e-12 * s.norm());
+  EXPECT_GT((cur - s).norm(), 0.1 * s.norm());  // it did rotate
+}
+
+// Mie–Grüneisen on its own Hugoniot: with E = E_H = ½ p_H μ/(1+μ) the pressure must be
+// p_H = ρ0 Us up, Us = c0 + s up, at the compression μ = up / (Us − up) of the jump conditions.
+TEST(Material, MieGruneisenReproducesItsHugoniot) {
+  const Material m = al6061();
+  for (double up : {10.0, 200.0, 500.0, 1000.0, 2000.0, 4000.0}) {
+    const double us = m.c0 + m.s * up;
+    const double mu = up / (us - up);
+    const double p_h = m.density * us * up;
+    const double e_h = 0.5 * p_h * mu / (1.0 + mu);
+    EXPECT_NEAR(eos_pressure(m, mu, e_h), p_h, 1e-12 * p_h) << "up = " << up;
+  }
+  // The figure: about 3 GPa at up = 200 m/s for 6061-T6.
+  EXPECT_NEAR(m.density * (m.c0 + m.s * 200.0) * 200.0, 2.984e9, 1e6);
+  // Tension branch: linear, and energy raises the pressure by Γ0 E.
+  EXPECT_NEAR(eos_pressure(m, -0.01, 0.0), -0.01 * m.bulk_modulus, 1.0);
+  EXPECT_NEAR(eos_pressure(m, 0.0, 1e8), m.gamma0 * 1e8, 1e-3);
+}
+
+TEST(Material, BulkStiffnessIsTheSlopeOfTheIsentrope) {
+  const Material m = al6061();
+  // Integrate dE = p/(1+μ)² dμ along an isentrope and compare (1+μ) dp/dμ with bulk_stiffness.
+  double e = 0.0, mu = 0.0;
+  const double h = 1e-5;
+  for (int k = 0; k < 5000; ++k) {
+    const double p = eos_pressure(m, mu, e);
+    e += h * p / ((1 + mu) * (1 + mu));
+    mu += h;
+  }
+  const double p = eos_pressure(m, mu, e);
+  const double p_next = eos_pressure(m, mu + h, e + h * p / ((1 + mu) * (1 + mu)));
+  const double numeric = (1 + mu) * (p_next - p) / h;
+  EXPECT_NEAR(bulk_stiffness(m, mu, p), numeric, 1e-3 * numeric);
+  EXPECT_NEAR(bulk_stiffness(m, 0.0, 0.0), m.bulk_modulus, 1e-6 * m.bulk_modulus);
+}
+
+TEST(Material, ViscosityOnlyInCompression) {
+  EXPECT_EQ(bulk_viscosity(2700, 1e-3, 5000, +1e5, 0.06, 1.5), 0.0);
+  EXPECT_EQ(bulk_viscosity(2700, 1e-3, 5000, 0.0, 0.06, 1.5), 0.0);
+  const double q = bulk_viscosity(2700, 1e-3, 5000, -1e5, 0.06, 1.5);
+  // ρ l (C2 l ε̇² + C1 c |ε̇|) = 2700e-3 (1.5e-3·1e10 + 0.06·5000·1e5) = 2700e-3 · 4.5e7
+  EXPECT_NEAR(q, 2700 * 1e-3 * (1.5 * 1e-3 * 1e10 + 0.06 * 5000 * 1e5), 1e-3);
+}
