@@ -4,18 +4,21 @@ namespace tc {
 
 namespace {
 
-void account(const std::vector<Vec3>& impulse, const State& st, const ImpulseLedger* previous,
-             ImpulseLedger& out) {
-  double power_behind = 0.0;  // Σ J^n·U^n
+void account(const std::vector<Vec3>& impulse, const State& st, double f,
+             const ImpulseLedger* previous, ImpulseLedger& out) {
+  double work_behind = 0.0;
+  Vec3 impulse_behind = Vec3::Zero();
   for (std::size_t i = 0; i < impulse.size(); ++i) {
-    power_behind += impulse[i].dot(st.v[i]);
-    out.power_ahead += impulse[i].dot(st.v_star[i]);
-    out.now += impulse[i];
+    const Vec3& j = impulse[i];
+    const double ju = j.dot(st.v[i]);
+    work_behind += f * ju;
+    out.work_ahead += 0.5 * j.dot(st.v_star[i]) + (0.5 - f) * ju;
+    impulse_behind += f * j;
+    out.impulse_ahead += (1.0 - f) * j;
   }
-  if (previous) {
-    out.work = previous->work + 0.5 * (previous->power_ahead + power_behind);
-    out.impulse = previous->impulse + 0.5 * (previous->now + out.now);
-  }
+  out.work = work_behind + (previous ? previous->work + previous->work_ahead : 0.0);
+  out.impulse = impulse_behind +
+                (previous ? Vec3(previous->impulse + previous->impulse_ahead) : Vec3::Zero());
 }
 
 }  // namespace
@@ -25,13 +28,12 @@ Sample sample_balance(const State& st, const Sample* previous) {
   s.step = st.step;
   s.t = st.t;
   s.dt = st.dt;
-  // U* − U^n = τ_v a^n (external impulses included); the left step τ^{n-1/2} scales it.
-  const double tau_v = 0.5 * (st.dt_prev + st.dt);
-  const double w = tau_v > 0.0 ? st.dt_prev / tau_v : 0.0;
+  const double f = kick_fraction(st);
   for (std::size_t i = 0; i < st.x.size(); ++i) {
-    s.kinetic += 0.5 * st.m[i] * st.v[i].dot(st.v[i] + w * (st.v_star[i] - st.v[i]));
+    // ½ m U·(U + 2f (U* − U)) = ½ m U^n·(U^n + τ^{n-1/2} a^n)
+    s.kinetic += 0.5 * st.m[i] * st.v[i].dot(st.v[i] + 2.0 * f * (st.v_star[i] - st.v[i]));
     s.mass += st.m[i];
-    const Vec3 p = 0.5 * st.m[i] * (st.v[i] + st.v_star[i]);
+    const Vec3 p = st.m[i] * centred_velocity(st, static_cast<Index>(i));
     s.momentum += p;
     s.momentum_scale += p.norm();
   }
@@ -40,8 +42,8 @@ Sample sample_balance(const State& st, const Sample* previous) {
     s.plastic_work += st.w_plastic[t];
     s.viscous_work += st.w_viscous[t];
   }
-  account(st.bc_impulse, st, previous ? &previous->boundary : nullptr, s.boundary);
-  account(st.wall_impulse, st, previous ? &previous->walls : nullptr, s.walls);
+  account(st.bc_impulse, st, f, previous ? &previous->boundary : nullptr, s.boundary);
+  account(st.wall_impulse, st, f, previous ? &previous->walls : nullptr, s.walls);
   s.total = s.kinetic + s.internal;
   return s;
 }

@@ -465,8 +465,8 @@ Case load_case(const std::string& path, const std::vector<std::string>& override
   Case c;
   c.file = path;
   r.keys(root, "",
-         {"name", "description", "end_time", "solver", "materials", "bodies", "boundary_conditions",
-          "output", "contact", "fracture"});
+         {"name", "description", "end_time", "solver", "material_library", "materials", "bodies",
+          "boundary_conditions", "walls", "output", "contact", "fracture"});
   c.name = root["name"] ? r.string(root["name"], "name") : fs::path(path).stem().string();
   if (root["description"]) c.description = r.string(root["description"], "description");
   c.end_time = r.positive(r.require(root, "", "end_time"), "end_time", "s");
@@ -516,16 +516,18 @@ Case load_case(const std::string& path, const std::vector<std::string>& override
     library_path = default_material_library();
   }
   YAML::Node library;
+  bool library_loaded = false;
   for (auto it = mats.begin(); it != mats.end(); ++it) {
     const std::string name = it->first.Scalar();
     const std::string p = join("materials", name);
     YAML::Node m = it->second;
     if (m.IsMap() && m["from"]) {
       const std::string from = r.string(m["from"], join(p, "from"));
-      if (!library) {
+      if (!library_loaded) {
         load_material_library(library_path);  // validates it, naming its own lines
         library = YAML::LoadFile(library_path);
         c.material_library = library_path;
+        library_loaded = true;
       }
       const YAML::Node& lib = library;  // const: a lookup must not add the key
       if (!lib[from]) {

@@ -302,3 +302,118 @@ TEST(CaseFile, ReadmeExampleIsValid) {
   EXPECT_EQ(c.output.fields.size(), 6u);
   EXPECT_NO_THROW(build_model(c));
 }
+
+TEST(MaterialLibrary, ShippedLibraryIsValidAndComplete) {
+  const auto lib = load_material_library(default_material_library());
+  std::vector<std::string> names;
+  for (const Material& m : lib) names.push_back(m.name);
+  for (const char* want :
+       {"al6061-t6", "al2024-t4", "amg6", "steel-4340", "ofhc-copper", "tungsten-alloy"})
+    EXPECT_NE(std::find(names.begin(), names.end(), want), names.end()) << want;
+  for (const Material& m : lib) {
+    EXPECT_GT(m.density, 0.0) << m.name;
+    EXPECT_GT(m.shear_modulus, 0.0) << m.name;
+    EXPECT_TRUE(m.plastic()) << m.name;
+    EXPECT_EQ(m.eos, EosKind::mie_gruneisen) << m.name;
+    // K0 = ρ0 c0² and a Poisson's ratio of a metal.
+    EXPECT_NEAR(m.bulk_modulus, m.density * m.c0 * m.c0, 1e-6 * m.bulk_modulus) << m.name;
+    EXPECT_GT(m.poisson_ratio(), 0.2) << m.name;
+    EXPECT_LT(m.poisson_ratio(), 0.4) << m.name;
+  }
+}
+
+TEST(MaterialLibrary, CaseTakesAnEntryAndOverridesKeys) {
+  test::TempDir dir("case-library");
+  std::string v = k_valid;
+  v = replace(v, R"(  al:
+    density: 2700
+    youngs_modulus: 70.0e9
+    poisson_ratio: 0.3)",
+              R"(  al:
+    from: ofhc-copper
+    yield_stress: 400.0e6
+    hardening_modulus: 100.0e6)");
+  test::write_text(dir / "c.yaml", v);
+  const Case c = load_case(dir / "c.yaml");
+  const Material& m = c.material("al");
+  EXPECT_EQ(m.density, 8930);             // from the library
+  EXPECT_EQ(m.shear_modulus, 47.7e9);     // from the library
+  EXPECT_EQ(m.yield_stress, 400e6);       // overridden
+  EXPECT_EQ(m.hardening_modulus, 100e6);  // added
+  EXPECT_EQ(m.eos, EosKind::mie_gruneisen);
+  EXPECT_EQ(c.material_library, default_material_library());
+
+  test::write_text(dir / "bad.yaml", replace(v, "from: ofhc-copper", "from: unobtainium"));
+  try {
+    load_case(dir / "bad.yaml");
+    FAIL();
+  } catch (const CaseError& e) {
+    const std::string msg = e.what();
+    EXPECT_NE(msg.find("key 'materials.al.from'"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("no material 'unobtainium'"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("ofhc-copper"), std::string::npos) << msg;
+  }
+}
+
+TEST(CaseFile, MaterialAndWallErrors) {
+  const std::string v = k_valid;
+  const std::vector<ErrorCase> cases = {
+      {"both elastic forms",
+       replace(v, "    poisson_ratio: 0.3", "    poisson_ratio: 0.3\n    shear_modulus: 1.0e9"),
+       {},
+       ":7:",
+       "materials.al",
+       "either youngs_modulus and poisson_ratio"},
+      {"hardening without yield",
+       replace(v, "    poisson_ratio: 0.3", "    poisson_ratio: 0.3\n    hardening_modulus: 1.0e9"),
+       {},
+       ":10:",
+       "materials.al.hardening_modulus",
+       "needs a yield_stress"},
+      {"bad eos",
+       replace(v, "    poisson_ratio: 0.3", "    poisson_ratio: 0.3\n    eos: {type: ideal_gas}"),
+       {},
+       ":10:",
+       "materials.al.eos.type",
+       "linear or mie_gruneisen"},
+      {"mg missing s",
+       replace(v, "    poisson_ratio: 0.3",
+               "    poisson_ratio: 0.3\n    eos: {type: mie_gruneisen, c0: 5000, gamma0: 2}"),
+       {},
+       ":10:",
+       "materials.al.eos.s",
+       "missing required key"},
+      {"zero wall normal",
+       v + "walls:\n  - {point: [0, 0, 0], normal: [0, 0, 0]}\n",
+       {},
+       ":24:",
+       "walls.0.normal",
+       "non-zero"},
+      {"negative friction",
+       v + "walls:\n  - {point: [0, 0, 0], normal: [0, 0, 1], friction: -0.1}\n",
+       {},
+       ":24:",
+       "walls.0.friction",
+       "must not be negative"},
+      {"anp value",
+       v,
+       {"solver.average_nodal_pressure=sometimes"},
+       "--set solver.average_nodal_pressure",
+       "solver.average_nodal_pressure",
+       "expected auto, true or false"},
+  };
+  test::TempDir dir("case-material-errors");
+  const std::string path = dir / "bad.yaml";
+  for (const ErrorCase& c : cases) {
+    test::write_text(path, c.text);
+    try {
+      load_case(path, c.overrides);
+      ADD_FAILURE() << c.name << ": accepted";
+    } catch (const CaseError& e) {
+      const std::string msg = e.what();
+      EXPECT_NE(msg.find(c.expect_location), std::string::npos) << c.name << ": " << msg;
+      EXPECT_NE(msg.find("key '" + c.expect_key + "'"), std::string::npos) << c.name << ": " << msg;
+      EXPECT_NE(msg.find(c.expect_what), std::string::npos) << c.name << ": " << msg;
+    }
+  }
+}

@@ -12,10 +12,10 @@ namespace tc {
 /// Work and impulse of one kind of external impulse (prescribed velocities, walls),
 /// accumulated between samples in the leapfrog's bookkeeping (see sample_balance).
 struct ImpulseLedger {
-  double work = 0.0;            // to t^n, J
-  Vec3 impulse = Vec3::Zero();  // to t^n, N s
-  double power_ahead = 0.0;     // Σ J^n·U^{n+1} (half of the next interval's work)
-  Vec3 now = Vec3::Zero();      // Σ J^n
+  double work = 0.0;                  // to t^n, J
+  Vec3 impulse = Vec3::Zero();        // to t^n, N s
+  double work_ahead = 0.0;            // the share of this step's impulses due at t^{n+1}
+  Vec3 impulse_ahead = Vec3::Zero();  // likewise for the impulse
 };
 
 /// Balance at t^n, sampled after the prediction (and corrections) of step n, when both U^n
@@ -49,15 +49,23 @@ struct Sample {
 /// the central difference for small-strain linear elasticity. When the step changes by Δτ
 /// the mismatch is O((ωτ)² Δτ/τ) of the energy (the plain ½ m|U|² of a half-step velocity
 /// errs by O(ωτ), ½ m U^{n-1/2}·U^{n+1/2} by O(ωτ Δτ/τ)). On the first step (τ^{-1/2} = 0)
-/// it is ½ m |U^0|². The work of external impulses J (prescribed velocities, walls) between
-/// two samples is ½ U^{n+1}·(J^n + J^{n+1}) in the same bookkeeping, and the centred
-/// momentum moves by ½ (J^n + J^{n+1}); so `previous` must be the sample of the step before
-/// (nullptr for the first).
+/// it is ½ m |U^0|². Velocities at t^n are v^n = U^n + f (U* − U^n), f = τ^{n-1/2}/(2τ_v)
+/// (½ for a constant step, 0 on the first: v^0 = U^0), and momentum is Σ m v^n. An external
+/// impulse J^n (prescribed velocities, walls) does the work J^n·(U^n + U^{n+1})/2; in this
+/// bookkeeping the share f J^n·U^n falls at t^n and the rest at t^{n+1}, and its momentum
+/// f J^n at t^n and (1 − f) J^n at t^{n+1}. So `previous` must be the sample of the step
+/// before (nullptr for the first).
 Sample sample_balance(const State& st, const Sample* previous);
 
-/// Velocity at t^n: (U^n + U^{n+1}) / 2.
+/// f = τ^{n-1/2} / (2 τ_v): how far the velocity at t^n lies from U^n towards U*.
+inline double kick_fraction(const State& st) {
+  const double tau_v = 0.5 * (st.dt_prev + st.dt);
+  return tau_v > 0.0 ? 0.5 * st.dt_prev / tau_v : 0.0;
+}
+
+/// Velocity at t^n: U^n + f (U* − U^n) ((U^n + U^{n+1})/2 for a constant step; U^0 at t = 0).
 inline Vec3 centred_velocity(const State& st, Index node) {
-  return 0.5 * (st.v[node] + st.v_star[node]);
+  return st.v[node] + kick_fraction(st) * (st.v_star[node] - st.v[node]);
 }
 
 struct BodyStats {
