@@ -23,7 +23,8 @@ const char* k_usage =
     "exit codes: 0 success, 1 run failure (summary.json says why), 2 bad input\n";
 
 const char* k_run_usage =
-    "usage: tetcontact run CASE.yaml [--out DIR] [--force] [--set KEY=VALUE]... [--quiet]\n"
+    "usage: tetcontact run CASE.yaml [--out DIR] [--force] [--set KEY=VALUE]... [--quiet] "
+    "[--check]\n"
     "\n"
     "Runs the case and writes into DIR (default results/<case name>):\n"
     "  case.pvd, frame_NNNN.vtu   ParaView series (open case.pvd)\n"
@@ -35,6 +36,8 @@ const char* k_run_usage =
     "  --set KEY=VALUE    override a case key, e.g. --set solver.cfl=0.3 or\n"
     "                     --set bodies.0.velocity=[0,0,-100] (repeatable; VALUE is YAML)\n"
     "  --quiet            no progress and no final table\n"
+    "  --check            exit 1 when the run misses a reference value the case declares\n"
+    "                     (its `reference:` section; summary.json lists them in any case)\n"
     "\n"
     "Progress goes to stderr (a bar on a terminal, periodic lines otherwise), the final\n"
     "table to stdout. Exit codes: 0 success, 1 run failure, 2 bad input (nothing written).\n";
@@ -94,6 +97,8 @@ int main(int argc, char** argv) {
       o.force = true;
     } else if (cmd == "run" && a == "--quiet") {
       o.quiet = true;
+    } else if (cmd == "run" && a == "--check") {
+      o.check = true;
     } else if (!a.empty() && a[0] == '-') {
       return usage_error("unknown option '" + a + "'", usage);
     } else if (o.case_path.empty()) {

@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "tetcontact/app/setup.hpp"
+#include "tetcontact/diagnostics/reference.hpp"
 #include "tetcontact/io/case.hpp"
 #include "tetcontact/io/files.hpp"
 #include "tetcontact/io/json.hpp"
@@ -289,9 +290,41 @@ int run_case(const RunOptions& o) {
   progress.done();
   writer.close();
   const double wall = seconds_since(t0);
-  write_file_atomic(dir + "/summary.json", summary_json(c, *sim, status, wall, warnings).dump());
-  if (!o.quiet || code != 0) print_table(c, *sim, status, dir, writer.frames(), wall);
-  if (code != 0) std::cerr << "tetcontact: run failed: " << status.substr(8) << "\n";
+  Json summary = summary_json(c, *sim, status, wall, warnings);
+  std::vector<ReferenceResult> refs;
+  if (code == 0 && !c.references.empty()) {
+    refs = evaluate_references(c.references, sim->model(), sim->state());
+    Json list = Json::array();
+    bool all = true;
+    for (const ReferenceResult& r : refs) {
+      Json o = Json::object();
+      o["name"] = r.spec->name;
+      o["measured"] = r.measured;
+      o["reference"] = r.spec->value;
+      o["relative_error"] = r.relative_error;
+      o["tolerance"] = r.spec->tolerance;
+      o["pass"] = r.pass;
+      o["source"] = r.spec->source;
+      list.push_back(o);
+      all = all && r.pass;
+    }
+    summary["references"] = list;
+    summary["references_pass"] = all;
+    if (o.check && !all) code = 1;
+  }
+  write_file_atomic(dir + "/summary.json", summary.dump());
+  if (!o.quiet || code != 0) {
+    print_table(c, *sim, status, dir, writer.frames(), wall);
+    for (const ReferenceResult& r : refs)
+      std::printf(
+          "  reference  %-28s measured %-11.5g reference %-11.5g error %+7.2f%% (tolerance %.1f%%) "
+          "%s\n",
+          r.spec->name.c_str(), r.measured, r.spec->value, 100 * r.relative_error,
+          100 * r.spec->tolerance, r.pass ? "pass" : "FAIL");
+  }
+  if (o.check && code != 0 && status == "ok")
+    std::cerr << "tetcontact: check failed: a reference value is missed\n";
+  if (status != "ok") std::cerr << "tetcontact: run failed: " << status.substr(8) << "\n";
   return code;
 }
 

@@ -466,7 +466,7 @@ Case load_case(const std::string& path, const std::vector<std::string>& override
   c.file = path;
   r.keys(root, "",
          {"name", "description", "end_time", "solver", "material_library", "materials", "bodies",
-          "boundary_conditions", "walls", "output", "contact", "fracture"});
+          "boundary_conditions", "walls", "output", "reference", "contact", "fracture"});
   c.name = root["name"] ? r.string(root["name"], "name") : fs::path(path).stem().string();
   if (root["description"]) c.description = r.string(root["description"], "description");
   c.end_time = r.positive(r.require(root, "", "end_time"), "end_time", "s");
@@ -637,6 +637,66 @@ Case load_case(const std::string& path, const std::vector<std::string>& override
       w.normal.normalize();
       if (n["friction"]) w.friction = r.non_negative(n["friction"], join(p, "friction"));
       c.walls.push_back(w);
+    }
+  }
+
+  // Reference values.
+  if (const YAML::Node refs = root["reference"]) {
+    if (!refs.IsSequence()) r.fail(refs, "reference", "expected a list of reference values");
+    for (std::size_t i = 0; i < refs.size(); ++i) {
+      const std::string p = join("reference", std::to_string(i));
+      const YAML::Node n = refs[i];
+      r.keys(n, p,
+             {"name", "measure", "body", "axis", "component", "region", "value", "tolerance",
+              "source"});
+      ReferenceSpec ref;
+      ref.name = r.string(r.require(n, p, "name"), join(p, "name"));
+      const YAML::Node m = r.require(n, p, "measure");
+      const std::string measure = r.string(m, join(p, "measure"));
+      using M = ReferenceSpec::Measure;
+      if (measure == "length")
+        ref.measure = M::length;
+      else if (measure == "radius")
+        ref.measure = M::radius;
+      else if (measure == "mean_stress")
+        ref.measure = M::mean_stress;
+      else if (measure == "mean_pressure")
+        ref.measure = M::mean_pressure;
+      else
+        r.fail(m, join(p, "measure"),
+               "measure must be length, radius, mean_stress or mean_pressure");
+      if (ref.measure == M::length || ref.measure == M::radius) {
+        const YAML::Node b = r.require(n, p, "body");
+        ref.body = r.string(b, join(p, "body"));
+        if (std::none_of(c.bodies.begin(), c.bodies.end(),
+                         [&](const BodySpec& s) { return s.name == ref.body; }))
+          r.fail(b, join(p, "body"), "no body named '" + ref.body + "'");
+        const YAML::Node a = r.require(n, p, "axis");
+        const std::string axis = r.string(a, join(p, "axis"));
+        if (axis != "x" && axis != "y" && axis != "z")
+          r.fail(a, join(p, "axis"), "axis must be x, y or z");
+        ref.axis = axis[0] - 'x';
+      } else {
+        const Region reg = parse_region(r, r.require(n, p, "region"), join(p, "region"));
+        ref.region_min = reg.min;
+        ref.region_max = reg.max;
+        if (ref.measure == M::mean_stress) {
+          const YAML::Node cmp = r.require(n, p, "component");
+          static const std::vector<std::string> names{"xx", "yy", "zz", "xy", "yz", "xz"};
+          const std::string cs = r.string(cmp, join(p, "component"));
+          const auto it = std::find(names.begin(), names.end(), cs);
+          if (it == names.end())
+            r.fail(cmp, join(p, "component"), "component must be xx, yy, zz, xy, yz or xz");
+          ref.component = static_cast<int>(it - names.begin());
+        }
+      }
+      ref.value = r.number(r.require(n, p, "value"), join(p, "value"));
+      if (ref.value == 0.0)
+        r.fail(n["value"], join(p, "value"),
+               "a reference value must be non-zero (errors are relative)");
+      ref.tolerance = r.positive(r.require(n, p, "tolerance"), join(p, "tolerance"), "relative");
+      if (n["source"]) ref.source = r.string(n["source"], join(p, "source"));
+      c.references.push_back(ref);
     }
   }
 

@@ -7,17 +7,6 @@
 
 namespace tc {
 
-std::array<Vec3, 4> face_area_vectors(const Vec3& x0, const Vec3& x1, const Vec3& x2,
-                                      const Vec3& x3) {
-  // Faces opposite nodes 0..3 with outward orientation: (1,2,3), (0,3,2), (0,1,3), (0,2,1).
-  std::array<Vec3, 4> a;
-  a[1] = 0.5 * (x3 - x0).cross(x2 - x0);
-  a[2] = 0.5 * (x1 - x0).cross(x3 - x0);
-  a[3] = 0.5 * (x2 - x0).cross(x1 - x0);
-  a[0] = -(a[1] + a[2] + a[3]);
-  return a;
-}
-
 namespace {
 
 [[noreturn]] void inverted(Index t, const char* when, double vol, double vol0) {
@@ -26,23 +15,112 @@ namespace {
   throw InvertedElement(t, os.str());
 }
 
-double largest_area2(const std::array<Vec3, 4>& a) {
-  return std::max(std::max(a[0].squaredNorm(), a[1].squaredNorm()),
-                  std::max(a[2].squaredNorm(), a[3].squaredNorm()));
+// Squared dilatational sound speed of the current state: (ρ c_b² + 4G/3) / ρ.
+inline double sound_speed2(const Material& m, double mu, double p, const EosTerms& t) {
+  const double rho = m.density * (1.0 + mu);
+  return (bulk_stiffness(m, mu, p, t) + 4.0 / 3.0 * m.shear_modulus) / rho;
 }
 
-// Dilatational sound speed of the current state: sqrt((ρ c_b² + 4G/3) / ρ).
-double sound_speed(const Material& m, double mu, double p) {
-  const double rho = m.density * (1.0 + mu);
-  return std::sqrt((bulk_stiffness(m, mu, p) + 4.0 / 3.0 * m.shear_modulus) / rho);
+// The geometry of a tet in plain doubles: edge vectors from node 0, the outward area vectors
+// a1..a3 of the faces opposite nodes 1..3 (a0 = −(a1 + a2 + a3)), the volume
+// V = −e1·a1 / 3, and the largest squared face area.
+struct TetGeometry {
+  double a[4][3];
+  double vol;
+  double amax2;
+};
+
+[[gnu::always_inline]] inline void tet_geometry(const double e[3][3], TetGeometry& g) {
+  auto cross_half = [](const double* u, const double* v, double* out) {
+    out[0] = 0.5 * (u[1] * v[2] - u[2] * v[1]);
+    out[1] = 0.5 * (u[2] * v[0] - u[0] * v[2]);
+    out[2] = 0.5 * (u[0] * v[1] - u[1] * v[0]);
+  };
+  cross_half(e[2], e[1], g.a[1]);  // face (0,3,2)
+  cross_half(e[0], e[2], g.a[2]);  // face (0,1,3)
+  cross_half(e[1], e[0], g.a[3]);  // face (0,2,1)
+  for (int d = 0; d < 3; ++d) g.a[0][d] = -(g.a[1][d] + g.a[2][d] + g.a[3][d]);
+  g.vol = -(e[0][0] * g.a[1][0] + e[0][1] * g.a[1][1] + e[0][2] * g.a[1][2]) * (1.0 / 3.0);
+  g.amax2 = 0.0;
+  for (int i = 0; i < 4; ++i)
+    g.amax2 =
+        std::max(g.amax2, g.a[i][0] * g.a[i][0] + g.a[i][1] * g.a[i][1] + g.a[i][2] * g.a[i][2]);
+}
+
+[[gnu::always_inline]] inline void end_geometry(Index t, const Tet& k, const State& st,
+                                                TetGeometry& g, const char* when) {
+  const Vec3& x0 = st.x[k[0]];
+  double e[3][3];
+  for (int i = 0; i < 3; ++i)
+    for (int d = 0; d < 3; ++d) e[i][d] = st.x[k[i + 1]][d] - x0[d];
+  tet_geometry(e, g);
+  if (!std::isfinite(g.vol)) throw InvertedElement(t, "non-finite node position");
+  if (!(g.vol > 0.0)) inverted(t, when, g.vol, st.vol0[t]);
+}
+
+// Forces of one tet from its current stress σ = s − (p + q) I and its current geometry, and
+// its CFL limit:
+//   f_i = σ a_i / 3 (f_0 = −(f_1 + f_2 + f_3): each tet's forces balance),
+//   τ_t = l / (Q + sqrt(Q² + c²)), l = 3V / max|a_i|, Q = C1 c + C2 l |ε̇v| in compression.
+[[gnu::always_inline]] inline void scatter_forces(Index t, const Tet& k, const TetGeometry& g,
+                                                  const ElementOptions& options, State& st,
+                                                  ForceResult& r) {
+  const Sym6& s = st.s[t];
+  const double pq = st.p[t] + st.q[t];
+  constexpr double third = 1.0 / 3.0;  // σ/3, so that f_i = (σ/3) a_i
+  const double sxx = (s[0] - pq) * third, syy = (s[1] - pq) * third, szz = (s[2] - pq) * third;
+  const double sxy = s[3] * third, syz = s[4] * third, sxz = s[5] * third;
+  double f0[3] = {0.0, 0.0, 0.0};
+  for (int i = 1; i < 4; ++i) {
+    const double* a = g.a[i];
+    const double fx = sxx * a[0] + sxy * a[1] + sxz * a[2];
+    const double fy = sxy * a[0] + syy * a[1] + syz * a[2];
+    const double fz = sxz * a[0] + syz * a[1] + szz * a[2];
+    Vec3& f = st.f[k[i]];
+    f[0] += fx;
+    f[1] += fy;
+    f[2] += fz;
+    f0[0] += fx;
+    f0[1] += fy;
+    f0[2] += fz;
+  }
+  Vec3& f = st.f[k[0]];
+  f[0] -= f0[0];
+  f[1] -= f0[1];
+  f[2] -= f0[2];
+  // Compared as squares (r.dt_stable holds τ² until finish_forces): a tet in expansion needs
+  // no square root at all.
+  const double l2 = 9.0 * g.vol * g.vol / g.amax2;
+  const double c2 = st.sound2[t];
+  double dt2;
+  if (st.trace_d[t] < 0.0) {
+    const double c = std::sqrt(c2), l = std::sqrt(l2);
+    const double qs =
+        options.viscosity_linear * c + options.viscosity_quadratic * l * -st.trace_d[t];
+    const double dt = l / (qs + std::sqrt(qs * qs + c2));
+    dt2 = dt * dt;
+  } else {
+    dt2 = l2 / c2;
+  }
+  if (dt2 < r.dt_stable) {
+    r.dt_stable = dt2;
+    r.critical_tet = t;
+  }
+}
+
+// The squared minimum of scatter_forces back to a time step.
+inline ForceResult finish_forces(ForceResult r) {
+  r.dt_stable = std::sqrt(r.dt_stable);
+  return r;
 }
 
 }  // namespace
 
 void init_sound_speed(const std::vector<Material>& materials, State& st) {
   for (std::size_t t = 0; t < st.vol.size(); ++t) {
+    const Material& m = materials[st.tet_material[t]];
     const double mu = st.vol0[t] / st.vol[t] - 1.0;
-    st.sound[t] = sound_speed(materials[st.tet_material[t]], mu, st.p[t]);
+    st.sound2[t] = sound_speed2(m, mu, st.p[t], eos_terms(m, mu));
   }
 }
 
@@ -50,40 +128,21 @@ ForceResult compute_forces(const std::vector<Tet>& tets, const ElementOptions& o
   for (Vec3& f : st.f) f.setZero();
   ForceResult r;
   r.dt_stable = std::numeric_limits<double>::infinity();
+  TetGeometry g;
   for (std::size_t t = 0; t < tets.size(); ++t) {
-    const Tet& k = tets[t];
-    const Vec3 &x0 = st.x[k[0]], &x1 = st.x[k[1]], &x2 = st.x[k[2]], &x3 = st.x[k[3]];
-    const double vol = tet_signed_volume(x0, x1, x2, x3);
-    if (!std::isfinite(vol))
-      throw InvertedElement(static_cast<Index>(t), "non-finite node position");
-    if (!(vol > 0.0)) inverted(static_cast<Index>(t), "", vol, st.vol0[t]);
-    const auto a = face_area_vectors(x0, x1, x2, x3);
-    const Mat3 sigma = cauchy_stress(st, static_cast<Index>(t));
-
-    // f_i = σ a_i / 3; f_0 = −(f_1 + f_2 + f_3) keeps each tet's forces in balance.
-    const Vec3 f1 = sigma * a[1] / 3.0, f2 = sigma * a[2] / 3.0, f3 = sigma * a[3] / 3.0;
-    st.f[k[0]] -= f1 + f2 + f3;
-    st.f[k[1]] += f1;
-    st.f[k[2]] += f2;
-    st.f[k[3]] += f3;
-
-    // CFL with viscosity: l / (Q + sqrt(Q² + c²)).
-    const double l = 3.0 * vol / std::sqrt(largest_area2(a));
-    const double c = st.sound[t];
-    const double qs = st.trace_d[t] < 0.0 ? options.viscosity_linear * c +
-                                                options.viscosity_quadratic * l * -st.trace_d[t]
-                                          : 0.0;
-    const double dt = l / (qs + std::sqrt(qs * qs + c * c));
-    if (dt < r.dt_stable) {
-      r.dt_stable = dt;
-      r.critical_tet = static_cast<Index>(t);
-    }
+    const Index ti = static_cast<Index>(t);
+    end_geometry(ti, tets[t], st, g, "");
+    scatter_forces(ti, tets[t], g, options, st, r);
   }
-  return r;
+  return finish_forces(r);
 }
 
-void update_material(const std::vector<Tet>& tets, const std::vector<Material>& materials,
-                     const ElementOptions& options, double tau, State& st, NodalScratch& scratch) {
+ForceResult update_material(const std::vector<Tet>& tets, const std::vector<Material>& materials,
+                            const ElementOptions& options, double tau, State& st,
+                            NodalScratch& scratch) {
+  for (Vec3& f : st.f) f.setZero();
+  ForceResult forces;
+  forces.dt_stable = std::numeric_limits<double>::infinity();
   const auto anp = [&](Index mat) {
     return mat < static_cast<Index>(options.average_nodal_pressure.size()) &&
            options.average_nodal_pressure[mat];
@@ -92,10 +151,15 @@ void update_material(const std::vector<Tet>& tets, const std::vector<Material>& 
                                    options.average_nodal_pressure.end(), [](char c) { return c; });
   if (any_anp) {
     const std::size_t n = st.x.size();
-    if (scratch.vol0.size() != n) {  // nodal reference volumes, once
+    if (scratch.vol0.size() != n) {  // nodal reference volumes and materials, once
       scratch.vol0.assign(n, 0.0);
+      scratch.node_material.assign(n, -1);
       for (std::size_t t = 0; t < tets.size(); ++t)
-        for (Index k : tets[t]) scratch.vol0[k] += 0.25 * st.vol0[t];
+        for (Index k : tets[t]) {
+          scratch.vol0[k] += 0.25 * st.vol0[t];
+          // Nodes of one body share its material.
+          if (anp(st.tet_material[t])) scratch.node_material[k] = st.tet_material[t];
+        }
     }
     scratch.vol.assign(n, 0.0);
     scratch.energy.assign(n, 0.0);
@@ -103,101 +167,128 @@ void update_material(const std::vector<Tet>& tets, const std::vector<Material>& 
     scratch.tet_dvol.assign(tets.size(), 0.0);
   }
 
-  // Pass 1: kinematics, deviator, viscosity; pressure and energy for per-tet pressure.
+  // Pass 1: kinematics, deviator, viscosity; for per-tet pressure also the EOS, the energy
+  // and the forces.
+  const double h = 0.5 * tau;
+  TetGeometry gm, ge;  // mid-step and end-of-step geometry
   for (std::size_t t = 0; t < tets.size(); ++t) {
+    const Index ti = static_cast<Index>(t);
     const Tet& k = tets[t];
     const Index mi = st.tet_material[t];
     const Material& mat = materials[mi];
-    std::array<Vec3, 4> xm;  // mid-step geometry
-    for (int i = 0; i < 4; ++i) xm[i] = st.x[k[i]] - 0.5 * tau * st.v[k[i]];
-    const double vol_mid = tet_signed_volume(xm[0], xm[1], xm[2], xm[3]);
-    const double vol_new = tet_signed_volume(st.x[k[0]], st.x[k[1]], st.x[k[2]], st.x[k[3]]);
-    if (!(vol_mid > 0.0)) inverted(static_cast<Index>(t), "during the step", vol_mid, st.vol0[t]);
-    if (!(vol_new > 0.0))
-      inverted(static_cast<Index>(t), "at the end of the step", vol_new, st.vol0[t]);
-    const auto a = face_area_vectors(xm[0], xm[1], xm[2], xm[3]);
-    // L = Σ_i U_i ⊗ ∇N_i with ∇N_i = −a_i/(3V); Σ_i ∇N_i = 0 lets us subtract U_0.
-    Mat3 L = Mat3::Zero();
-    const Vec3& u0 = st.v[k[0]];
-    for (int i = 1; i < 4; ++i) L -= (st.v[k[i]] - u0) * a[i].transpose();
-    L /= 3.0 * vol_mid;
-    const Mat3 D = 0.5 * (L + L.transpose());
-    const Mat3 W = 0.5 * (L - L.transpose());
-    const double trD = D.trace();
 
-    const Mat3 s_old = to_mat3(st.s[t]);
-    const DeviatorUpdate dev = update_deviator(mat, s_old, D, W, tau, st.eps_p[t]);
-    st.s[t] = to_sym6(dev.s);
-    if (dev.dplastic > 0.0) {
+    // Edges at the end of the step and at mid-step (x^{n+1/2} = x^{n+1} − τ/2 U^{n+1}), and
+    // the velocity differences U_i − U_0.
+    const Vec3 &x0 = st.x[k[0]], &u0 = st.v[k[0]];
+    double ee[3][3], em[3][3], du[3][3];
+    for (int i = 0; i < 3; ++i) {
+      const Vec3 &xi = st.x[k[i + 1]], &ui = st.v[k[i + 1]];
+      for (int d = 0; d < 3; ++d) {
+        ee[i][d] = xi[d] - x0[d];
+        du[i][d] = ui[d] - u0[d];
+        em[i][d] = ee[i][d] - h * du[i][d];
+      }
+    }
+    tet_geometry(em, gm);
+    if (!(gm.vol > 0.0)) inverted(ti, "during the step", gm.vol, st.vol0[t]);
+    tet_geometry(ee, ge);
+    if (!std::isfinite(ge.vol)) throw InvertedElement(ti, "non-finite node position");
+    if (!(ge.vol > 0.0)) inverted(ti, "at the end of the step", ge.vol, st.vol0[t]);
+
+    // L = Σ_i (U_i − U_0) ⊗ ∇N_i, ∇N_i = −a_i / (3V) at mid-step.
+    double L[3][3];
+    const double inv3v = -1.0 / (3.0 * gm.vol);
+    for (int r = 0; r < 3; ++r)
+      for (int c = 0; c < 3; ++c)
+        L[r][c] = inv3v * (du[0][r] * gm.a[1][c] + du[1][r] * gm.a[2][c] + du[2][r] * gm.a[3][c]);
+    const Sym6 d{L[0][0],
+                 L[1][1],
+                 L[2][2],
+                 0.5 * (L[0][1] + L[1][0]),
+                 0.5 * (L[1][2] + L[2][1]),
+                 0.5 * (L[0][2] + L[2][0])};
+    const std::array<double, 3> w{0.5 * (L[2][1] - L[1][2]), 0.5 * (L[0][2] - L[2][0]),
+                                  0.5 * (L[1][0] - L[0][1])};
+    const double trD = d[0] + d[1] + d[2];
+
+    // Deviator (Jaumann rate, radial return) and its trapezoidal work τ V ½(sⁿ + sⁿ⁺¹) : D.
+    const Sym6 s_old = st.s[t];
+    const DeviatorIncrement inc = update_deviator6(mat, st.s[t], d, w, tau, st.eps_p[t]);
+    const Sym6& s_new = st.s[t];
+    double sd = 0.0;
+    for (int c = 0; c < 6; ++c) sd += (c < 3 ? 1.0 : 2.0) * (s_old[c] + s_new[c]) * d[c];
+    const double w_dev = 0.5 * tau * gm.vol * sd;
+    if (inc.dplastic > 0.0) {
       // Plastic work V σy Δε̄p, with σy at mid-increment (exact for linear hardening).
       st.w_plastic[t] +=
-          vol_mid * (dev.yield - 0.5 * mat.hardening_modulus * dev.dplastic) * dev.dplastic;
-      st.eps_p[t] += dev.dplastic;
+          gm.vol * (inc.yield - 0.5 * mat.hardening_modulus * inc.dplastic) * inc.dplastic;
+      st.eps_p[t] += inc.dplastic;
     }
-    const double w_dev = tau * vol_mid * (0.5 * (s_old + dev.s)).cwiseProduct(D).sum();
 
-    // Viscosity from the mid-step strain rate.
-    const double l = 3.0 * vol_mid / std::sqrt(largest_area2(a));
-    const double rho_mid = mat.density * st.vol0[t] / vol_mid;
-    const double q = bulk_viscosity(rho_mid, l, st.sound[t], trD, options.viscosity_linear,
-                                    options.viscosity_quadratic);
-    const double dvol = vol_new - st.vol[t];
-    // The viscosity acts like a pressure in the forces: q^{n+1/2} (this step's) is what the
-    // forces at t^{n+1} carry, so the step's viscous work is the trapezoid of the values at
-    // both ends, as for the pressure.
+    // Viscosity from the mid-step strain rate; its work is the trapezoid of the values at both
+    // ends of the step (q^{n+1/2} is what the forces at t^{n+1} carry), as for the pressure.
+    double q = 0.0;
+    if (trD < 0.0) {  // compression only: length, density and sound speed only then
+      const double l = 3.0 * gm.vol / std::sqrt(gm.amax2);
+      const double rho_mid = mat.density * st.vol0[t] / gm.vol;
+      q = bulk_viscosity(rho_mid, l, std::sqrt(st.sound2[t]), trD, options.viscosity_linear,
+                         options.viscosity_quadratic);
+    }
+    const double dvol = ge.vol - st.vol[t];
     const double w_q = -0.5 * (st.q[t] + q) * dvol;
     st.q[t] = q;
     st.trace_d[t] = trD;
     st.w_viscous[t] += w_q;
+    st.vol[t] = ge.vol;
 
     if (anp(mi)) {
       for (Index n : k) {
-        scratch.vol[n] += 0.25 * vol_new;
+        scratch.vol[n] += 0.25 * ge.vol;
         scratch.energy[n] += 0.25 * st.e_int[t];
       }
-      st.vol[t] = vol_new;
       st.e_int[t] += w_dev + w_q;  // the pressure work follows in pass 3
       scratch.tet_dvol[t] = dvol;
       continue;
     }
     // Per-tet pressure: p^{n+1} = A(μ) + B E^{n+1}/V0 with
-    //   E^{n+1} = E^n + W_dev − ½ (p^n + p^{n+1}) ΔV − q ΔV, solved for E^{n+1}.
-    const double mu = st.vol0[t] / vol_new - 1.0;
+    //   E^{n+1} = E^n + W_dev − ½ (p^n + p^{n+1}) ΔV + W_q, solved for E^{n+1}.
+    const double mu = st.vol0[t] / ge.vol - 1.0;
     const EosTerms eos = eos_terms(mat, mu);
     const double e_new = (st.e_int[t] + w_dev - 0.5 * (st.p[t] + eos.a) * dvol + w_q) /
                          (1.0 + 0.5 * eos.b * dvol / st.vol0[t]);
     st.e_int[t] = e_new;
     st.p[t] = eos.a + eos.b * e_new / st.vol0[t];
-    st.vol[t] = vol_new;
-    st.sound[t] = sound_speed(mat, mu, st.p[t]);
+    st.sound2[t] = sound_speed2(mat, mu, st.p[t], eos);
+    scatter_forces(ti, k, ge, options, st, forces);
   }
-  if (!any_anp) return;
+  if (!any_anp) return finish_forces(forces);
 
   // Pass 2: nodal pressures from nodal volumes and energies (per reference volume).
-  // Nodes of one body share its material, so the first tet's material is the node's.
-  std::vector<Index> node_material(st.x.size(), -1);
-  for (std::size_t t = 0; t < tets.size(); ++t)
-    if (anp(st.tet_material[t]))
-      for (Index n : tets[t]) node_material[n] = st.tet_material[t];
   for (std::size_t n = 0; n < st.x.size(); ++n) {
-    if (node_material[n] < 0) continue;
+    const Index nm = scratch.node_material[n];
+    if (nm < 0) continue;
     const double mu = scratch.vol0[n] / scratch.vol[n] - 1.0;
-    scratch.pressure[n] =
-        eos_pressure(materials[node_material[n]], mu, scratch.energy[n] / scratch.vol0[n]);
+    scratch.pressure[n] = eos_pressure(materials[nm], mu, scratch.energy[n] / scratch.vol0[n]);
   }
 
-  // Pass 3: element pressure = mean of its nodes'; trapezoidal pressure work.
+  // Pass 3: element pressure = mean of its nodes'; trapezoidal pressure work; forces.
   for (std::size_t t = 0; t < tets.size(); ++t) {
     const Index mi = st.tet_material[t];
     if (!anp(mi)) continue;
+    const Index ti = static_cast<Index>(t);
     const Tet& k = tets[t];
     const double p_new = 0.25 * (scratch.pressure[k[0]] + scratch.pressure[k[1]] +
                                  scratch.pressure[k[2]] + scratch.pressure[k[3]]);
     st.e_int[t] -= 0.5 * (st.p[t] + p_new) * scratch.tet_dvol[t];
     st.p[t] = p_new;
+    const Material& mat = materials[mi];
     const double mu = st.vol0[t] / st.vol[t] - 1.0;
-    st.sound[t] = sound_speed(materials[mi], mu, p_new);
+    st.sound2[t] = sound_speed2(mat, mu, p_new, eos_terms(mat, mu));
+    TetGeometry g;
+    end_geometry(ti, k, st, g, "at the end of the step");
+    scatter_forces(ti, k, g, options, st, forces);
   }
+  return finish_forces(forces);
 }
 
 }  // namespace tc

@@ -57,7 +57,7 @@ State initial_state(const Model& model) {
   st.vol = st.vol0;
   st.s.assign(m, Sym6{0, 0, 0, 0, 0, 0});
   for (auto* field :
-       {&st.p, &st.q, &st.e_int, &st.eps_p, &st.w_plastic, &st.w_viscous, &st.sound, &st.trace_d})
+       {&st.p, &st.q, &st.e_int, &st.eps_p, &st.w_plastic, &st.w_viscous, &st.sound2, &st.trace_d})
     field->assign(m, 0.0);
   st.tet_material.resize(m);
   // Lumped masses: a quarter of each tet's mass on each of its nodes.
@@ -210,9 +210,9 @@ void Simulation::commit_stage() {
 void Simulation::elements_stage() {
   State& st = state_;
   try {
-    if (st.step > 0)
-      update_material(model_.mesh.tets, model_.materials, model_.element, st.dt_prev, st, scratch_);
-    const ForceResult r = compute_forces(model_.mesh.tets, model_.element, st);
+    const ForceResult r = st.step > 0 ? update_material(model_.mesh.tets, model_.materials,
+                                                        model_.element, st.dt_prev, st, scratch_)
+                                      : compute_forces(model_.mesh.tets, model_.element, st);
     critical_tet_ = r.critical_tet;
     // No step is shortened to land on end_time: an abrupt change of τ costs the leapfrog
     // its exact energy balance (see sample_balance), so the run ends at the first step at or

@@ -67,7 +67,11 @@ TEST_P(Patch, UniformStrainGivesUniformStress) {
     EXPECT_NEAR((to_mat3(st.s[t]) - s_exact).norm(), 0.0, 1e-9 * s_exact.norm()) << "tet " << t;
     EXPECT_NEAR(st.p[t], p_exact, 1e-7 * std::abs(p_exact)) << "tet " << t;
   }
+  // The forces of the fused pass equal those of compute_forces on the same state.
+  const std::vector<Vec3> fused = st.f;
   compute_forces(model.mesh.tets, model.element, st);
+  for (std::size_t i = 0; i < st.x.size(); ++i)
+    EXPECT_NEAR((fused[i] - st.f[i]).norm(), 0.0, 1e-12 * (1.0 + st.f[i].norm())) << "node " << i;
   const Surface& s = model.surfaces.front();
   double fmax = 0.0;
   for (std::size_t i = 0; i < st.x.size(); ++i) fmax = std::max(fmax, st.f[i].norm());

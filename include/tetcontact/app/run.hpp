@@ -11,6 +11,7 @@ struct RunOptions {
   std::string out_dir;  // default: results/<case name>
   bool force = false;
   bool quiet = false;
+  bool check = false;                  // exit 1 when a reference value of the case is missed
   std::vector<std::string> overrides;  // --set path=value
 };
 

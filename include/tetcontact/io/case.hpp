@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "tetcontact/diagnostics/reference.hpp"
 #include "tetcontact/material/material.hpp"
 #include "tetcontact/mesh/mesh.hpp"
 #include "tetcontact/response/wall.hpp"
@@ -95,6 +96,7 @@ struct Case {
   std::vector<BodySpec> bodies;
   std::vector<BoundarySpec> boundary_conditions;
   OutputSpec output;
+  std::vector<ReferenceSpec> references;
   bool contact = false;
   bool fracture = false;
 

@@ -110,6 +110,54 @@ inline DeviatorUpdate update_deviator(const Material& m, const Mat3& s_old, cons
   return r;
 }
 
+/// The same update on the symmetric storage the kernel keeps (the fast path; tests hold it to
+/// update_deviator). d: the strain rate D as (xx, yy, zz, xy, yz, xz); w: the spin's axial
+/// vector (W v = w × v). Updates s in place and returns Δε̄p and the end-of-step yield.
+struct DeviatorIncrement {
+  double dplastic = 0.0;
+  double yield = 0.0;
+};
+inline DeviatorIncrement update_deviator6(const Material& m, Sym6& s, const Sym6& d,
+                                          const std::array<double, 3>& w, double tau,
+                                          double eps_p) {
+  // Q = (1 − c θ²) I + c A + c α αᵀ with α = τ w / 2, θ² = |α|², c = 2 / (1 + θ²).
+  const double ax = 0.5 * tau * w[0], ay = 0.5 * tau * w[1], az = 0.5 * tau * w[2];
+  const double th2 = ax * ax + ay * ay + az * az, c = 2.0 / (1.0 + th2), dg = 1.0 - c * th2;
+  const double q00 = dg + c * ax * ax, q11 = dg + c * ay * ay, q22 = dg + c * az * az;
+  const double q01 = c * (ax * ay - az), q10 = c * (ax * ay + az);
+  const double q02 = c * (ax * az + ay), q20 = c * (ax * az - ay);
+  const double q12 = c * (ay * az - ax), q21 = c * (ay * az + ax);
+  // M = Q s, then s' = M Qᵀ (symmetric: six entries).
+  const double s00 = s[0], s11 = s[1], s22 = s[2], s01 = s[3], s12 = s[4], s02 = s[5];
+  const double m00 = q00 * s00 + q01 * s01 + q02 * s02, m01 = q00 * s01 + q01 * s11 + q02 * s12,
+               m02 = q00 * s02 + q01 * s12 + q02 * s22;
+  const double m10 = q10 * s00 + q11 * s01 + q12 * s02, m11 = q10 * s01 + q11 * s11 + q12 * s12,
+               m12 = q10 * s02 + q11 * s12 + q12 * s22;
+  const double m20 = q20 * s00 + q21 * s01 + q22 * s02, m21 = q20 * s01 + q21 * s11 + q22 * s12,
+               m22 = q20 * s02 + q21 * s12 + q22 * s22;
+  const double g2 = 2.0 * m.shear_modulus * tau, tr3 = (d[0] + d[1] + d[2]) / 3.0;
+  s[0] = m00 * q00 + m01 * q01 + m02 * q02 + g2 * (d[0] - tr3);
+  s[1] = m10 * q10 + m11 * q11 + m12 * q12 + g2 * (d[1] - tr3);
+  s[2] = m20 * q20 + m21 * q21 + m22 * q22 + g2 * (d[2] - tr3);
+  s[3] = m00 * q10 + m01 * q11 + m02 * q12 + g2 * d[3];
+  s[4] = m10 * q20 + m11 * q21 + m12 * q22 + g2 * d[4];
+  s[5] = m00 * q20 + m01 * q21 + m02 * q22 + g2 * d[5];
+  DeviatorIncrement r;
+  if (!m.plastic()) return r;
+  const double yield = m.yield_stress + m.hardening_modulus * eps_p;
+  const double ss =
+      s[0] * s[0] + s[1] * s[1] + s[2] * s[2] + 2.0 * (s[3] * s[3] + s[4] * s[4] + s[5] * s[5]);
+  const double eq = std::sqrt(1.5 * ss);
+  r.yield = yield;
+  if (eq > yield) {
+    r.dplastic = (eq - yield) / (3.0 * m.shear_modulus + m.hardening_modulus);
+    r.yield = yield + m.hardening_modulus * r.dplastic;
+    const double f = r.yield / eq;
+    for (double& v : s) v *= f;
+  }
+  return r;
+}
+
 /// The equation of state as p = A(μ) + B E, with μ = V0/V − 1 (compression > 0) and E the
 /// internal energy per unit reference volume (J/m³). Linear: A = K μ, B = 0.
 /// Mie–Grüneisen with a linear Us–up Hugoniot (the form of LS-DYNA's *EOS_GRUNEISEN with
@@ -155,10 +203,12 @@ inline double eos_pressure(const Material& m, double mu, double energy_density) 
 /// Isentropic bulk stiffness ρ c_b² = (1+μ) dp/dμ|_s, with dE/dμ|_s = p/(1+μ)²:
 ///   ρ c_b² = (1+μ) A'(μ) + B p / (1+μ).
 /// Floored at 1e-3 K0 so that a material in tension keeps a usable sound speed.
-inline double bulk_stiffness(const Material& m, double mu, double p) {
-  const EosTerms t = eos_terms(m, mu);
+inline double bulk_stiffness(const Material& m, double mu, double p, const EosTerms& t) {
   const double k = (1.0 + mu) * t.da_dmu + t.b * p / (1.0 + mu);
   return std::max(k, 1e-3 * m.bulk_modulus);
+}
+inline double bulk_stiffness(const Material& m, double mu, double p) {
+  return bulk_stiffness(m, mu, p, eos_terms(m, mu));
 }
 
 /// Artificial bulk viscosity (von Neumann–Richtmyer quadratic + Landshoff linear), on

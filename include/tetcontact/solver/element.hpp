@@ -21,9 +21,19 @@ struct InvertedElement : RunFailure {
 };
 
 /// Outward area vectors a_i of the faces opposite each node of a positive tet (|a_i| is the
-/// face area); they sum to zero. ∇N_i = −a_i / (3V).
-std::array<Vec3, 4> face_area_vectors(const Vec3& x0, const Vec3& x1, const Vec3& x2,
-                                      const Vec3& x3);
+/// face area); they sum to zero. ∇N_i = −a_i / (3V). Faces opposite nodes 0..3 with outward
+/// orientation: (1,2,3), (0,3,2), (0,1,3), (0,2,1).
+[[gnu::always_inline]] inline std::array<Vec3, 4> face_area_vectors(const Vec3& x0, const Vec3& x1,
+                                                                    const Vec3& x2,
+                                                                    const Vec3& x3) {
+  const Vec3 e1 = x1 - x0, e2 = x2 - x0, e3 = x3 - x0;
+  std::array<Vec3, 4> a;
+  a[1] = 0.5 * e3.cross(e2);
+  a[2] = 0.5 * e1.cross(e3);
+  a[3] = 0.5 * e2.cross(e1);
+  a[0] = -(a[1] + a[2] + a[3]);
+  return a;
+}
 
 /// Options of the element formulation, from the case's `solver` section.
 struct ElementOptions {
@@ -35,6 +45,7 @@ struct ElementOptions {
 /// Scratch arrays of the average-nodal-pressure passes, sized on first use.
 struct NodalScratch {
   std::vector<double> vol0, vol, energy, pressure;  // per node
+  std::vector<Index> node_material;                 // per node: material if averaged, else −1
   std::vector<double> tet_dvol;                     // per tet: ΔV of the step
 };
 
@@ -62,8 +73,11 @@ ForceResult compute_forces(const std::vector<Tet>& tets, const ElementOptions& o
 ///     ΔE = τ V ½(s^n + s^{n+1}) : D − ½ (p^n + p^{n+1}) ΔV − ½ (q^n + q^{n+1}) ΔV,
 ///   solved exactly for E^{n+1} when p depends on E (Mie–Grüneisen, per-tet pressure).
 /// For small-strain linear elasticity ΔE equals the stored energy ½ ε:C:ε.
-void update_material(const std::vector<Tet>& tets, const std::vector<Material>& materials,
-                     const ElementOptions& options, double tau, State& st, NodalScratch& scratch);
+/// Then, in the same pass over the tets, the internal forces and stable step of the new state
+/// (as compute_forces, which the tests hold it to).
+ForceResult update_material(const std::vector<Tet>& tets, const std::vector<Material>& materials,
+                            const ElementOptions& options, double tau, State& st,
+                            NodalScratch& scratch);
 
 /// Sets the per-tet sound speed from the current state (needed before the first forces).
 void init_sound_speed(const std::vector<Material>& materials, State& st);

@@ -29,7 +29,7 @@ struct State {
   std::vector<double> eps_p;      // equivalent plastic strain ε̄p
   std::vector<double> w_plastic;  // plastic work, J
   std::vector<double> w_viscous;  // viscous dissipation, J
-  std::vector<double> sound;      // current dilatational sound speed, m/s
+  std::vector<double> sound2;     // current dilatational sound speed squared, m²/s²
   std::vector<double> trace_d;    // tr D of the last step (volumetric strain rate), 1/s
   std::vector<Index> tet_material;
 
