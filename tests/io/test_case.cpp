@@ -290,16 +290,23 @@ TEST(CaseFile, ReadmeExampleIsValid) {
   const auto end = readme.find("```", begin + 8);
   std::string yaml = readme.substr(begin + 8, end - begin - 8);
   test::TempDir dir("case-readme");
-  // The example's relative mesh path points from data/cases/ to data/meshes/.
-  const auto at = yaml.find("../meshes/");
-  if (at != std::string::npos) yaml.replace(at, 10, test::source_path("data/meshes/"));
+  // The example's relative paths point from data/cases/ to data/.
+  for (const std::string rel : {"../meshes/", "../materials.yaml"}) {
+    const auto at = yaml.find(rel);
+    ASSERT_NE(at, std::string::npos) << rel;
+    yaml.replace(at, rel.size(), test::source_path("data/" + rel.substr(3)));
+  }
   test::write_text(dir / "example.yaml", yaml);
   const Case c = load_case(dir / "example.yaml");
   EXPECT_EQ(c.name, "my-case");
   ASSERT_EQ(c.bodies.size(), 1u);
   EXPECT_EQ(c.bodies[0].transform.size(), 3u);
   EXPECT_EQ(c.boundary_conditions.size(), 2u);
-  EXPECT_EQ(c.output.fields.size(), 6u);
+  EXPECT_EQ(c.output.fields.size(), 9u);
+  EXPECT_EQ(c.materials.size(), 4u);
+  EXPECT_EQ(c.walls.size(), 1u);
+  EXPECT_EQ(c.references.size(), 2u);
+  EXPECT_EQ(c.material("target").yield_stress, 0.3e9);
   EXPECT_NO_THROW(build_model(c));
 }
 

@@ -1,0 +1,55 @@
+// From case to model: the impact Mach number warnings of the paper's model ranges.
+#include <gtest/gtest.h>
+
+#include "../test_util.hpp"
+#include "tetcontact/app/setup.hpp"
+
+using namespace tc;
+
+namespace {
+
+const char* k_two_bodies = R"(end_time: 1.0e-6
+materials:
+  al_linear: {density: 2700, youngs_modulus: 70.0e9, poisson_ratio: 0.3}
+  al_mg: {from: al6061-t6}
+bodies:
+  - name: target
+    material: al_linear
+    mesh: {box: {size: [0.01, 0.01, 0.01], cells: [1, 1, 1], split: 5}}
+  - name: impactor
+    material: al_mg
+    mesh: {box: {size: [0.01, 0.01, 0.01], cells: [1, 1, 1], split: 5}}
+    transform: [{translate: [0, 0, 0.02]}]
+    velocity: [0, 0, -1000]
+)";
+
+std::vector<std::string> warnings_for(const std::vector<std::string>& overrides) {
+  test::TempDir dir("setup-mach");
+  test::write_text(dir / "c.yaml", k_two_bodies);
+  const Case c = load_case(dir / "c.yaml", overrides);
+  return mach_warnings(c, build_model(c));
+}
+
+}  // namespace
+
+// C0 = sqrt(K/ρ): 6,080 m/s for the linear aluminium (K = 100 GPa), 5,240 m/s (c0) for the
+// Mie–Grüneisen one.
+TEST(Setup, MachWarningsFollowThePapersModelRanges) {
+  // 1 km/s: M0 = 0.16 and 0.19, inside every range.
+  EXPECT_TRUE(warnings_for({}).empty());
+  // 5 km/s: the linear-EOS target at M0 = 0.82 > 0.75 is warned; the Mie–Grüneisen impactor
+  // at M0 = 0.95 is inside its 0.75–1.5 range.
+  auto w = warnings_for({"bodies.1.velocity=[0,0,-5000]"});
+  ASSERT_EQ(w.size(), 1u);
+  EXPECT_NE(w[0].find("body 'target'"), std::string::npos) << w[0];
+  EXPECT_NE(w[0].find("mie_gruneisen"), std::string::npos) << w[0];
+  // 9 km/s: both beyond 1.5.
+  w = warnings_for({"bodies.1.velocity=[0,0,-9000]"});
+  ASSERT_EQ(w.size(), 2u);
+  for (const std::string& s : w)
+    EXPECT_NE(s.find("beyond the paper's models"), std::string::npos) << s;
+  // Against a wall: the impactor's speed along the wall normal counts.
+  w = warnings_for({"bodies.1.velocity=[0,0,-9000]", "walls=[{point: [0,0,-1], normal: [0,0,1]}]",
+                    "bodies.0.velocity=[0,0,-9000]"});
+  EXPECT_EQ(w.size(), 2u);  // both against the wall; none between the co-moving bodies
+}
