@@ -88,25 +88,26 @@ class Reader {
     return child;
   }
 
-  double number(const YAML::Node& node, const std::string& path) const {
-    if (!node.IsScalar()) fail(node, path, "expected a number");
+  // A scalar read whole by std::from_chars as T, or a message naming `what`.
+  template <class T>
+  T scalar(const YAML::Node& node, const std::string& path, const char* what) const {
+    if (!node.IsScalar()) fail(node, path, std::string("expected ") + what);
     const std::string& s = node.Scalar();
-    double v = 0.0;
+    T v{};
     auto [p, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
     if (ec != std::errc() || p != s.data() + s.size() || s.empty())
-      fail(node, path, "expected a number, got '" + s + "'");
-    if (!std::isfinite(v)) fail(node, path, "must be finite, got '" + s + "'");
+      fail(node, path, std::string("expected ") + what + ", got '" + s + "'");
+    return v;
+  }
+
+  double number(const YAML::Node& node, const std::string& path) const {
+    const double v = scalar<double>(node, path, "a number");
+    if (!std::isfinite(v)) fail(node, path, "must be finite, got '" + node.Scalar() + "'");
     return v;
   }
 
   long integer(const YAML::Node& node, const std::string& path) const {
-    if (!node.IsScalar()) fail(node, path, "expected an integer");
-    const std::string& s = node.Scalar();
-    long v = 0;
-    auto [p, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
-    if (ec != std::errc() || p != s.data() + s.size() || s.empty())
-      fail(node, path, "expected an integer, got '" + s + "'");
-    return v;
+    return scalar<long>(node, path, "an integer");
   }
 
   std::string string(const YAML::Node& node, const std::string& path) const {

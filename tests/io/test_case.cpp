@@ -42,6 +42,29 @@ struct ErrorCase {
   std::string expect_what;      // what is wrong
 };
 
+// Each case must be refused with a message naming the file, the location, the key and what
+// is wrong.
+void expect_errors(const std::vector<ErrorCase>& cases, const std::string& scratch) {
+  test::TempDir dir(scratch);
+  const std::string path = dir / "bad.yaml";
+  for (const ErrorCase& c : cases) {
+    test::write_text(path, c.text);
+    try {
+      load_case(path, c.overrides);
+      ADD_FAILURE() << c.name << ": accepted";
+    } catch (const CaseError& e) {
+      const std::string msg = e.what();
+      EXPECT_EQ(msg.rfind(path, 0), 0u) << c.name << ": " << msg;
+      EXPECT_NE(msg.find(c.expect_location), std::string::npos) << c.name << ": " << msg;
+      if (!c.expect_key.empty()) {
+        EXPECT_NE(msg.find("key '" + c.expect_key + "'"), std::string::npos)
+            << c.name << ": " << msg;
+      }
+      EXPECT_NE(msg.find(c.expect_what), std::string::npos) << c.name << ": " << msg;
+    }
+  }
+}
+
 std::string replace(std::string s, const std::string& from, const std::string& to) {
   const auto pos = s.find(from);
   EXPECT_NE(pos, std::string::npos) << from;
@@ -249,24 +272,7 @@ TEST(CaseFile, EveryErrorClassNamesFileLineAndKey) {
        "solver.cfll",
        "unknown key (did you mean 'cfl'?)"},
   };
-  test::TempDir dir("case-errors");
-  const std::string path = dir / "bad.yaml";
-  for (const ErrorCase& c : cases) {
-    test::write_text(path, c.text);
-    try {
-      load_case(path, c.overrides);
-      ADD_FAILURE() << c.name << ": accepted";
-    } catch (const CaseError& e) {
-      const std::string msg = e.what();
-      EXPECT_EQ(msg.rfind(path, 0), 0u) << c.name << ": " << msg;
-      EXPECT_NE(msg.find(c.expect_location), std::string::npos) << c.name << ": " << msg;
-      if (!c.expect_key.empty()) {
-        EXPECT_NE(msg.find("key '" + c.expect_key + "'"), std::string::npos)
-            << c.name << ": " << msg;
-      }
-      EXPECT_NE(msg.find(c.expect_what), std::string::npos) << c.name << ": " << msg;
-    }
-  }
+  expect_errors(cases, "case-errors");
 }
 
 TEST(CaseFile, MissingAndEmptyFiles) {
@@ -409,18 +415,5 @@ TEST(CaseFile, MaterialAndWallErrors) {
        "solver.average_nodal_pressure",
        "expected auto, true or false"},
   };
-  test::TempDir dir("case-material-errors");
-  const std::string path = dir / "bad.yaml";
-  for (const ErrorCase& c : cases) {
-    test::write_text(path, c.text);
-    try {
-      load_case(path, c.overrides);
-      ADD_FAILURE() << c.name << ": accepted";
-    } catch (const CaseError& e) {
-      const std::string msg = e.what();
-      EXPECT_NE(msg.find(c.expect_location), std::string::npos) << c.name << ": " << msg;
-      EXPECT_NE(msg.find("key '" + c.expect_key + "'"), std::string::npos) << c.name << ": " << msg;
-      EXPECT_NE(msg.find(c.expect_what), std::string::npos) << c.name << ": " << msg;
-    }
-  }
+  expect_errors(cases, "case-material-errors");
 }
