@@ -1,0 +1,227 @@
+#include "tetcontact/broadphase/broadphase.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <stdexcept>
+#include <unordered_map>
+
+namespace tc {
+
+Box swept_box(std::initializer_list<const Vec3*> points, double margin) {
+  Box b;
+  b.lo = **points.begin();
+  b.hi = b.lo;
+  for (const Vec3* p : points) {
+    b.lo = b.lo.cwiseMin(*p);
+    b.hi = b.hi.cwiseMax(*p);
+  }
+  b.lo.array() -= margin;
+  b.hi.array() += margin;
+  return b;
+}
+
+bool admissible_node_face(const BroadphaseInput& in, Index node, Index face) {
+  if (in.node_body[node] != in.face_body[face]) return true;
+  if (!in.self_pairs) return false;
+  const auto& f = in.face_nodes[face];
+  const Index v = in.node_id[node];
+  return f[0] != v && f[1] != v && f[2] != v;
+}
+
+bool admissible_edge_edge(const BroadphaseInput& in, Index a, Index b) {
+  if (in.edge_body[a] != in.edge_body[b]) return true;
+  if (!in.self_pairs) return false;
+  const auto& ea = in.edge_nodes[a];
+  const auto& eb = in.edge_nodes[b];
+  return ea[0] != eb[0] && ea[0] != eb[1] && ea[1] != eb[0] && ea[1] != eb[1];
+}
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double since(Clock::time_point t0) {
+  return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+void finish(Candidates& c) {
+  std::sort(c.node_face.begin(), c.node_face.end());
+  c.node_face.erase(std::unique(c.node_face.begin(), c.node_face.end()), c.node_face.end());
+  for (auto& p : c.edge_edge)
+    if (p.first > p.second) std::swap(p.first, p.second);
+  std::sort(c.edge_edge.begin(), c.edge_edge.end());
+  c.edge_edge.erase(std::unique(c.edge_edge.begin(), c.edge_edge.end()), c.edge_edge.end());
+}
+
+// The oracle: every pair tested.
+class BruteForce : public Broadphase {
+ public:
+  std::string name() const override { return "brute_force"; }
+  Candidates find(const BroadphaseInput& in) override {
+    const auto t0 = Clock::now();
+    Candidates c;
+    for (Index n = 0; n < static_cast<Index>(in.node_box.size()); ++n)
+      for (Index f = 0; f < static_cast<Index>(in.face_box.size()); ++f)
+        if (admissible_node_face(in, n, f) && boxes_overlap(in.node_box[n], in.face_box[f]))
+          c.node_face.emplace_back(n, f);
+    for (Index a = 0; a < static_cast<Index>(in.edge_box.size()); ++a)
+      for (Index b = a + 1; b < static_cast<Index>(in.edge_box.size()); ++b)
+        if (admissible_edge_edge(in, a, b) && boxes_overlap(in.edge_box[a], in.edge_box[b]))
+          c.edge_edge.emplace_back(a, b);
+    build_seconds = 0.0;
+    query_seconds = since(t0);
+    return c;
+  }
+};
+
+// Plain sort-and-sweep along x: sort both sets by lo.x, sweep, test the other axes exactly.
+class Sweep : public Broadphase {
+ public:
+  std::string name() const override { return "sweep"; }
+  Candidates find(const BroadphaseInput& in) override {
+    auto t0 = Clock::now();
+    const auto order = [](const std::vector<Box>& boxes) {
+      std::vector<Index> idx(boxes.size());
+      for (std::size_t i = 0; i < idx.size(); ++i) idx[i] = static_cast<Index>(i);
+      std::sort(idx.begin(), idx.end(), [&](Index a, Index b) {
+        return boxes[a].lo.x() < boxes[b].lo.x() || (boxes[a].lo.x() == boxes[b].lo.x() && a < b);
+      });
+      return idx;
+    };
+    const auto nodes = order(in.node_box), faces = order(in.face_box), edges = order(in.edge_box);
+    build_seconds = since(t0);
+    t0 = Clock::now();
+    Candidates c;
+    // Node-face: merge-style sweep over both sorted lists.
+    sweep_two(nodes, in.node_box, faces, in.face_box, [&](Index n, Index f) {
+      if (admissible_node_face(in, n, f)) c.node_face.emplace_back(n, f);
+    });
+    // Edge-edge: one list against itself.
+    for (std::size_t p = 0; p < edges.size(); ++p) {
+      const Box& a = in.edge_box[edges[p]];
+      for (std::size_t q = p + 1; q < edges.size(); ++q) {
+        const Box& b = in.edge_box[edges[q]];
+        if (b.lo.x() > a.hi.x()) break;
+        if (boxes_overlap(a, b) && admissible_edge_edge(in, edges[p], edges[q]))
+          c.edge_edge.emplace_back(edges[p], edges[q]);
+      }
+    }
+    query_seconds = since(t0);
+    finish(c);
+    return c;
+  }
+
+ private:
+  // All overlapping (a, b) between two x-sorted lists: a pair is found from whichever box
+  // starts first (or from a when both start at the same x).
+  template <class Emit>
+  static void sweep_two(const std::vector<Index>& ai, const std::vector<Box>& a,
+                        const std::vector<Index>& bi, const std::vector<Box>& b, Emit&& emit) {
+    std::size_t p = 0, q = 0;
+    while (p < ai.size() && q < bi.size()) {
+      if (a[ai[p]].lo.x() <= b[bi[q]].lo.x()) {
+        const Box& box = a[ai[p]];
+        for (std::size_t k = q; k < bi.size() && b[bi[k]].lo.x() <= box.hi.x(); ++k)
+          if (boxes_overlap(box, b[bi[k]])) emit(ai[p], bi[k]);
+        ++p;
+      } else {
+        const Box& box = b[bi[q]];
+        for (std::size_t k = p; k < ai.size() && a[ai[k]].lo.x() <= box.hi.x(); ++k)
+          if (boxes_overlap(a[ai[k]], box)) emit(ai[k], bi[q]);
+        ++q;
+      }
+    }
+  }
+};
+
+// Seed 001's spatial index: a virtual uniform grid of cubes keyed by (i, j, k) in a hash map;
+// each box is entered in every cube it overlaps, candidates share a cube.
+class Grid : public Broadphase {
+ public:
+  explicit Grid(double cell) : cell_(cell) {}
+  std::string name() const override { return "grid"; }
+  Candidates find(const BroadphaseInput& in) override {
+    auto t0 = Clock::now();
+    double h = cell_;
+    if (!(h > 0.0)) {  // twice the mean box size
+      double sum = 0.0;
+      std::size_t n = 0;
+      for (const auto* set : {&in.face_box, &in.edge_box})
+        for (const Box& b : *set) sum += (b.hi - b.lo).maxCoeff(), ++n;
+      h = n ? 2.0 * sum / static_cast<double>(n) : 1.0;
+      if (!(h > 0.0)) h = 1.0;
+    }
+    struct Key {
+      long i, j, k;
+      bool operator==(const Key& o) const { return i == o.i && j == o.j && k == o.k; }
+    };
+    struct Hash {
+      std::size_t operator()(const Key& k) const {
+        return static_cast<std::size_t>(k.i * 73856093L ^ k.j * 19349663L ^ k.k * 83492791L);
+      }
+    };
+    const auto cells = [h](const Box& b, auto&& visit) {
+      const long i0 = static_cast<long>(std::floor(b.lo.x() / h)),
+                 i1 = static_cast<long>(std::floor(b.hi.x() / h));
+      const long j0 = static_cast<long>(std::floor(b.lo.y() / h)),
+                 j1 = static_cast<long>(std::floor(b.hi.y() / h));
+      const long k0 = static_cast<long>(std::floor(b.lo.z() / h)),
+                 k1 = static_cast<long>(std::floor(b.hi.z() / h));
+      for (long i = i0; i <= i1; ++i)
+        for (long j = j0; j <= j1; ++j)
+          for (long k = k0; k <= k1; ++k) visit(Key{i, j, k});
+    };
+    std::unordered_map<Key, std::vector<Index>, Hash> face_cells, edge_cells;
+    face_cells.reserve(2 * in.face_box.size());
+    edge_cells.reserve(2 * in.edge_box.size());
+    for (Index f = 0; f < static_cast<Index>(in.face_box.size()); ++f)
+      cells(in.face_box[f], [&](const Key& key) { face_cells[key].push_back(f); });
+    for (Index e = 0; e < static_cast<Index>(in.edge_box.size()); ++e)
+      cells(in.edge_box[e], [&](const Key& key) { edge_cells[key].push_back(e); });
+    build_seconds = since(t0);
+    t0 = Clock::now();
+    Candidates c;
+    for (Index n = 0; n < static_cast<Index>(in.node_box.size()); ++n)
+      cells(in.node_box[n], [&](const Key& key) {
+        auto it = face_cells.find(key);
+        if (it == face_cells.end()) return;
+        for (Index f : it->second)
+          if (admissible_node_face(in, n, f) && boxes_overlap(in.node_box[n], in.face_box[f]))
+            c.node_face.emplace_back(n, f);
+      });
+    for (const auto& [key, list] : edge_cells)
+      for (std::size_t p = 0; p < list.size(); ++p)
+        for (std::size_t q = p + 1; q < list.size(); ++q) {
+          const Index a = list[p], b = list[q];
+          if (admissible_edge_edge(in, a, b) && boxes_overlap(in.edge_box[a], in.edge_box[b]))
+            c.edge_edge.emplace_back(std::min(a, b), std::max(a, b));
+        }
+    query_seconds = since(t0);
+    finish(c);
+    return c;
+  }
+
+ private:
+  double cell_;
+};
+
+}  // namespace
+
+std::unique_ptr<Broadphase> make_fcl_broadphase(bool tree);  // broadphase_fcl.cpp
+
+std::unique_ptr<Broadphase> make_broadphase(const std::string& name, double cell) {
+  if (name == "brute_force") return std::make_unique<BruteForce>();
+  if (name == "sweep") return std::make_unique<Sweep>();
+  if (name == "grid") return std::make_unique<Grid>(cell);
+  if (name == "fcl_tree") return make_fcl_broadphase(true);
+  if (name == "fcl_sap") return make_fcl_broadphase(false);
+  throw std::invalid_argument("unknown broadphase '" + name + "'");
+}
+
+const std::vector<std::string>& broadphase_names() {
+  static const std::vector<std::string> names{"fcl_tree", "fcl_sap", "grid", "sweep",
+                                              "brute_force"};
+  return names;
+}
+
+}  // namespace tc

@@ -1,0 +1,104 @@
+// Every broadphase returns exactly the pairs of the brute-force oracle.
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "tetcontact/broadphase/broadphase.hpp"
+
+using namespace tc;
+
+namespace {
+
+// A random scene of boxes over 3 bodies, with exactly touching boxes and flat boxes on
+// cell boundaries (the traps of ../shared/ANCHORS.md) mixed in.
+BroadphaseInput random_scene(unsigned seed, int n, bool self_pairs) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> pos(0.0, 1.0), size(0.0, 0.08);
+  std::uniform_int_distribution<int> body(0, 2), vertex(0, n / 2);
+  BroadphaseInput in;
+  in.self_pairs = self_pairs;
+  auto box = [&](int k) {
+    Box b;
+    b.lo = Vec3(pos(rng), pos(rng), pos(rng));
+    b.hi = b.lo + Vec3(size(rng), size(rng), size(rng));
+    if (k % 7 == 0) b.hi.y() = b.lo.y();                                  // flat
+    if (k % 11 == 0) b.lo.x() = b.hi.x() = std::round(b.lo.x() * 8) / 8;  // on a grid plane
+    return b;
+  };
+  for (int k = 0; k < n; ++k) {
+    in.node_box.push_back(box(k));
+    in.node_id.push_back(vertex(rng));
+    in.node_body.push_back(body(rng));
+    in.face_box.push_back(box(k + 1));
+    in.face_nodes.push_back({vertex(rng), vertex(rng), vertex(rng)});
+    in.face_body.push_back(body(rng));
+    in.edge_box.push_back(box(k + 2));
+    in.edge_nodes.push_back({vertex(rng), vertex(rng)});
+    in.edge_body.push_back(body(rng));
+  }
+  // Exactly touching pairs: a face box sharing a face with a node box, an edge touching an edge.
+  for (int k = 0; k < n / 10; ++k) {
+    Box a = in.node_box[k];
+    Box b = a;
+    b.lo.x() = a.hi.x();
+    b.hi.x() = a.hi.x() + 0.05;
+    in.face_box[k] = b;
+    Box e = in.edge_box[k];
+    Box f = e;
+    f.lo.z() = e.hi.z();
+    f.hi.z() = e.hi.z() + 0.01;
+    in.edge_box[k + 1] = f;
+  }
+  return in;
+}
+
+}  // namespace
+
+class Methods : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(Methods, SameCandidatesAsBruteForce) {
+  for (bool self : {false, true})
+    for (unsigned seed : {1u, 2u, 3u}) {
+      const BroadphaseInput in = random_scene(seed, 400, self);
+      const Candidates oracle = make_broadphase("brute_force")->find(in);
+      auto method = make_broadphase(GetParam());
+      const Candidates got = method->find(in);
+      EXPECT_EQ(got.node_face, oracle.node_face) << "seed " << seed << " self " << self;
+      EXPECT_EQ(got.edge_edge, oracle.edge_edge) << "seed " << seed << " self " << self;
+      EXPECT_GT(oracle.node_face.size(), 50u);
+      EXPECT_GT(oracle.edge_edge.size(), 20u);
+      // Second call with moved boxes: the persistent structures (FCL) must follow.
+      BroadphaseInput moved = in;
+      for (auto* set : {&moved.node_box, &moved.face_box, &moved.edge_box})
+        for (Box& b : *set) {
+          b.lo.y() += 0.013;
+          b.hi.y() += 0.013;
+        }
+      for (Box& b : moved.face_box) b.hi.x() += 0.02;
+      const Candidates oracle2 = make_broadphase("brute_force")->find(moved);
+      const Candidates got2 = method->find(moved);
+      EXPECT_EQ(got2.node_face, oracle2.node_face) << "moved, seed " << seed;
+      EXPECT_EQ(got2.edge_edge, oracle2.edge_edge) << "moved, seed " << seed;
+    }
+}
+
+INSTANTIATE_TEST_SUITE_P(Broadphase, Methods,
+                         ::testing::Values("sweep", "grid", "fcl_tree", "fcl_sap"),
+                         [](const auto& info) { return info.param; });
+
+TEST(Broadphase, TouchingBoxesCountAndSharedVerticesAreSkipped) {
+  BroadphaseInput in;
+  in.node_box = {{Vec3(0, 0, 0), Vec3(1, 1, 1)}};
+  in.node_id = {7};
+  in.node_body = {0};
+  in.face_box = {{Vec3(1, 0, 0), Vec3(2, 1, 1)}, {Vec3(1, 0, 0), Vec3(2, 1, 1)}};
+  in.face_nodes = {{1, 2, 3}, {7, 8, 9}};
+  in.face_body = {0, 0};
+  in.self_pairs = true;
+  for (const std::string& m : broadphase_names()) {
+    const Candidates c = make_broadphase(m)->find(in);
+    ASSERT_EQ(c.node_face.size(), 1u) << m;  // touching counts; face 1 holds vertex 7
+    EXPECT_EQ(c.node_face[0].second, 0) << m;
+  }
+  EXPECT_THROW(make_broadphase("octree"), std::invalid_argument);
+}
