@@ -107,7 +107,7 @@ Json summary_json(const Case& c, const Simulation& sim, const std::string& statu
   e["internal"] = last.internal;
   e["plastic_work"] = last.plastic_work;
   e["viscous_work"] = last.viscous_work;
-  e["contact_work"] = nullptr;  // no contact stage in this version: not measured
+  e["contact_work"] = nullptr;  // set below when the run has a contact stage
   e["boundary_work"] = last.boundary.work;
   e["wall_work"] = last.walls.work;
   e["total_initial"] = first.total;
@@ -159,11 +159,25 @@ Json summary_json(const Case& c, const Simulation& sim, const std::string& statu
   ts["cfl"] = c.cfl;
   ts["critical_tet"] = static_cast<long>(sim.critical_tet());
 
-  // Stages not in this version: null means "not measured", never zero.
+  // Stages a run does not have: null means "not measured", never zero.
   Json& contact = j["contact"];
   for (const char* k :
        {"node_face", "edge_edge", "candidates", "first_time", "last_time", "max_force", "work"})
     contact[k] = nullptr;
+  if (sim.has_contact()) {
+    const auto& ct = sim.contact_totals();
+    contact["node_face"] = ct.node_face;
+    contact["candidates"] = ct.candidates;
+    contact["max_contacts_per_step"] = ct.max_per_step;
+    contact["steps_in_contact"] = ct.steps_in_contact;
+    contact["first_time"] = ct.first_time >= 0 ? Json(ct.first_time) : Json();
+    contact["last_time"] = ct.last_time >= 0 ? Json(ct.last_time) : Json();
+    contact["duration"] = ct.first_time >= 0 ? Json(ct.last_time - ct.first_time) : Json();
+    contact["max_force"] = ct.max_force;
+    contact["work"] = last.contact.work;
+    contact["broadphase"] = model.contact->broadphase;
+    e["contact_work"] = last.contact.work;
+  }
   Json& pen = j["penetration"];
   for (const char* k : {"max_depth", "max_depth_over_h", "max_crossings"}) pen[k] = nullptr;
   return j;
@@ -180,8 +194,9 @@ void print_table(const Case& c, const Simulation& sim, const std::string& status
      << fmt(wall, "%.3f") << " s\n";
   os << "  energy     initial " << fmt(first.total, "%.6g") << " J   final "
      << fmt(last.total, "%.6g") << " J   external work " << fmt(last.external_work(), "%.4g")
-     << " J   balance error " << fmt(last.balance_error, "%.2e") << " (max "
-     << fmt(sim.balance_error_max(), "%.2e") << ")\n";
+     << " J   contact work " << fmt(last.contact.work, "%.4g") << " J   balance error "
+     << fmt(last.balance_error, "%.2e") << " (max " << fmt(sim.balance_error_max(), "%.2e")
+     << ")\n";
   if (last.plastic_work > 0 || last.viscous_work > 0)
     os << "  internal   " << fmt(last.internal, "%.6g") << " J, of which plastic work "
        << fmt(last.plastic_work, "%.4g") << " J, viscous heat " << fmt(last.viscous_work, "%.4g")
@@ -293,7 +308,7 @@ int run_case(const RunOptions& o) {
   Json summary = summary_json(c, *sim, status, wall, warnings);
   std::vector<ReferenceResult> refs;
   if (code == 0 && !c.references.empty()) {
-    refs = evaluate_references(c.references, sim->model(), sim->state());
+    refs = evaluate_references(c.references, sim->model(), sim->state(), sim->run_figures());
     Json list = Json::array();
     bool all = true;
     for (const ReferenceResult& r : refs) {

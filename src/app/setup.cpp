@@ -148,6 +148,14 @@ Model build_model(const Case& c, std::vector<std::string>* notes) {
   }
 
   model.walls = c.walls;
+  if (c.contact) {
+    ContactSettings cs = c.contact_settings;
+    for (std::size_t i = 0; i < cs.pairs.size(); ++i) {
+      cs.pairs[i].body_a = body_index(model.mesh, c.contact_pair_bodies[i][0]);
+      cs.pairs[i].body_b = body_index(model.mesh, c.contact_pair_bodies[i][1]);
+    }
+    model.contact = cs;
+  }
   model.element.viscosity_linear = c.viscosity_linear;
   model.element.viscosity_quadratic = c.viscosity_quadratic;
   for (const Material& m : model.materials)

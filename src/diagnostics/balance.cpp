@@ -44,6 +44,7 @@ Sample sample_balance(const State& st, const Sample* previous) {
   }
   account(st.bc_impulse, st, f, previous ? &previous->boundary : nullptr, s.boundary);
   account(st.wall_impulse, st, f, previous ? &previous->walls : nullptr, s.walls);
+  account(st.contact_impulse, st, f, previous ? &previous->contact : nullptr, s.contact);
   s.total = s.kinetic + s.internal;
   return s;
 }

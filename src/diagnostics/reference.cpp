@@ -7,8 +7,23 @@ namespace tc {
 
 namespace {
 
-double measure(const ReferenceSpec& r, const Model& model, const State& st) {
+double measure(const ReferenceSpec& r, const Model& model, const State& st, const RunFigures& run) {
   using M = ReferenceSpec::Measure;
+  const bool contact_measure = r.measure == M::contact_duration ||
+                               r.measure == M::contact_max_force ||
+                               r.measure == M::contact_mean_pressure;
+  if (contact_measure && run.contact_first_time < 0.0)
+    throw std::runtime_error("reference '" + r.name + "': the run had no contact");
+  const double duration = run.contact_last_time - run.contact_first_time;
+  if (r.measure == M::contact_duration) return duration;
+  if (r.measure == M::contact_max_force) return run.contact_max_force;
+  if (r.measure == M::contact_mean_pressure) return run.contact_impulse / (duration * r.area);
+  if (r.measure == M::velocity) {
+    for (std::size_t b = 0; b < model.mesh.bodies.size(); ++b)
+      if (model.mesh.bodies[b].name == r.body && b < run.body_velocity.size())
+        return run.body_velocity[b][r.axis];
+    throw std::runtime_error("reference '" + r.name + "': no velocity of body '" + r.body + "'");
+  }
   if (r.measure == M::length || r.measure == M::radius) {
     for (const BodyRange& b : model.mesh.bodies) {
       if (b.name != r.body) continue;
@@ -49,12 +64,13 @@ double measure(const ReferenceSpec& r, const Model& model, const State& st) {
 }  // namespace
 
 std::vector<ReferenceResult> evaluate_references(const std::vector<ReferenceSpec>& refs,
-                                                 const Model& model, const State& st) {
+                                                 const Model& model, const State& st,
+                                                 const RunFigures& run) {
   std::vector<ReferenceResult> out;
   for (const ReferenceSpec& r : refs) {
     ReferenceResult res;
     res.spec = &r;
-    res.measured = measure(r, model, st);
+    res.measured = measure(r, model, st, run);
     res.relative_error = (res.measured - r.value) / std::abs(r.value);
     res.pass = std::abs(res.relative_error) <= r.tolerance;
     out.push_back(res);

@@ -648,8 +648,8 @@ Case load_case(const std::string& path, const std::vector<std::string>& override
       const std::string p = join("reference", std::to_string(i));
       const YAML::Node n = refs[i];
       r.keys(n, p,
-             {"name", "measure", "body", "axis", "component", "region", "value", "tolerance",
-              "source"});
+             {"name", "measure", "body", "axis", "component", "region", "area", "value",
+              "tolerance", "source"});
       ReferenceSpec ref;
       ref.name = r.string(r.require(n, p, "name"), join(p, "name"));
       const YAML::Node m = r.require(n, p, "measure");
@@ -663,10 +663,24 @@ Case load_case(const std::string& path, const std::vector<std::string>& override
         ref.measure = M::mean_stress;
       else if (measure == "mean_pressure")
         ref.measure = M::mean_pressure;
+      else if (measure == "velocity")
+        ref.measure = M::velocity;
+      else if (measure == "contact_duration")
+        ref.measure = M::contact_duration;
+      else if (measure == "contact_max_force")
+        ref.measure = M::contact_max_force;
+      else if (measure == "contact_mean_pressure")
+        ref.measure = M::contact_mean_pressure;
       else
         r.fail(m, join(p, "measure"),
-               "measure must be length, radius, mean_stress or mean_pressure");
-      if (ref.measure == M::length || ref.measure == M::radius) {
+               "measure must be length, radius, mean_stress, mean_pressure, velocity, "
+               "contact_duration, contact_max_force or contact_mean_pressure");
+      if (ref.measure == M::contact_duration || ref.measure == M::contact_max_force) {
+        // whole-run figures: nothing more to say
+      } else if (ref.measure == M::contact_mean_pressure) {
+        ref.area = r.positive(r.require(n, p, "area"), join(p, "area"), "m^2");
+      } else if (ref.measure == M::length || ref.measure == M::radius ||
+                 ref.measure == M::velocity) {
         const YAML::Node b = r.require(n, p, "body");
         ref.body = r.string(b, join(p, "body"));
         if (std::none_of(c.bodies.begin(), c.bodies.end(),
@@ -729,8 +743,88 @@ Case load_case(const std::string& path, const std::vector<std::string>& override
     }
   }
 
+  // Contact between bodies.
+  if (const YAML::Node s = root["contact"]) {
+    r.keys(s, "contact",
+           {"enabled", "broadphase", "margin", "passes", "order", "normal", "friction", "pairs"});
+    c.contact = s["enabled"] ? r.boolean(s["enabled"], "contact.enabled") : true;
+    ContactSettings& cs = c.contact_settings;
+    if (s["broadphase"]) {
+      cs.broadphase = r.string(s["broadphase"], "contact.broadphase");
+      const auto& names = broadphase_names();
+      if (std::find(names.begin(), names.end(), cs.broadphase) == names.end()) {
+        std::string list;
+        for (const auto& n : names) list += (list.empty() ? "" : ", ") + n;
+        r.fail(s["broadphase"], "contact.broadphase",
+               "unknown broadphase '" + cs.broadphase + "'; known: " + list);
+      }
+    }
+    if (s["margin"]) cs.margin = r.non_negative(s["margin"], "contact.margin");
+    if (s["passes"]) cs.passes = r.count(s["passes"], "contact.passes", 1, 1000);
+    if (const YAML::Node o = s["order"]) {
+      const std::string v = r.string(o, "contact.order");
+      if (v == "lighter_first")
+        cs.order = ContactSettings::Order::lighter_first;
+      else if (v == "input")
+        cs.order = ContactSettings::Order::input;
+      else
+        r.fail(o, "contact.order", "order must be lighter_first or input");
+    }
+    if (const YAML::Node n = s["normal"]) {
+      const std::string v = r.string(n, "contact.normal");
+      if (v == "face")
+        cs.normal = ContactSettings::Normal::face;
+      else if (v == "node")
+        cs.normal = ContactSettings::Normal::node;
+      else
+        r.fail(n, "contact.normal", "normal must be face or node");
+    }
+    const auto friction = [&](const YAML::Node& f, const std::string& p, FrictionMode& mode,
+                              double& k) {
+      const YAML::Node m = r.require(f, p, "mode");
+      const std::string v = r.string(m, join(p, "mode"));
+      if (v == "slip")
+        mode = FrictionMode::slip;
+      else if (v == "stick")
+        mode = FrictionMode::stick;
+      else if (v == "coulomb")
+        mode = FrictionMode::coulomb;
+      else
+        r.fail(m, join(p, "mode"), "friction mode must be slip, stick or coulomb");
+      if (f["coefficient"]) k = r.non_negative(f["coefficient"], join(p, "coefficient"));
+      if (mode == FrictionMode::coulomb && !f["coefficient"])
+        r.fail(f, p, "coulomb friction needs a coefficient");
+    };
+    if (const YAML::Node f = s["friction"]) {
+      r.keys(f, "contact.friction", {"mode", "coefficient"});
+      friction(f, "contact.friction", cs.mode, cs.coefficient);
+    }
+    if (const YAML::Node pairs = s["pairs"]) {
+      if (!pairs.IsSequence()) r.fail(pairs, "contact.pairs", "expected a list of body pairs");
+      for (std::size_t i = 0; i < pairs.size(); ++i) {
+        const std::string p = join("contact.pairs", std::to_string(i));
+        r.keys(pairs[i], p, {"bodies", "mode", "coefficient"});
+        const YAML::Node b = r.require(pairs[i], p, "bodies");
+        if (!b.IsSequence() || b.size() != 2)
+          r.fail(b, join(p, "bodies"), "expected two body names");
+        std::array<std::string, 2> names;
+        for (int k = 0; k < 2; ++k) {
+          names[k] = r.string(b[k], join(join(p, "bodies"), std::to_string(k)));
+          if (std::none_of(c.bodies.begin(), c.bodies.end(),
+                           [&](const BodySpec& body) { return body.name == names[k]; }))
+            r.fail(b[k], join(join(p, "bodies"), std::to_string(k)),
+                   "no body named '" + names[k] + "'");
+        }
+        PairFriction pf;
+        friction(pairs[i], p, pf.mode, pf.coefficient);
+        cs.pairs.push_back(pf);
+        c.contact_pair_bodies.push_back(names);
+      }
+    }
+  }
+
   // Stages filled by later versions: accepted only switched off, so nothing is ignored silently.
-  for (const char* stage : {"contact", "fracture"}) {
+  for (const char* stage : {"fracture"}) {
     if (const YAML::Node s = root[stage]) {
       r.keys(s, stage, {"enabled"});
       const bool on = s["enabled"] ? r.boolean(s["enabled"], join(stage, "enabled")) : false;
@@ -738,7 +832,7 @@ Case load_case(const std::string& path, const std::vector<std::string>& override
         r.fail(s["enabled"], join(stage, "enabled"),
                std::string("the ") + stage +
                    " stage is not available in this version of tetcontact; set it to false");
-      (stage[0] == 'c' ? c.contact : c.fracture) = on;
+      c.fracture = on;
     }
   }
   return c;

@@ -18,6 +18,7 @@ OutputWriter::OutputWriter(const Model& model, const OutputSpec& spec, std::stri
   h << "step,t,dt,kinetic,internal,plastic_work,viscous_work,boundary_work,wall_work,total,"
        "balance_error,momentum_x,momentum_y,momentum_z";
   for (const RigidWall& w : model_.walls) h << ",wall_force_" << w.name;
+  if (model_.contact) h << ",contact_work,contact_force,contacts";
   for (const auto& [name, seconds] : profile_->stages) {
     h << ",seconds_" << name;
     stage_seconds_.push_back(seconds);
@@ -35,6 +36,9 @@ void OutputWriter::observe(const State& st, const Sample& s) {
           s.walls.work, s.total, s.balance_error, s.momentum.x(), s.momentum.y(), s.momentum.z()})
       h << ',' << format_double(v);
     for (double f : s.wall_force) h << ',' << format_double(f);
+    if (model_.contact)
+      h << ',' << format_double(s.contact.work) << ',' << format_double(s.contact_force) << ','
+        << s.contacts;
     for (std::size_t k = 0; k < profile_->stages.size(); ++k) {
       const double now = profile_->stages[k].second;
       h << ',' << format_double(now - stage_seconds_[k]);

@@ -1,36 +1,44 @@
 #include "tetcontact/response/wall.hpp"
 
-#include <algorithm>
+#include "tetcontact/response/impulse.hpp"
 
 namespace tc {
+
+std::vector<ContactPoint> wall_contacts(const std::vector<RigidWall>& walls,
+                                        const std::vector<Index>& nodes, const State& st) {
+  std::vector<ContactPoint> out;
+  for (const RigidWall& wall : walls)
+    for (Index i : nodes) {
+      const double d = (st.x[i] - wall.point).dot(wall.normal);
+      // A node that would reach the plane within the step (or is behind it and approaching).
+      if (d + st.dt * st.v_star[i].dot(wall.normal) > 0.0) continue;
+      ContactPoint c;
+      c.a_nodes[0] = i;
+      c.a_w[0] = 1.0;
+      c.a_count = 1;
+      c.normal = wall.normal;
+      c.gap = d;
+      c.friction = wall.friction;
+      c.mode = wall.friction > 0.0 ? FrictionMode::coulomb : FrictionMode::slip;
+      out.push_back(c);
+    }
+  return out;
+}
 
 std::vector<WallResult> apply_walls(const std::vector<RigidWall>& walls,
                                     const std::vector<Index>& nodes, State& st) {
   std::vector<WallResult> results(walls.size());
   for (Vec3& j : st.wall_impulse) j.setZero();
-  const double tau = st.dt;
   for (std::size_t w = 0; w < walls.size(); ++w) {
-    const RigidWall& wall = walls[w];
-    const Vec3& n = wall.normal;
-    for (Index i : nodes) {
-      const double d = (st.x[i] - wall.point).dot(n);
-      const double un = st.v_star[i].dot(n);
-      // Normal velocity that ends the step on the plane (or, behind it, stops the approach).
-      const double target = d >= 0.0 ? -d / tau : 0.0;
-      if (un >= target) continue;
-      const double m = st.m[i];
-      const double lambda = m * (target - un);  // > 0: pushes
-      Vec3 impulse = lambda * n;
-      if (wall.friction > 0.0) {
-        const Vec3 vt = st.v_star[i] - un * n;
-        const double stick = m * vt.norm();  // impulse that stops the sliding
-        const double limit = wall.friction * lambda;
-        if (stick > 0.0) impulse -= (stick <= limit ? 1.0 : limit / stick) * m * vt;
+    std::vector<ContactPoint> contacts = wall_contacts({walls[w]}, nodes, st);
+    for (ContactPoint& c : contacts) {
+      const Vec3 before = st.wall_impulse[c.a_nodes[0]];
+      apply_contact(c, st, st.dt, st.wall_impulse);
+      const Vec3 j = st.wall_impulse[c.a_nodes[0]] - before;
+      if (j.squaredNorm() > 0.0) {
+        results[w].impulse += j;
+        ++results[w].contacts;
       }
-      st.v_star[i] += impulse / m;
-      st.wall_impulse[i] += impulse;
-      results[w].impulse += impulse;
-      ++results[w].contacts;
     }
   }
   return results;

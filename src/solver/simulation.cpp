@@ -50,7 +50,8 @@ State initial_state(const Model& model) {
   st.x = mesh.x;
   st.v = model.initial_velocity;
   st.v.resize(n, Vec3::Zero());
-  for (auto* field : {&st.v_star, &st.x_star, &st.f, &st.bc_impulse, &st.wall_impulse})
+  for (auto* field :
+       {&st.v_star, &st.x_star, &st.f, &st.bc_impulse, &st.wall_impulse, &st.contact_impulse})
     field->assign(n, Vec3::Zero());
   st.m.assign(n, 0.0);
   st.vol0 = tet_volumes(mesh.x, mesh.tets);
@@ -93,10 +94,22 @@ Simulation::Simulation(Model model, SolverSettings settings)
     surface_nodes_ = all_surface_nodes(model_);
     wall_force_max_.assign(model_.walls.size(), 0.0);
   }
+  if (model_.contact) {
+    contact_ = std::make_unique<NodeFaceContact>(model_, *model_.contact);
+    modules_.push_back("broadphase:" + model_.contact->broadphase);
+    modules_.push_back("narrowphase:node_face");
+    modules_.push_back("response:node_face");
+  }
   modules_.push_back("diagnostics:balance");
 
-  for (const char* stage : {"predict", "walls", "balance", "output", "commit", "elements"})
-    if (std::string(stage) != "walls" || !model_.walls.empty()) profile_[stage] = 0.0;
+  for (const char* stage : {"predict", "broadphase", "narrowphase", "response", "balance", "output",
+                            "commit", "elements"}) {
+    const std::string s = stage;
+    const bool contact_stage = s == "broadphase" || s == "narrowphase";
+    if (contact_stage && !contact_) continue;
+    if (s == "response" && !contact_ && model_.walls.empty()) continue;
+    profile_[stage] = 0.0;
+  }
   elements_stage();  // F^0 and τ^0; the first step then uses τ_v = τ/2
   st.dt_prev = 0.0;
 }
@@ -157,24 +170,45 @@ void Simulation::finish() {
   }
 }
 
+// The corrections of U* (seed 000: after the prediction, before positions are committed):
+// walls and node–face contacts, each correction seeing the velocities the ones before it
+// left, repeated in `passes` sequential passes.
 void Simulation::corrections() {
-  if (!model_.walls.empty()) {
-    StageTimer t(profile_["walls"]);
-    walls_stage();
+  if (model_.walls.empty() && !contact_) return;
+  State& st = state_;
+  std::vector<std::vector<ContactPoint>> walls(model_.walls.size());
+  for (std::size_t w = 0; w < model_.walls.size(); ++w)
+    walls[w] = wall_contacts({model_.walls[w]}, surface_nodes_, st);
+  contacts_.clear();
+  if (contact_) {
+    contacts_ = contact_->detect(st, contact_stats_);
+    profile_["broadphase"] += contact_stats_.broadphase_seconds;
+    profile_["narrowphase"] += contact_stats_.narrowphase_seconds;
   }
+  StageTimer timer(profile_["response"]);
+  for (Vec3& j : st.wall_impulse) j.setZero();
+  for (Vec3& j : st.contact_impulse) j.setZero();
+  const int passes = contact_ ? model_.contact->passes : 1;
+  for (int pass = 0; pass < passes; ++pass) {
+    for (auto& list : walls)
+      for (ContactPoint& c : list) apply_contact(c, st, st.dt, st.wall_impulse);
+    for (ContactPoint& c : contacts_) apply_contact(c, st, st.dt, st.contact_impulse);
+  }
+  wall_results_.assign(model_.walls.size(), WallResult{});
+  for (std::size_t w = 0; w < walls.size(); ++w)
+    for (const ContactPoint& c : walls[w]) {
+      wall_results_[w].impulse += c.lambda * c.normal + c.tangential;
+      wall_results_[w].contacts += c.lambda > 0.0;
+    }
 }
 
 void Simulation::predict_stage() {
   predict(state_, model_.constraints);
 }
 
-void Simulation::walls_stage() {
-  wall_results_ = apply_walls(model_.walls, surface_nodes_, state_);
-}
-
 double Simulation::balance_error(const Sample& s) const {
   if (energy_scale_ <= 0.0) return 0.0;
-  return std::abs(s.total - s.external_work() - first_.total) / energy_scale_;
+  return std::abs(s.total - s.external_work() - s.contact.work - first_.total) / energy_scale_;
 }
 
 void Simulation::sample_stage() {
@@ -190,6 +224,23 @@ void Simulation::sample_stage() {
     s.wall_force.push_back(force);
     wall_force_max_[w] = std::max(wall_force_max_[w], force);
   }
+  if (contact_) {
+    double lambda = 0.0;
+    for (const ContactPoint& c : contacts_) lambda += c.lambda;
+    s.contact_force = lambda / state_.dt;
+    s.contacts = contact_stats_.contacts;
+    ContactTotals& ct = contact_totals_;
+    ct.node_face += contact_stats_.contacts;
+    ct.candidates += contact_stats_.candidates;
+    ct.max_per_step = std::max(ct.max_per_step, contact_stats_.contacts);
+    ct.normal_impulse += lambda;
+    if (lambda > 0.0) {
+      if (ct.first_time < 0.0) ct.first_time = state_.t;
+      ct.last_time = state_.t;
+      ++ct.steps_in_contact;
+      ct.max_force = std::max(ct.max_force, s.contact_force);
+    }
+  }
   if (!have_sample_) first_ = s;
   have_sample_ = true;
   energy_scale_ = std::max(
@@ -197,6 +248,16 @@ void Simulation::sample_stage() {
   s.balance_error = balance_error(s);
   balance_error_max_ = std::max(balance_error_max_, s.balance_error);
   last_ = s;
+}
+
+RunFigures Simulation::run_figures() const {
+  RunFigures r;
+  r.contact_first_time = contact_totals_.first_time;
+  r.contact_last_time = contact_totals_.last_time;
+  r.contact_max_force = contact_totals_.max_force;
+  r.contact_impulse = contact_totals_.normal_impulse;
+  for (const BodyStats& b : body_stats(model_, state_)) r.body_velocity.push_back(b.velocity);
+  return r;
 }
 
 void Simulation::output_stage() {

@@ -26,7 +26,7 @@ Outcome run_case(const std::string& file, const std::vector<std::string>& overri
   while (!sim.done()) sim.step();
   sim.finish();
   Outcome o;
-  o.refs = evaluate_references(c.references, sim.model(), sim.state());
+  o.refs = evaluate_references(c.references, sim.model(), sim.state(), sim.run_figures());
   o.balance_error_max = sim.balance_error_max();
   const Sample& a = sim.first_sample();
   const Sample& b = sim.last_sample();
@@ -57,4 +57,10 @@ TEST(Validation, TaylorCopper) {
 // Shock stress at the centre within 5 % of the Mie–Grüneisen Hugoniot.
 TEST(Validation, PlateImpact) {
   expect_all_pass(run_case("data/cases/plate-impact-1d.yaml"));
+}
+
+// Two elastic bars end to end: contact duration within 3 % of 2L/c, mean contact stress within
+// 5 % of ρcv, velocities exchanged within 3 %, momentum to 1e-12.
+TEST(Validation, BarsImpact) {
+  expect_all_pass(run_case("data/cases/bars-impact.yaml"));
 }

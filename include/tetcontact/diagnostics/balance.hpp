@@ -30,6 +30,9 @@ struct Sample {
   double viscous_work = 0.0;   // part of internal
   ImpulseLedger boundary;      // prescribed velocities: work and impulse to t^n
   ImpulseLedger walls;         // rigid walls: work and impulse to t^n
+  ImpulseLedger contact;       // contacts between bodies: work (≤ 0) and impulse (≈ 0) to t^n
+  double contact_force = 0.0;  // total normal contact force this step (Σ λ / τ), N
+  long contacts = 0;           // node–face contacts this step
   double total = 0.0;          // kinetic + internal
   double balance_error = 0.0;  // filled by the Simulation (see balance_error_max)
   double mass = 0.0;

@@ -13,10 +13,14 @@ namespace tc {
 
 struct ReferenceSpec {
   enum class Measure {
-    length,        // extent of a body's bounding box along `axis`
-    radius,        // half the largest bounding-box extent across `axis`
-    mean_stress,   // mean over the tets centred in `region` of −σ_component (compression > 0)
-    mean_pressure  // mean over the tets centred in `region` of the EOS pressure p
+    length,         // extent of a body's bounding box along `axis`
+    radius,         // half the largest bounding-box extent across `axis`
+    mean_stress,    // mean over the tets centred in `region` of −σ_component (compression > 0)
+    mean_pressure,  // mean over the tets centred in `region` of the EOS pressure p
+    velocity,       // component `axis` of a body's mass-averaged velocity at the end
+    contact_duration,       // last − first time with a contact force between bodies
+    contact_max_force,      // largest total normal contact force of a step
+    contact_mean_pressure,  // total normal contact impulse / (duration · `area`)
   };
   std::string name;  // shown in tables
   Measure measure = Measure::length;
@@ -24,6 +28,7 @@ struct ReferenceSpec {
   int axis = 2;       // 0, 1, 2 for x, y, z
   int component = 2;  // mean_stress: 0..5 in the order xx yy zz xy yz xz
   Vec3 region_min = Vec3::Zero(), region_max = Vec3::Zero();  // mean_stress, mean_pressure
+  double area = 0.0;                                          // contact_mean_pressure
   double value = 0.0;                                         // the reference
   double tolerance = 0.0;                                     // allowed relative error
   std::string source;                                         // where the reference comes from
@@ -36,9 +41,19 @@ struct ReferenceResult {
   bool pass = false;
 };
 
-/// Measures each reference on the final state. Throws std::runtime_error when a measure has
-/// nothing to measure (unknown body, empty region).
+/// Figures of the whole run that some references measure.
+struct RunFigures {
+  double contact_first_time = -1.0, contact_last_time = -1.0;
+  double contact_max_force = 0.0;
+  double contact_impulse = 0.0;     // Σ of normal contact impulses over the run, N s
+  std::vector<Vec3> body_velocity;  // mass-averaged, at the end
+};
+
+/// Measures each reference on the final state and the run's figures. Throws
+/// std::runtime_error when a measure has nothing to measure (unknown body, empty region, no
+/// contact).
 std::vector<ReferenceResult> evaluate_references(const std::vector<ReferenceSpec>& refs,
-                                                 const Model& model, const State& st);
+                                                 const Model& model, const State& st,
+                                                 const RunFigures& run = {});
 
 }  // namespace tc

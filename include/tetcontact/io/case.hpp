@@ -11,6 +11,7 @@
 #include "tetcontact/diagnostics/reference.hpp"
 #include "tetcontact/material/material.hpp"
 #include "tetcontact/mesh/mesh.hpp"
+#include "tetcontact/response/contact.hpp"
 #include "tetcontact/response/wall.hpp"
 
 namespace tc {
@@ -98,6 +99,8 @@ struct Case {
   OutputSpec output;
   std::vector<ReferenceSpec> references;
   bool contact = false;
+  ContactSettings contact_settings;  // pairs' body indices are resolved by the setup
+  std::vector<std::array<std::string, 2>> contact_pair_bodies;  // parallel to its pairs
   bool fracture = false;
 
   const Material& material(const std::string& name) const;

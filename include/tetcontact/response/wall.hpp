@@ -21,14 +21,20 @@ struct WallResult {
   long contacts = 0;            // nodes that received an impulse
 };
 
-/// Corrects the predicted velocities U* of `nodes` against each wall (stage after predict).
-/// A node at signed distance d = (xⁿ − p)·n ≥ 0 whose normal velocity would carry it
-/// through the plane within the step receives the normal impulse
-///   λ = m · max(0, −d/τ − U*·n),
-/// the momentum exchange with an infinite mass that leaves it exactly on the plane at tⁿ⁺¹
-/// (a node already behind the plane, d < 0, is stopped: λ = m · max(0, −U*·n)). Walls push,
-/// never pull. With friction k the tangential velocity is removed if that takes an impulse
-/// of at most k λ (stick), else reduced by k λ / m (Coulomb slip). The impulses are added to
+struct ContactPoint;
+
+/// Contacts of `nodes` with the walls: each node that would reach or cross a plane within the
+/// step, as a contact of weight 1 against a side of infinite mass (no nodes), with the gap
+/// d = (xⁿ − p)·n.
+std::vector<ContactPoint> wall_contacts(const std::vector<RigidWall>& walls,
+                                        const std::vector<Index>& nodes, const State& st);
+
+/// Corrects the predicted velocities U* of `nodes` against each wall (stage after predict)
+/// with the impulse kernel (response/impulse.hpp): the normal impulse
+///   λ = m · max(0, −d/τ − U*·n)
+/// leaves a node at d ≥ 0 exactly on the plane at tⁿ⁺¹ (one already behind it, d < 0, is
+/// stopped). Walls push, never pull. With friction k: Coulomb (stick if that takes at most
+/// k λ of tangential impulse, else slide with k λ). The impulses are added to
 /// st.wall_impulse and summed per wall.
 std::vector<WallResult> apply_walls(const std::vector<RigidWall>& walls,
                                     const std::vector<Index>& nodes, State& st);

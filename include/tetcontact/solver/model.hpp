@@ -5,9 +5,12 @@
 #include <string>
 #include <vector>
 
+#include <optional>
 #include "tetcontact/material/material.hpp"
 #include "tetcontact/mesh/mesh.hpp"
 #include "tetcontact/mesh/surface.hpp"
+
+#include "tetcontact/response/contact.hpp"
 #include "tetcontact/response/wall.hpp"
 #include "tetcontact/solver/element.hpp"
 
@@ -28,8 +31,9 @@ struct Model {
   std::vector<Index> body_material;  // body → materials index
   std::vector<VelocityConstraint> constraints;
   std::vector<RigidWall> walls;
-  std::vector<Vec3> initial_velocity;  // per node
-  ElementOptions element;              // viscosity, average nodal pressure per material
+  std::optional<ContactSettings> contact;  // the contact stage, when the case enables it
+  std::vector<Vec3> initial_velocity;      // per node
+  ElementOptions element;                  // viscosity, average nodal pressure per material
 };
 
 /// Surface nodes of every body, sorted (the nodes that can touch a wall or another body).

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "tetcontact/diagnostics/balance.hpp"
+#include "tetcontact/diagnostics/reference.hpp"
 #include "tetcontact/response/wall.hpp"
 #include "tetcontact/solver/element.hpp"
 #include "tetcontact/solver/model.hpp"
@@ -57,13 +58,23 @@ class Simulation {
   double balance_error(const Sample& s) const;
   /// Largest normal reaction force seen on each wall, N.
   const std::vector<double>& wall_force_max() const { return wall_force_max_; }
+  /// Contact between bodies over the run (zeros when no contact stage exists).
+  struct ContactTotals {
+    long node_face = 0, candidates = 0, max_per_step = 0, steps_in_contact = 0;
+    double first_time = -1.0, last_time = -1.0, max_force = 0.0;
+    double normal_impulse = 0.0;  // Σ λ over the run, N s
+  };
+  /// The figures of the run that references measure (diagnostics/reference).
+  RunFigures run_figures() const;
+  const ContactTotals& contact_totals() const { return contact_totals_; }
+  bool has_contact() const { return contact_ != nullptr; }
   const std::vector<std::string>& modules() const { return modules_; }
   const StepProfile& profile() const { return profile_; }
   Index critical_tet() const { return critical_tet_; }
 
  private:
   void predict_stage();
-  void walls_stage();
+
   void sample_stage();
   void output_stage();
   void commit_stage();
@@ -77,6 +88,10 @@ class Simulation {
   NodalScratch scratch_;
   std::vector<Index> surface_nodes_;
   std::vector<WallResult> wall_results_;
+  std::unique_ptr<NodeFaceContact> contact_;
+  std::vector<ContactPoint> contacts_;
+  ContactStepStats contact_stats_;
+  ContactTotals contact_totals_;
   std::vector<double> wall_force_max_;
   Sample first_, last_;
   bool have_sample_ = false;

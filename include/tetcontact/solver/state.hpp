@@ -18,6 +18,7 @@ struct State {
   std::vector<double> m;           // lumped nodal masses
   std::vector<Vec3> bc_impulse;    // impulse of prescribed velocities this step
   std::vector<Vec3> wall_impulse;  // impulse of rigid walls this step
+  std::vector<Vec3> contact_impulse;  // impulse of contacts between bodies this step
 
   // Tets (M).
   std::vector<double> vol0;       // reference volume

@@ -1,0 +1,39 @@
+// Vertex–face primitives: point in tetrahedron, closest point on a triangle, and the swept
+// vertex–face test over a step.
+#pragma once
+
+#include <array>
+#include <optional>
+
+#include "tetcontact/mesh/mesh.hpp"
+
+namespace tc {
+
+/// Seed 001 §3: p lies inside (or on) the positively oriented tet (a, b, c, d) iff
+/// n_i · (p − x_i) ≤ 0 for the outward normal n_i of every face and a point x_i of it.
+bool point_in_tet(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d);
+
+/// Whether p lies behind the plane of the outward triangle (a, b, c) (normal (b−a)×(c−a)) by
+/// at most `depth`, and projects into the triangle, its edges and vertices included (a relative
+/// tolerance of 1e-9 of the face's area keeps coincident vertices in): the node–face contact
+/// condition of seed 001, a node that has entered the other body's boundary layer.
+bool behind_face(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c, double depth);
+
+/// Closest point of triangle (a, b, c) to p: barycentric weights (≥ 0, sum 1) and distance.
+struct TrianglePoint {
+  std::array<double, 3> w{1.0, 0.0, 0.0};
+  double distance = 0.0;
+};
+TrianglePoint closest_point_on_triangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c);
+
+/// Continuous vertex–face test, every point moving linearly over t ∈ [0, 1]: the earliest t
+/// at which p(t) lies in the triangle (a(t), b(t), c(t)). The coplanarity condition
+///   det[b − a, c − a, p − a](t) = 0
+/// is a cubic in t (seed 000 eq. 13 for a vertex and a face); each root in [0, 1] is checked
+/// for the point lying inside the triangle. Floating point with a relative tolerance of 1e-12
+/// on the barycentric test; the exact version comes with the edge–edge issue.
+std::optional<double> vertex_face_ccd(const Vec3& p0, const Vec3& a0, const Vec3& b0,
+                                      const Vec3& c0, const Vec3& p1, const Vec3& a1,
+                                      const Vec3& b1, const Vec3& c1);
+
+}  // namespace tc

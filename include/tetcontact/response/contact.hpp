@@ -1,0 +1,71 @@
+// Node–face contact between bodies (seed 001 §3–4): detection from the broadphase's
+// candidates, and the contact points the impulse kernel corrects in sequential passes.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "tetcontact/broadphase/broadphase.hpp"
+#include "tetcontact/mesh/surface.hpp"
+#include "tetcontact/response/impulse.hpp"
+
+namespace tc {
+
+struct Model;
+
+/// Friction of one body pair (case file `contact.pairs`).
+struct PairFriction {
+  Index body_a = 0, body_b = 0;
+  FrictionMode mode = FrictionMode::slip;
+  double coefficient = 0.0;
+};
+
+struct ContactSettings {
+  std::string broadphase = "fcl_tree";
+  double margin = 0.0;  // m, added to every swept box
+  int passes = 3;       // sequential correction passes per step
+  enum class Order { input, lighter_first } order = Order::lighter_first;
+  /// face: the normal of the penetrated face (default); node: minus the averaged normal of
+  /// the faces around the penetrating node (seed 001).
+  enum class Normal { face, node } normal = Normal::face;
+  FrictionMode mode = FrictionMode::slip;  // for body pairs not listed in `pairs`
+  double coefficient = 0.0;
+  std::vector<PairFriction> pairs;
+};
+
+/// Per-step figures of the contact stage.
+struct ContactStepStats {
+  long candidates = 0;  // node–face pairs from the broadphase
+  long contacts = 0;    // confirmed node–face contacts
+  double broadphase_seconds = 0.0, narrowphase_seconds = 0.0;
+};
+
+class NodeFaceContact {
+ public:
+  NodeFaceContact(const Model& model, const ContactSettings& settings);
+
+  /// Contacts of this step: every surface node of one body against the faces of the others
+  /// (symmetric), from positions xⁿ (st.x) and x* (st.x_star). A candidate is a contact when
+  /// the node's predicted position has entered the other body through the face — behind its
+  /// plane by at most the altitude of the face's tet, projecting into the face (vertices and
+  /// edges included) — or when its path crosses the face during the step (the swept
+  /// vertex–face test). Testing only the face's own tet is not enough: a node entering near a
+  /// vertex lands in a tet that touches the surface only there. Ordered by node mass (lighter
+  /// first) or by (node, face).
+  std::vector<ContactPoint> detect(const State& st, ContactStepStats& stats);
+
+  const Broadphase& broadphase() const { return *broadphase_; }
+
+ private:
+  const Model& model_;
+  ContactSettings settings_;
+  std::unique_ptr<Broadphase> broadphase_;
+  // Surface primitives of all bodies.
+  std::vector<Index> nodes_, node_body_, node_surface_, node_slot_;
+  std::vector<Face> faces_;
+  std::vector<Index> face_body_, face_tet_;
+  BroadphaseInput input_;
+};
+
+}  // namespace tc

@@ -1,0 +1,44 @@
+// The one impulse kernel of every contact: a point on side A (weights over up to four nodes)
+// against a point on side B (weights over up to four nodes, or none: a rigid wall), along a
+// normal n from B to A. Node–face is 1 + 3 weights, node–cell 1 + 4, a wall 1 + 0, and the
+// edge–edge contact of seed 000 is 2 + 2 (its eq. 11 has exactly this form).
+#pragma once
+
+#include <array>
+#include <vector>
+
+#include "tetcontact/solver/state.hpp"
+
+namespace tc {
+
+enum class FrictionMode { slip, stick, coulomb };
+
+struct ContactPoint {
+  std::array<Index, 4> a_nodes{};
+  std::array<double, 4> a_w{};
+  int a_count = 0;
+  std::array<Index, 4> b_nodes{};
+  std::array<double, 4> b_w{};
+  int b_count = 0;              // 0: side B is a rigid wall at rest
+  Vec3 normal = Vec3::UnitZ();  // unit, from B to A
+  double gap = 0.0;             // signed normal distance at tⁿ (≥ 0: apart)
+  FrictionMode mode = FrictionMode::slip;
+  double friction = 0.0;  // Coulomb coefficient k
+  // Accumulated over the passes of one step:
+  double lambda = 0.0;             // normal impulse, N s
+  Vec3 tangential = Vec3::Zero();  // tangential impulse on A, N s
+};
+
+/// One correction of a contact (seed 001 §4, seed 000 eqs. 11–12). With v_n the relative
+/// normal velocity of the two points, v_n = (Σ w_A U_A − Σ w_B U_B)·n, and the target
+/// v* = −g/τ (close the gap within the step; 0 when already penetrated: no pushing back),
+///   λ = max(0, v* − v_n) / (Σ w_A²/m_A + Σ w_B²/m_B),
+///   U_A += w_A λ n / m_A,   U_B −= w_B λ n / m_B,
+/// equal and opposite: momentum is conserved to round-off. Contacts push, never pull.
+/// Friction then acts on the relative tangential velocity: stick removes it, Coulomb limits
+/// the accumulated tangential impulse to k times the accumulated normal one, slip leaves it.
+/// Impulses are added per node to `ledger` (A side and B side). Returns the normal impulse
+/// of this correction.
+double apply_contact(ContactPoint& c, State& st, double tau, std::vector<Vec3>& ledger);
+
+}  // namespace tc

@@ -1,0 +1,146 @@
+#include "tetcontact/narrowphase/vertex_face.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace tc {
+
+bool point_in_tet(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
+  // Outward faces of a positive tet (a, b, c, d): (b,c,d), (a,d,c), (a,b,d), (a,c,b).
+  const auto outside = [&](const Vec3& x, const Vec3& y, const Vec3& z) {
+    return (y - x).cross(z - x).dot(p - x) > 0.0;
+  };
+  return !outside(b, c, d) && !outside(a, d, c) && !outside(a, b, d) && !outside(a, c, b);
+}
+
+bool behind_face(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c, double depth) {
+  const Vec3 n = (b - a).cross(c - a);
+  const double nn = n.squaredNorm();
+  if (nn == 0.0) return false;
+  const double d = (p - a).dot(n) / std::sqrt(nn);  // signed distance, > 0 in front
+  if (d > 0.0 || d < -depth) return false;
+  // Outside an edge e by a distance s, the edge test is −|e| s |n|; accept s up to 1e-3 of
+  // the longest edge, so that a node on the rim of one surface stays on the rim of the other
+  // when round-off moves it sideways.
+  const double longest =
+      std::sqrt(std::max({(b - a).squaredNorm(), (c - b).squaredNorm(), (a - c).squaredNorm()}));
+  const double tol = -1e-3 * longest * longest * std::sqrt(nn);
+  return (b - a).cross(p - a).dot(n) >= tol && (c - b).cross(p - b).dot(n) >= tol &&
+         (a - c).cross(p - c).dot(n) >= tol;
+}
+
+TrianglePoint closest_point_on_triangle(const Vec3& p, const Vec3& a, const Vec3& b,
+                                        const Vec3& c) {
+  // Ericson, Real-Time Collision Detection §5.1.5: Voronoi regions of the triangle.
+  TrianglePoint r;
+  const Vec3 ab = b - a, ac = c - a, ap = p - a;
+  const double d1 = ab.dot(ap), d2 = ac.dot(ap);
+  auto done = [&](double u, double v, double w) {
+    r.w = {u, v, w};
+    r.distance = (p - (u * a + v * b + w * c)).norm();
+    return r;
+  };
+  if (d1 <= 0 && d2 <= 0) return done(1, 0, 0);
+  const Vec3 bp = p - b;
+  const double d3 = ab.dot(bp), d4 = ac.dot(bp);
+  if (d3 >= 0 && d4 <= d3) return done(0, 1, 0);
+  const double vc = d1 * d4 - d3 * d2;
+  if (vc <= 0 && d1 >= 0 && d3 <= 0) {
+    const double v = d1 / (d1 - d3);
+    return done(1 - v, v, 0);
+  }
+  const Vec3 cp = p - c;
+  const double d5 = ab.dot(cp), d6 = ac.dot(cp);
+  if (d6 >= 0 && d5 <= d6) return done(0, 0, 1);
+  const double vb = d5 * d2 - d1 * d6;
+  if (vb <= 0 && d2 >= 0 && d6 <= 0) {
+    const double w = d2 / (d2 - d6);
+    return done(1 - w, 0, w);
+  }
+  const double va = d3 * d6 - d5 * d4;
+  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) {
+    const double w = (d4 - d3) / ((d4 - d3) + (d5 - d6));
+    return done(0, 1 - w, w);
+  }
+  const double denom = 1.0 / (va + vb + vc);
+  const double v = vb * denom, w = vc * denom;
+  return done(1 - v - w, v, w);
+}
+
+namespace {
+
+// Whether p lies in triangle (a, b, c) assumed coplanar with it, up to a relative tolerance.
+bool in_triangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
+  const Vec3 n = (b - a).cross(c - a);
+  const double nn = n.squaredNorm();
+  if (nn == 0.0) return false;  // degenerate face
+  const double tol = -1e-12 * nn;
+  return (b - a).cross(p - a).dot(n) >= tol && (c - b).cross(p - b).dot(n) >= tol &&
+         (a - c).cross(p - c).dot(n) >= tol;
+}
+
+}  // namespace
+
+std::optional<double> vertex_face_ccd(const Vec3& p0, const Vec3& a0, const Vec3& b0,
+                                      const Vec3& c0, const Vec3& p1, const Vec3& a1,
+                                      const Vec3& b1, const Vec3& c1) {
+  const auto at = [](const Vec3& x0, const Vec3& x1, double t) { return Vec3(x0 + t * (x1 - x0)); };
+  const auto f = [&](double t) {
+    const Vec3 a = at(a0, a1, t);
+    return (at(b0, b1, t) - a).cross(at(c0, c1, t) - a).dot(at(p0, p1, t) - a);
+  };
+  const auto hit = [&](double t) {
+    return in_triangle(at(p0, p1, t), at(a0, a1, t), at(b0, b1, t), at(c0, c1, t));
+  };
+  // f is a cubic: sample it at its own Bernstein-free partition (the roots of f' split [0,1]
+  // into monotone pieces), then bisect each sign change.
+  // Cubic coefficients from four samples.
+  const double f0 = f(0.0), f13 = f(1.0 / 3.0), f23 = f(2.0 / 3.0), f1 = f(1.0);
+  const double scale = std::max({std::abs(f0), std::abs(f13), std::abs(f23), std::abs(f1)});
+  if (scale == 0.0) {  // coplanar all step: touching iff inside at some sampled time
+    for (double t : {0.0, 0.25, 0.5, 0.75, 1.0})
+      if (hit(t)) return t;
+    return std::nullopt;
+  }
+  // Lagrange → monomial: f(t) = k3 t³ + k2 t² + k1 t + k0.
+  const double k0 = f0;
+  const double k3 = 4.5 * (-f0 + 3 * f13 - 3 * f23 + f1);
+  const double k2 = 4.5 * (2 * f0 - 5 * f13 + 4 * f23 - f1);
+  const double k1 = f1 - k0 - k2 - k3;
+  std::vector<double> splits{0.0};
+  // Stationary points: 3 k3 t² + 2 k2 t + k1 = 0.
+  const double qa = 3 * k3, qb = 2 * k2, qc = k1;
+  if (std::abs(qa) > 1e-300) {
+    const double disc = qb * qb - 4 * qa * qc;
+    if (disc >= 0) {
+      const double s = std::sqrt(disc);
+      for (double t : {(-qb - s) / (2 * qa), (-qb + s) / (2 * qa)})
+        if (t > 0 && t < 1) splits.push_back(t);
+    }
+  } else if (std::abs(qb) > 1e-300) {
+    const double t = -qc / qb;
+    if (t > 0 && t < 1) splits.push_back(t);
+  }
+  splits.push_back(1.0);
+  std::sort(splits.begin(), splits.end());
+  const double zero = 1e-14 * scale;
+  for (std::size_t i = 0; i + 1 < splits.size(); ++i) {
+    double lo = splits[i], hi = splits[i + 1];
+    double flo = f(lo), fhi = f(hi);
+    if (std::abs(flo) <= zero && hit(lo)) return lo;
+    if ((flo > 0) == (fhi > 0) && std::abs(fhi) > zero) continue;
+    for (int it = 0; it < 80 && hi - lo > 1e-15; ++it) {
+      const double mid = 0.5 * (lo + hi), fm = f(mid);
+      if ((fm > 0) == (flo > 0))
+        lo = mid, flo = fm;
+      else
+        hi = mid;
+    }
+    // Check a small bracket around the root (the inside test at the root is the decision).
+    for (double t : {hi, lo})
+      if (hit(t)) return t;
+  }
+  return std::nullopt;
+}
+
+}  // namespace tc

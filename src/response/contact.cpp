@@ -1,0 +1,117 @@
+#include "tetcontact/response/contact.hpp"
+
+#include <algorithm>
+#include <chrono>
+
+#include "tetcontact/mesh/surface.hpp"
+#include "tetcontact/narrowphase/vertex_face.hpp"
+#include "tetcontact/solver/model.hpp"
+
+namespace tc {
+
+namespace {
+using Clock = std::chrono::steady_clock;
+double since(Clock::time_point t0) {
+  return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+}  // namespace
+
+NodeFaceContact::NodeFaceContact(const Model& model, const ContactSettings& settings)
+    : model_(model), settings_(settings), broadphase_(make_broadphase(settings.broadphase)) {
+  for (std::size_t s = 0; s < model.surfaces.size(); ++s) {
+    const Surface& surf = model.surfaces[s];
+    for (std::size_t i = 0; i < surf.nodes.size(); ++i) {
+      nodes_.push_back(surf.nodes[i]);
+      node_body_.push_back(surf.body);
+      node_surface_.push_back(static_cast<Index>(s));
+      node_slot_.push_back(static_cast<Index>(i));
+    }
+    for (std::size_t f = 0; f < surf.faces.size(); ++f) {
+      faces_.push_back(surf.faces[f]);
+      face_body_.push_back(surf.body);
+      face_tet_.push_back(surf.face_tet[f]);
+    }
+  }
+  input_.node_id = nodes_;
+  input_.node_body = node_body_;
+  input_.face_body = face_body_;
+  for (const Face& f : faces_) input_.face_nodes.push_back(f);
+  input_.node_box.resize(nodes_.size());
+  input_.face_box.resize(faces_.size());
+}
+
+std::vector<ContactPoint> NodeFaceContact::detect(const State& st, ContactStepStats& stats) {
+  auto t0 = Clock::now();
+  const std::vector<Vec3>& x0 = st.x;
+  const std::vector<Vec3>& x1 = st.x_star;
+  const double margin = settings_.margin;
+  for (std::size_t i = 0; i < nodes_.size(); ++i)
+    input_.node_box[i] = swept_box({&x0[nodes_[i]], &x1[nodes_[i]]}, margin);
+  for (std::size_t f = 0; f < faces_.size(); ++f) {
+    const Face& k = faces_[f];
+    input_.face_box[f] =
+        swept_box({&x0[k[0]], &x0[k[1]], &x0[k[2]], &x1[k[0]], &x1[k[1]], &x1[k[2]]}, margin);
+  }
+  const Candidates cand = broadphase_->find(input_);
+  stats.broadphase_seconds = since(t0);
+  stats.candidates = static_cast<long>(cand.node_face.size());
+  t0 = Clock::now();
+
+  // Node normals (seed 001's contact normal), only when asked for.
+  std::vector<std::vector<Vec3>> normals;
+  if (settings_.normal == ContactSettings::Normal::node)
+    for (const Surface& s : model_.surfaces) normals.push_back(node_normals(s, x0));
+
+  std::vector<ContactPoint> contacts;
+  for (const auto& [ni, fi] : cand.node_face) {
+    const Index node = nodes_[ni];
+    const Face& f = faces_[fi];
+    // The layer a node may enter: the face's tet, its altitude over the face at x*.
+    const Tet& tet = model_.mesh.tets[face_tet_[fi]];
+    const double vol = tet_signed_volume(x1[tet[0]], x1[tet[1]], x1[tet[2]], x1[tet[3]]);
+    const double area = 0.5 * (x1[f[1]] - x1[f[0]]).cross(x1[f[2]] - x1[f[0]]).norm();
+    const double depth = area > 0.0 ? 3.0 * vol / area : 0.0;
+    const bool inside = behind_face(x1[node], x1[f[0]], x1[f[1]], x1[f[2]], depth);
+    if (!inside && !vertex_face_ccd(x0[node], x0[f[0]], x0[f[1]], x0[f[2]], x1[node], x1[f[0]],
+                                    x1[f[1]], x1[f[2]]))
+      continue;
+    ContactPoint c;
+    c.a_nodes[0] = node;
+    c.a_w[0] = 1.0;
+    c.a_count = 1;
+    const TrianglePoint tp = closest_point_on_triangle(x0[node], x0[f[0]], x0[f[1]], x0[f[2]]);
+    for (int k = 0; k < 3; ++k) {
+      c.b_nodes[k] = f[k];
+      c.b_w[k] = tp.w[k];
+    }
+    c.b_count = 3;
+    const Vec3 face_n = face_normal(f, x0);  // outward of the face's body: from B to A
+    if (settings_.normal == ContactSettings::Normal::node) {
+      const Vec3 nn = -normals[node_surface_[ni]][node_slot_[ni]];
+      c.normal = nn.squaredNorm() > 0 ? nn : face_n;
+    } else {
+      c.normal = face_n;
+    }
+    c.gap = (x0[node] - x0[f[0]]).dot(face_n);
+    // Friction of the body pair.
+    c.mode = settings_.mode;
+    c.friction = settings_.coefficient;
+    const Index ba = node_body_[ni], bb = face_body_[fi];
+    for (const PairFriction& p : settings_.pairs)
+      if ((p.body_a == ba && p.body_b == bb) || (p.body_a == bb && p.body_b == ba)) {
+        c.mode = p.mode;
+        c.friction = p.coefficient;
+      }
+    contacts.push_back(c);
+  }
+  if (settings_.order == ContactSettings::Order::lighter_first)
+    std::stable_sort(contacts.begin(), contacts.end(),
+                     [&](const ContactPoint& a, const ContactPoint& b) {
+                       return st.m[a.a_nodes[0]] < st.m[b.a_nodes[0]];
+                     });
+  stats.contacts = static_cast<long>(contacts.size());
+  stats.narrowphase_seconds = since(t0);
+  return contacts;
+}
+
+}  // namespace tc

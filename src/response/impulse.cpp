@@ -1,0 +1,63 @@
+#include "tetcontact/response/impulse.hpp"
+
+#include <algorithm>
+
+namespace tc {
+
+namespace {
+
+Vec3 point_velocity(const std::array<Index, 4>& nodes, const std::array<double, 4>& w, int n,
+                    const State& st) {
+  Vec3 v = Vec3::Zero();
+  for (int i = 0; i < n; ++i) v += w[i] * st.v_star[nodes[i]];
+  return v;
+}
+
+void push(ContactPoint& c, const Vec3& impulse_on_a, State& st, std::vector<Vec3>& ledger) {
+  for (int i = 0; i < c.a_count; ++i) {
+    const Vec3 j = c.a_w[i] * impulse_on_a;
+    st.v_star[c.a_nodes[i]] += j / st.m[c.a_nodes[i]];
+    ledger[c.a_nodes[i]] += j;
+  }
+  for (int i = 0; i < c.b_count; ++i) {
+    const Vec3 j = c.b_w[i] * impulse_on_a;
+    st.v_star[c.b_nodes[i]] -= j / st.m[c.b_nodes[i]];
+    ledger[c.b_nodes[i]] -= j;
+  }
+}
+
+}  // namespace
+
+double apply_contact(ContactPoint& c, State& st, double tau, std::vector<Vec3>& ledger) {
+  double inv_mass = 0.0;  // Σ w²/m over both sides
+  for (int i = 0; i < c.a_count; ++i) inv_mass += c.a_w[i] * c.a_w[i] / st.m[c.a_nodes[i]];
+  for (int i = 0; i < c.b_count; ++i) inv_mass += c.b_w[i] * c.b_w[i] / st.m[c.b_nodes[i]];
+  if (!(inv_mass > 0.0)) return 0.0;
+  const Vec3& n = c.normal;
+  const Vec3 v_rel = point_velocity(c.a_nodes, c.a_w, c.a_count, st) -
+                     point_velocity(c.b_nodes, c.b_w, c.b_count, st);
+  const double target = c.gap >= 0.0 ? -c.gap / tau : 0.0;
+  const double lambda = std::max(0.0, target - v_rel.dot(n)) / inv_mass;  // pushes only
+  if (lambda > 0.0) {
+    push(c, lambda * n, st, ledger);
+    c.lambda += lambda;
+  }
+  if (c.mode == FrictionMode::slip || c.lambda <= 0.0) return lambda;
+  // Tangential: the impulse that stops the relative sliding, limited for Coulomb.
+  const Vec3 v_now = point_velocity(c.a_nodes, c.a_w, c.a_count, st) -
+                     point_velocity(c.b_nodes, c.b_w, c.b_count, st);
+  const Vec3 vt = v_now - v_now.dot(n) * n;
+  Vec3 total = c.tangential - vt / inv_mass;  // accumulated impulse needed to stick
+  if (c.mode == FrictionMode::coulomb) {
+    const double limit = c.friction * c.lambda, size = total.norm();
+    if (size > limit) total *= limit / size;
+  }
+  const Vec3 delta = total - c.tangential;
+  if (delta.squaredNorm() > 0.0) {
+    push(c, delta, st, ledger);
+    c.tangential = total;
+  }
+  return lambda;
+}
+
+}  // namespace tc

@@ -1,0 +1,66 @@
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "tetcontact/narrowphase/vertex_face.hpp"
+
+using namespace tc;
+
+TEST(Narrowphase, PointInTetSignTest) {
+  const Vec3 a(0, 0, 0), b(1, 0, 0), c(0, 1, 0), d(0, 0, 1);
+  EXPECT_TRUE(point_in_tet(Vec3(0.2, 0.2, 0.2), a, b, c, d));
+  EXPECT_TRUE(point_in_tet(a, a, b, c, d));                    // a vertex counts
+  EXPECT_TRUE(point_in_tet(Vec3(0.5, 0.5, 0.0), a, b, c, d));  // on a face
+  EXPECT_FALSE(point_in_tet(Vec3(0.5, 0.5, 0.1), a, b, c, d));
+  EXPECT_FALSE(point_in_tet(Vec3(-1e-9, 0.2, 0.2), a, b, c, d));
+}
+
+TEST(Narrowphase, ClosestPointOnTriangleMatchesSampling) {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(-1, 1);
+  for (int k = 0; k < 200; ++k) {
+    const Vec3 a(u(rng), u(rng), u(rng)), b(u(rng), u(rng), u(rng)), c(u(rng), u(rng), u(rng));
+    const Vec3 p(2 * u(rng), 2 * u(rng), 2 * u(rng));
+    const TrianglePoint r = closest_point_on_triangle(p, a, b, c);
+    EXPECT_NEAR(r.w[0] + r.w[1] + r.w[2], 1.0, 1e-12);
+    for (double w : r.w) EXPECT_GE(w, -1e-12);
+    EXPECT_NEAR((p - (r.w[0] * a + r.w[1] * b + r.w[2] * c)).norm(), r.distance, 1e-12);
+    double best = 1e300;  // brute force over a barycentric grid
+    const int n = 60;
+    for (int i = 0; i <= n; ++i)
+      for (int j = 0; i + j <= n; ++j) {
+        const double wb = double(i) / n, wc = double(j) / n;
+        best = std::min(best, (p - ((1 - wb - wc) * a + wb * b + wc * c)).norm());
+      }
+    EXPECT_LE(r.distance, best + 1e-12);
+    EXPECT_GE(r.distance, best - 0.05);  // the grid's resolution
+  }
+}
+
+TEST(Narrowphase, BehindFaceWithinTheLayer) {
+  const Vec3 a(0, 0, 0), b(1, 0, 0), c(0, 1, 0);  // normal +z
+  EXPECT_TRUE(behind_face(Vec3(0.2, 0.2, -0.01), a, b, c, 0.1));
+  EXPECT_TRUE(behind_face(Vec3(0.2, 0.2, 0.0), a, b, c, 0.1));       // on the face
+  EXPECT_FALSE(behind_face(Vec3(0.2, 0.2, 0.01), a, b, c, 0.1));     // in front
+  EXPECT_FALSE(behind_face(Vec3(0.2, 0.2, -0.2), a, b, c, 0.1));     // deeper than the layer
+  EXPECT_TRUE(behind_face(Vec3(-1e-6, 0.5, -0.01), a, b, c, 0.1));   // rim, within 1e-3 of an edge
+  EXPECT_FALSE(behind_face(Vec3(-0.01, 0.5, -0.01), a, b, c, 0.1));  // beside the face
+}
+
+TEST(Narrowphase, SweptVertexFaceFindsTheCrossingTime) {
+  // A static triangle in z = 0 and a point crossing it at t = 0.3.
+  const Vec3 a(0, 0, 0), b(1, 0, 0), c(0, 1, 0);
+  auto t = vertex_face_ccd(Vec3(0.2, 0.2, 0.3), a, b, c, Vec3(0.2, 0.2, -0.7), a, b, c);
+  ASSERT_TRUE(t.has_value());
+  EXPECT_NEAR(*t, 0.3, 1e-12);
+  // Passing beside the triangle: no crossing.
+  EXPECT_FALSE(vertex_face_ccd(Vec3(0.8, 0.8, 0.3), a, b, c, Vec3(0.8, 0.8, -0.7), a, b, c));
+  // Moving parallel to the plane above it: none.
+  EXPECT_FALSE(vertex_face_ccd(Vec3(0.2, 0.2, 0.1), a, b, c, Vec3(0.3, 0.2, 0.1), a, b, c));
+  // The triangle moving up through a resting point at t = 0.5.
+  const Vec3 up(0, 0, 1);
+  t = vertex_face_ccd(Vec3(0.1, 0.1, 0), a - 0.5 * up, b - 0.5 * up, c - 0.5 * up,
+                      Vec3(0.1, 0.1, 0), a + 0.5 * up, b + 0.5 * up, c + 0.5 * up);
+  ASSERT_TRUE(t.has_value());
+  EXPECT_NEAR(*t, 0.5, 1e-12);
+}
