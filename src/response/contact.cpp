@@ -54,6 +54,8 @@ std::vector<ContactPoint> NodeFaceContact::detect(const State& st, ContactStepSt
   }
   const Candidates cand = broadphase_->find(input_);
   stats.broadphase_seconds = since(t0);
+  stats.build_seconds = broadphase_->build_seconds;
+  stats.query_seconds = broadphase_->query_seconds;
   stats.candidates = static_cast<long>(cand.node_face.size());
   t0 = Clock::now();
 

@@ -37,10 +37,14 @@ double apply_contact(ContactPoint& c, State& st, double tau, std::vector<Vec3>& 
   const Vec3 v_rel = point_velocity(c.a_nodes, c.a_w, c.a_count, st) -
                      point_velocity(c.b_nodes, c.b_w, c.b_count, st);
   const double target = c.gap >= 0.0 ? -c.gap / tau : 0.0;
-  const double lambda = std::max(0.0, target - v_rel.dot(n)) / inv_mass;  // pushes only
-  if (lambda > 0.0) {
+  // The accumulated impulse of the step pushes, never pulls: an increment may take back what
+  // earlier passes over-pushed (the corrections of neighbouring contacts move shared nodes),
+  // but the total stays ≥ 0 (projected Gauss–Seidel).
+  const double accumulated = std::max(0.0, c.lambda + (target - v_rel.dot(n)) / inv_mass);
+  const double lambda = accumulated - c.lambda;
+  if (lambda != 0.0) {
     push(c, lambda * n, st, ledger);
-    c.lambda += lambda;
+    c.lambda = accumulated;
   }
   if (c.mode == FrictionMode::slip || c.lambda <= 0.0) return lambda;
   // Tangential: the impulse that stops the relative sliding, limited for Coulomb.

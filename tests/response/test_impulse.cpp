@@ -47,7 +47,7 @@ TEST(Impulse, ConservesMomentumAndEnforcesTheNormalVelocity) {
     const double tau = 1e-3;
     const Vec3 p0 = momentum(st);
     const double lambda = apply_contact(c, st, tau, ledger);
-    EXPECT_GE(lambda, 0.0);
+    EXPECT_GE(lambda, 0.0);  // from a zero accumulated impulse: a push
     EXPECT_LT((momentum(st) - p0).norm(), 1e-14);
     EXPECT_LT((ledger[0] + ledger[1] + ledger[2] + ledger[3]).norm(), 1e-14);
     const Vec3 v_rel = st.v_star[0] - (c.b_w[0] * st.v_star[1] + c.b_w[1] * st.v_star[2] +

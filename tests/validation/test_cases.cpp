@@ -64,3 +64,33 @@ TEST(Validation, PlateImpact) {
 TEST(Validation, BarsImpact) {
   expect_all_pass(run_case("data/cases/bars-impact.yaml"));
 }
+
+// Two rods meeting at ±227 m/s deform as the rod on the rigid wall at 227 m/s: length and
+// radius of each within 2 % of taylor-copper.yaml at the same (coarse) mesh.
+TEST(Validation, TaylorSymmetric) {
+  const std::vector<std::string> coarse_one = {"bodies.0.mesh.cylinder.cells_across=6",
+                                               "bodies.0.mesh.cylinder.cells_axial=30"};
+  std::vector<std::string> coarse_two = coarse_one;
+  coarse_two.push_back("bodies.1.mesh.cylinder.cells_across=6");
+  coarse_two.push_back("bodies.1.mesh.cylinder.cells_axial=30");
+  const auto measure = [](const std::string& file, const std::vector<std::string>& overrides) {
+    const Case c = load_case(test::source_path(file), overrides);
+    Simulation sim(build_model(c), solver_settings(c));
+    while (!sim.done()) sim.step();
+    sim.finish();
+    EXPECT_LT(sim.balance_error_max(), 0.01) << file;
+    std::vector<std::pair<double, double>> out;  // (length, radius) per body
+    for (const BodyStats& b : body_stats(sim.model(), sim.state())) {
+      const Vec3 e = b.bbox_max - b.bbox_min;
+      out.emplace_back(e.z(), 0.5 * std::max(e.x(), e.y()));
+    }
+    return out;
+  };
+  const auto wall = measure("data/cases/taylor-copper.yaml", coarse_one);
+  const auto pair = measure("data/cases/taylor-symmetric.yaml", coarse_two);
+  ASSERT_EQ(pair.size(), 2u);
+  for (const auto& [length, radius] : pair) {
+    EXPECT_NEAR(length / wall[0].first, 1.0, 0.02) << "length " << length;
+    EXPECT_NEAR(radius / wall[0].second, 1.0, 0.02) << "radius " << radius;
+  }
+}

@@ -39,6 +39,7 @@ struct ContactStepStats {
   long candidates = 0;  // node–face pairs from the broadphase
   long contacts = 0;    // confirmed node–face contacts
   double broadphase_seconds = 0.0, narrowphase_seconds = 0.0;
+  double build_seconds = 0.0, query_seconds = 0.0;  // the broadphase's own split
 };
 
 class NodeFaceContact {

@@ -32,13 +32,15 @@ struct ContactPoint {
 /// One correction of a contact (seed 001 §4, seed 000 eqs. 11–12). With v_n the relative
 /// normal velocity of the two points, v_n = (Σ w_A U_A − Σ w_B U_B)·n, and the target
 /// v* = −g/τ (close the gap within the step; 0 when already penetrated: no pushing back),
-///   λ = max(0, v* − v_n) / (Σ w_A²/m_A + Σ w_B²/m_B),
+///   Λ ← max(0, Λ + (v* − v_n) / (Σ w_A²/m_A + Σ w_B²/m_B)),   λ = change of Λ,
+/// with Λ the contact's accumulated normal impulse of the step: contacts push, never pull
+/// (Λ ≥ 0), while a later pass may take back what earlier ones over-pushed;
 ///   U_A += w_A λ n / m_A,   U_B −= w_B λ n / m_B,
 /// equal and opposite: momentum is conserved to round-off. Contacts push, never pull.
 /// Friction then acts on the relative tangential velocity: stick removes it, Coulomb limits
 /// the accumulated tangential impulse to k times the accumulated normal one, slip leaves it.
 /// Impulses are added per node to `ledger` (A side and B side). Returns the normal impulse
-/// of this correction.
+/// of this correction (negative when it takes back an over-push).
 double apply_contact(ContactPoint& c, State& st, double tau, std::vector<Vec3>& ledger);
 
 }  // namespace tc

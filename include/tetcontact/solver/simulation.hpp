@@ -62,7 +62,8 @@ class Simulation {
   struct ContactTotals {
     long node_face = 0, candidates = 0, max_per_step = 0, steps_in_contact = 0;
     double first_time = -1.0, last_time = -1.0, max_force = 0.0;
-    double normal_impulse = 0.0;  // Σ λ over the run, N s
+    double normal_impulse = 0.0;                            // Σ λ over the run, N s
+    double broadphase_build = 0.0, broadphase_query = 0.0;  // seconds over the run
   };
   /// The figures of the run that references measure (diagnostics/reference).
   RunFigures run_figures() const;

@@ -1,0 +1,22 @@
+// `tetcontact profile`: broadphase pruning and cost, on a case or on two frames of a surface.
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace tc {
+
+struct ProfileOptions {
+  std::string case_path;            // case mode
+  std::vector<std::string> frames;  // frames mode: A.ply B.ply
+  std::string method = "all";
+  double margin = 0.0;  // frames mode
+  long steps = 100;     // case mode: steps per method (the whole case when shorter)
+  bool json = false;
+  std::vector<std::string> overrides;
+};
+
+/// Exit codes: 0, 2 bad input.
+int profile_command(const ProfileOptions& options);
+
+}  // namespace tc

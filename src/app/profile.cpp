@@ -1,0 +1,152 @@
+#include "tetcontact/app/profile.hpp"
+
+#include <chrono>
+#include <cstdio>
+#include <iostream>
+
+#include "tetcontact/app/setup.hpp"
+#include "tetcontact/broadphase/broadphase.hpp"
+#include "tetcontact/io/json.hpp"
+#include "tetcontact/io/ply.hpp"
+#include "tetcontact/solver/simulation.hpp"
+
+namespace tc {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+std::vector<std::string> methods_for(const std::string& method, double pairs) {
+  if (method != "all") {
+    make_broadphase(method);  // throws for an unknown name
+    return {method};
+  }
+  std::vector<std::string> out{"fcl_tree", "fcl_sap", "grid", "sweep"};
+  // The oracle only where all pairs can be tested in reasonable time.
+  if (pairs <= 2e8) out.push_back("brute_force");
+  return out;
+}
+
+int profile_case(const ProfileOptions& o) {
+  Case base = load_case(o.case_path, o.overrides);
+  Model probe = build_model(base);
+  // All cross-body node–face pairs: the denominator of the pruning ratio.
+  double all_pairs = 0.0, faces = 0.0, nodes = 0.0;
+  for (const Surface& s : probe.surfaces) faces += s.faces.size(), nodes += s.nodes.size();
+  for (const Surface& s : probe.surfaces) all_pairs += s.nodes.size() * (faces - s.faces.size());
+  Json out = Json::array();
+  if (!o.json)
+    std::printf("%-12s %10s %12s %10s %12s %12s %10s %10s %10s %8s\n", "method", "primitives",
+                "cand/step", "cont/step", "cand/all", "cont/cand", "build ms", "query ms",
+                "step ms", "share");
+  for (const std::string& m : methods_for(o.method, all_pairs)) {
+    std::vector<std::string> ov = o.overrides;
+    ov.push_back("contact.enabled=true");
+    ov.push_back("contact.broadphase=" + m);
+    const Case c = load_case(o.case_path, ov);
+    Simulation sim(build_model(c), solver_settings(c));
+    const auto t0 = Clock::now();
+    long steps = 0;
+    while (!sim.done() && steps < o.steps) sim.step(), ++steps;
+    const double wall = std::chrono::duration<double>(Clock::now() - t0).count();
+    const auto& ct = sim.contact_totals();
+    const double n = std::max(1L, steps);
+    const double cand = ct.candidates / n, cont = ct.node_face / n;
+    double bp = 0.0;
+    for (const auto& [name, sec] : sim.profile().stages)
+      if (name == "broadphase") bp = sec;
+    Json j = Json::object();
+    j["method"] = m;
+    j["primitives"] = nodes + faces;
+    j["nodes"] = nodes;
+    j["faces"] = faces;
+    j["steps"] = steps;
+    j["candidates_per_step"] = cand;
+    j["contacts_per_step"] = cont;
+    j["pruning_ratio"] = all_pairs > 0 ? cand / all_pairs : 0.0;
+    j["contacts_over_candidates"] = cand > 0 ? cont / cand : 0.0;
+    Json& sec = j["seconds_per_step"];
+    sec["build"] = ct.broadphase_build / n;
+    sec["query"] = ct.broadphase_query / n;
+    sec["broadphase"] = bp / n;
+    sec["step"] = wall / n;
+    j["broadphase_share"] = wall > 0 ? bp / wall : 0.0;
+    out.push_back(j);
+    if (!o.json)
+      std::printf("%-12s %10.0f %12.1f %10.1f %12.3e %12.3f %10.3f %10.3f %10.3f %7.1f%%\n",
+                  m.c_str(), nodes + faces, cand, cont, all_pairs > 0 ? cand / all_pairs : 0.0,
+                  cand > 0 ? cont / cand : 0.0, 1e3 * ct.broadphase_build / n,
+                  1e3 * ct.broadphase_query / n, 1e3 * wall / n, wall > 0 ? 100 * bp / wall : 0.0);
+  }
+  if (o.json) std::cout << out.dump();
+  return 0;
+}
+
+int profile_frames(const ProfileOptions& o) {
+  const TriangleSurface a = read_ply(o.frames[0]);
+  const TriangleSurface b = read_ply(o.frames[1]);
+  if (a.x.size() != b.x.size() || a.triangles != b.triangles)
+    throw PlyError(o.frames[1] + ": not the same surface as " + o.frames[0] +
+                   " (vertex count or triangles differ)");
+  const auto edges = surface_edges(a);
+  BroadphaseInput in;
+  in.self_pairs = true;
+  for (std::size_t v = 0; v < a.x.size(); ++v) {
+    in.node_box.push_back(swept_box({&a.x[v], &b.x[v]}, o.margin));
+    in.node_id.push_back(static_cast<Index>(v));
+    in.node_body.push_back(0);
+  }
+  for (const auto& t : a.triangles) {
+    in.face_box.push_back(swept_box(
+        {&a.x[t[0]], &a.x[t[1]], &a.x[t[2]], &b.x[t[0]], &b.x[t[1]], &b.x[t[2]]}, o.margin));
+    in.face_nodes.push_back(t);
+    in.face_body.push_back(0);
+  }
+  for (const auto& e : edges) {
+    in.edge_box.push_back(swept_box({&a.x[e[0]], &a.x[e[1]], &b.x[e[0]], &b.x[e[1]]}, o.margin));
+    in.edge_nodes.push_back(e);
+    in.edge_body.push_back(0);
+  }
+  const double pairs = static_cast<double>(a.x.size()) * a.triangles.size() +
+                       0.5 * static_cast<double>(edges.size()) * edges.size();
+  Json out = Json::array();
+  if (!o.json)
+    std::printf("%zu vertices, %zu triangles, %zu edges, margin %g m\n%-12s %12s %12s %10s %10s\n",
+                a.x.size(), a.triangles.size(), edges.size(), o.margin, "method", "ee_pairs",
+                "vf_pairs", "build ms", "query ms");
+  for (const std::string& m : methods_for(o.method, pairs)) {
+    auto bp = make_broadphase(m);
+    const Candidates c = bp->find(in);
+    Json j = Json::object();
+    j["method"] = m;
+    j["primitives"] = in.node_box.size() + in.face_box.size() + in.edge_box.size();
+    j["ee_pairs"] = c.edge_edge.size();
+    j["vf_pairs"] = c.node_face.size();
+    j["build_seconds"] = bp->build_seconds;
+    j["query_seconds"] = bp->query_seconds;
+    out.push_back(j);
+    if (!o.json)
+      std::printf("%-12s %12zu %12zu %10.2f %10.2f\n", m.c_str(), c.edge_edge.size(),
+                  c.node_face.size(), 1e3 * bp->build_seconds, 1e3 * bp->query_seconds);
+  }
+  if (o.json) std::cout << out.dump();
+  return 0;
+}
+
+}  // namespace
+
+int profile_command(const ProfileOptions& o) {
+  try {
+    return o.frames.empty() ? profile_case(o) : profile_frames(o);
+  } catch (const CaseError& e) {
+    std::cerr << "tetcontact: error: " << e.what() << "\n";
+  } catch (const SetupError& e) {
+    std::cerr << "tetcontact: error: " << e.what() << "\n";
+  } catch (const PlyError& e) {
+    std::cerr << "tetcontact: error: " << e.what() << "\n";
+  } catch (const std::invalid_argument& e) {
+    std::cerr << "tetcontact: error: " << e.what() << "\n";
+  }
+  return 2;
+}
+
+}  // namespace tc
