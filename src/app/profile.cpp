@@ -60,6 +60,7 @@ int profile_case(const ProfileOptions& o) {
     j["nodes"] = nodes;
     j["faces"] = faces;
     j["steps"] = steps;
+    j["broadphase_runs"] = ct.rebuilds;
     j["candidates_per_step"] = cand;
     j["contacts_per_step"] = cont;
     j["pruning_ratio"] = all_pairs > 0 ? cand / all_pairs : 0.0;

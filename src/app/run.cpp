@@ -176,6 +176,7 @@ Json summary_json(const Case& c, const Simulation& sim, const std::string& statu
     contact["max_force"] = ct.max_force;
     contact["work"] = last.contact.work;
     contact["broadphase"] = model.contact->broadphase;
+    contact["broadphase_runs"] = ct.rebuilds;
     e["contact_work"] = last.contact.work;
   }
   Json& pen = j["penetration"];

@@ -746,9 +746,12 @@ Case load_case(const std::string& path, const std::vector<std::string>& override
   // Contact between bodies.
   if (const YAML::Node s = root["contact"]) {
     r.keys(s, "contact",
-           {"enabled", "broadphase", "margin", "passes", "order", "normal", "friction", "pairs"});
+           {"enabled", "broadphase", "margin", "passes", "order", "normal", "friction", "pairs",
+            "binding_lists"});
     c.contact = s["enabled"] ? r.boolean(s["enabled"], "contact.enabled") : true;
     ContactSettings& cs = c.contact_settings;
+    if (s["binding_lists"])
+      cs.binding_lists = r.boolean(s["binding_lists"], "contact.binding_lists");
     if (s["broadphase"]) {
       cs.broadphase = r.string(s["broadphase"], "contact.broadphase");
       const auto& names = broadphase_names();

@@ -38,24 +38,68 @@ NodeFaceContact::NodeFaceContact(const Model& model, const ContactSettings& sett
   for (const Face& f : faces_) input_.face_nodes.push_back(f);
   input_.node_box.resize(nodes_.size());
   input_.face_box.resize(faces_.size());
+  // Reach of the binding lists: 0.2 of the mean tet edge over all bodies.
+  double dx = 0.0;
+  for (const Surface& s : model.surfaces) dx += s.mean_edge_length;
+  reach_ = model.surfaces.empty() ? 0.0 : 0.2 * dx / static_cast<double>(model.surfaces.size());
+}
+
+// The box of the region where detect() accepts a node for face f, at xⁿ and x*: the prism
+// from the face down to the altitude of its tet (behind_face's layer), widened by the rim
+// tolerance. Boxes that hold all of it make the contacts found independent of how much the
+// broadphase boxes are enlarged.
+Box NodeFaceContact::layer_box(Index f, const State& st, double margin) const {
+  const Face& k = faces_[f];
+  const Tet& tet = model_.mesh.tets[face_tet_[f]];
+  Box box;
+  bool first = true;
+  double widen = 0.0;
+  for (const std::vector<Vec3>* x : {&st.x, &st.x_star}) {
+    const Vec3 &a = (*x)[k[0]], &b = (*x)[k[1]], &c = (*x)[k[2]];
+    const Vec3 n2 = (b - a).cross(c - a);  // 2A n
+    const double vol = tet_signed_volume((*x)[tet[0]], (*x)[tet[1]], (*x)[tet[2]], (*x)[tet[3]]);
+    const double nn = n2.squaredNorm();
+    const Vec3 down = nn > 0.0 ? Vec3(-6.0 * vol / nn * n2) : Vec3::Zero();  // −h n, h = 3V/A
+    for (const Vec3& p : {a, b, c, Vec3(a + down), Vec3(b + down), Vec3(c + down)}) {
+      if (first) box.lo = box.hi = p, first = false;
+      box.lo = box.lo.cwiseMin(p);
+      box.hi = box.hi.cwiseMax(p);
+    }
+    widen = std::max(widen, 1e-3 * std::sqrt(std::max({(b - a).squaredNorm(), (c - b).squaredNorm(),
+                                                       (a - c).squaredNorm()})));
+  }
+  box.lo.array() -= margin + widen;
+  box.hi.array() += margin + widen;
+  return box;
 }
 
 std::vector<ContactPoint> NodeFaceContact::detect(const State& st, ContactStepStats& stats) {
   auto t0 = Clock::now();
   const std::vector<Vec3>& x0 = st.x;
   const std::vector<Vec3>& x1 = st.x_star;
-  const double margin = settings_.margin;
-  for (std::size_t i = 0; i < nodes_.size(); ++i)
-    input_.node_box[i] = swept_box({&x0[nodes_[i]], &x1[nodes_[i]]}, margin);
-  for (std::size_t f = 0; f < faces_.size(); ++f) {
-    const Face& k = faces_[f];
-    input_.face_box[f] =
-        swept_box({&x0[k[0]], &x0[k[1]], &x0[k[2]], &x1[k[0]], &x1[k[1]], &x1[k[2]]}, margin);
+  // Binding lists stay valid while every surface node's path this step stays within the reach
+  // of where they were built: then a node and a face that meet now had boxes (enlarged by
+  // the reach) that overlapped then.
+  bool rebuild = !settings_.binding_lists || !have_lists_;
+  for (std::size_t i = 0; i < nodes_.size() && !rebuild; ++i)
+    rebuild = (x1[nodes_[i]] - anchor_[i]).squaredNorm() > reach_ * reach_ ||
+              (x0[nodes_[i]] - anchor_[i]).squaredNorm() > reach_ * reach_;
+  stats.rebuilt = rebuild;
+  stats.build_seconds = stats.query_seconds = 0.0;
+  if (rebuild) {
+    const double margin = settings_.margin + (settings_.binding_lists ? reach_ : 0.0);
+    for (std::size_t i = 0; i < nodes_.size(); ++i)
+      input_.node_box[i] = swept_box({&x0[nodes_[i]], &x1[nodes_[i]]}, margin);
+    for (std::size_t f = 0; f < faces_.size(); ++f) input_.face_box[f] = layer_box(f, st, margin);
+    candidates_ = broadphase_->find(input_);
+    anchor_.resize(nodes_.size());
+    for (std::size_t i = 0; i < nodes_.size(); ++i) anchor_[i] = x0[nodes_[i]];
+    have_lists_ = true;
+    stats.build_seconds = broadphase_->build_seconds;
+    stats.query_seconds = broadphase_->query_seconds;
   }
-  const Candidates cand = broadphase_->find(input_);
+  const Candidates& cand = candidates_;
   stats.broadphase_seconds = since(t0);
-  stats.build_seconds = broadphase_->build_seconds;
-  stats.query_seconds = broadphase_->query_seconds;
   stats.candidates = static_cast<long>(cand.node_face.size());
   t0 = Clock::now();
 

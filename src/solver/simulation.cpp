@@ -235,6 +235,7 @@ void Simulation::sample_stage() {
     ct.max_per_step = std::max(ct.max_per_step, contact_stats_.contacts);
     ct.normal_impulse += lambda;
     ct.broadphase_build += contact_stats_.build_seconds;
+    ct.rebuilds += contact_stats_.rebuilt;
     ct.broadphase_query += contact_stats_.query_seconds;
     if (lambda > 0.0) {
       if (ct.first_time < 0.0) ct.first_time = state_.t;

@@ -4,6 +4,7 @@
 #include "../test_util.hpp"
 #include "tetcontact/app/setup.hpp"
 #include "tetcontact/io/case.hpp"
+#include "tetcontact/io/json.hpp"
 
 using namespace tc;
 
@@ -416,4 +417,15 @@ TEST(CaseFile, MaterialAndWallErrors) {
        "expected auto, true or false"},
   };
   expect_errors(cases, "case-material-errors");
+}
+
+TEST(Json, MemberReferencesSurviveNewKeys) {
+  Json j = Json::object();
+  Json& first = j["first"];
+  for (int k = 0; k < 100; ++k) j["key" + std::to_string(k)] = k;
+  first["inner"] = 1.5;  // must land in "first", not elsewhere
+  const std::string out = j.dump();
+  EXPECT_NE(out.find("\"first\": {\n    \"inner\": 1.5\n  }"), std::string::npos)
+      << out.substr(0, 200);
+  EXPECT_NE(out.find("\"key99\": 99"), std::string::npos);
 }

@@ -1,6 +1,7 @@
 // A small JSON value for the run summary (ordered keys, exact doubles, null for NaN/Inf).
 #pragma once
 
+#include <deque>
 #include <map>
 #include <memory>
 #include <string>
@@ -15,7 +16,8 @@ namespace tc {
 class Json {
  public:
   using Array = std::vector<Json>;
-  using Object = std::vector<std::pair<std::string, Json>>;
+  // A deque: a reference returned by operator[] stays valid while more keys are added.
+  using Object = std::deque<std::pair<std::string, Json>>;
 
   Json() : v_(nullptr) {}
   Json(std::nullptr_t) : v_(nullptr) {}

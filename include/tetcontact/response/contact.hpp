@@ -32,12 +32,18 @@ struct ContactSettings {
   FrictionMode mode = FrictionMode::slip;  // for body pairs not listed in `pairs`
   double coefficient = 0.0;
   std::vector<PairFriction> pairs;
+  /// Seed 001's binding lists: candidates from boxes enlarged by a reach r = 0.2·dx (half of
+  /// the 0.4·dx the seed leaves between Rs and 0.75·Rmax; dx the mean tet edge), reused until
+  /// a surface node has moved r from where the lists were built. Off: the exact swept boxes
+  /// of every step.
+  bool binding_lists = true;
 };
 
 /// Per-step figures of the contact stage.
 struct ContactStepStats {
-  long candidates = 0;  // node–face pairs from the broadphase
-  long contacts = 0;    // confirmed node–face contacts
+  long candidates = 0;   // node–face pairs from the broadphase
+  long contacts = 0;     // confirmed node–face contacts
+  bool rebuilt = false;  // the candidate lists were rebuilt this step
   double broadphase_seconds = 0.0, narrowphase_seconds = 0.0;
   double build_seconds = 0.0, query_seconds = 0.0;  // the broadphase's own split
 };
@@ -59,6 +65,7 @@ class NodeFaceContact {
   const Broadphase& broadphase() const { return *broadphase_; }
 
  private:
+  Box layer_box(Index face, const State& st, double margin) const;
   const Model& model_;
   ContactSettings settings_;
   std::unique_ptr<Broadphase> broadphase_;
@@ -67,6 +74,11 @@ class NodeFaceContact {
   std::vector<Face> faces_;
   std::vector<Index> face_body_, face_tet_;
   BroadphaseInput input_;
+  // Binding lists: the candidates, the node positions they were built from, their reach.
+  Candidates candidates_;
+  std::vector<Vec3> anchor_;
+  double reach_ = 0.0;
+  bool have_lists_ = false;
 };
 
 }  // namespace tc

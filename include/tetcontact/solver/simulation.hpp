@@ -64,6 +64,7 @@ class Simulation {
     double first_time = -1.0, last_time = -1.0, max_force = 0.0;
     double normal_impulse = 0.0;                            // Σ λ over the run, N s
     double broadphase_build = 0.0, broadphase_query = 0.0;  // seconds over the run
+    long rebuilds = 0;  // times the broadphase ran (binding lists rebuilt)
   };
   /// The figures of the run that references measure (diagnostics/reference).
   RunFigures run_figures() const;
