@@ -20,7 +20,8 @@ TetMesh make_body_mesh(const BodySpec& b, std::vector<std::string>* notes) {
     case MeshSpec::Kind::cylinder:
       return make_cylinder(m.radius, m.height, m.cells_across, m.cells_axial, split);
     case MeshSpec::Kind::sphere:
-      return make_sphere(m.radius, m.cells_across, split);
+      return make_sphere(m.radius, m.cells_across, split,
+                         Grading{m.refine_toward, m.refine_factor});
     case MeshSpec::Kind::file: {
       const GmshMesh g = read_gmsh(m.file);
       if (notes)

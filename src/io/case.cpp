@@ -274,7 +274,7 @@ MeshSpec parse_mesh(const Reader& r, const YAML::Node& n, const std::string& pat
     if (cyl)
       r.keys(g, gp, {"radius", "height", "cells_across", "cells_axial", "split"});
     else
-      r.keys(g, gp, {"radius", "cells_across", "split"});
+      r.keys(g, gp, {"radius", "cells_across", "split", "refine_toward", "refine_factor"});
     m.radius = r.positive(r.require(g, gp, "radius"), join(gp, "radius"), "m");
     m.cells_across = r.count(r.require(g, gp, "cells_across"), join(gp, "cells_across"), 1, 4096);
     if (cyl) {
@@ -282,6 +282,17 @@ MeshSpec parse_mesh(const Reader& r, const YAML::Node& n, const std::string& pat
       m.cells_axial = r.count(r.require(g, gp, "cells_axial"), join(gp, "cells_axial"), 1, 4096);
     }
     m.split = parse_split(r, g, gp);
+    if (!cyl && (g["refine_toward"] || g["refine_factor"])) {
+      const YAML::Node t = r.require(g, gp, "refine_toward");
+      m.refine_toward = r.vec3(t, join(gp, "refine_toward"));
+      const Vec3 a = m.refine_toward.cwiseAbs();
+      if (!(a.sum() == 1.0 && a.maxCoeff() == 1.0))
+        r.fail(t, join(gp, "refine_toward"), "must be one of ±x, ±y, ±z, e.g. [1, 0, 0]");
+      const YAML::Node f = r.require(g, gp, "refine_factor");
+      m.refine_factor = r.number(f, join(gp, "refine_factor"));
+      if (!(m.refine_factor > 0.0 && m.refine_factor <= 1.0))
+        r.fail(f, join(gp, "refine_factor"), "must be in (0, 1]");
+    }
     if (m.split != 6)
       r.fail(g["split"], join(gp, "split"),
              "a " + kind +

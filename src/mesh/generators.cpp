@@ -150,14 +150,54 @@ TetMesh make_cylinder(double radius, double height, int cells_across, int cells_
   });
 }
 
-TetMesh make_sphere(double radius, int cells_across, HexSplit split) {
+namespace {
+
+// Stretch of one lattice coordinate p ∈ [−1, 1] with slope `a` at the clustering point:
+//   toward 0:   s(p) = p (a + (1 − a)|p|)
+//   toward ±1:  the same in the distance from that end, q = (1 ∓ p)/2 → q (a + (1 − a) q).
+// Both are monotone (s′ ≥ a > 0) and map [−1, 1] onto itself.
+double stretch(double p, double a, int end) {
+  if (end == 0) return p * (a + (1.0 - a) * std::abs(p));
+  const double q = 0.5 * (1.0 - end * p);
+  return end * (1.0 - 2.0 * q * (a + (1.0 - a) * q));
+}
+
+}  // namespace
+
+TetMesh make_sphere(double radius, int cells_across, HexSplit split, const Grading& grading) {
+  int axis = -1, end = 0;
+  if (grading.toward.squaredNorm() > 0.0) {
+    for (int d = 0; d < 3; ++d)
+      if (std::abs(grading.toward[d]) == 1.0 && grading.toward.squaredNorm() == 1.0) {
+        axis = d;
+        end = grading.toward[d] > 0 ? 1 : -1;
+      }
+    if (axis < 0) throw std::invalid_argument("sphere: refine_toward must be ±x, ±y or ±z");
+    if (!(grading.factor > 0.0 && grading.factor <= 1.0))
+      throw std::invalid_argument("sphere: refine_factor must be in (0, 1]");
+  }
+  // The clustering fades away from the pole, so that cells far from it keep their shape:
+  // along the axis with the lateral distance from it, across it with the distance from the
+  // pole's face. Each coordinate still maps [−1, 1] onto itself.
+  const auto graded = [&](const Vec3& p) {
+    if (axis < 0) return p;
+    const double a = grading.factor;
+    const int l1 = (axis + 1) % 3, l2 = (axis + 2) % 3;
+    const double lateral = std::max(std::abs(p[l1]), std::abs(p[l2]));  // 0 on the axis
+    const double along = 0.5 * (1.0 - end * p[axis]);                   // 0 at the pole's face
+    Vec3 q;
+    q[axis] = stretch(p[axis], a + (1.0 - a) * lateral, end);
+    q[l1] = stretch(p[l1], a + (1.0 - a) * along, 0);
+    q[l2] = stretch(p[l2], a + (1.0 - a) * along, 0);
+    return q;
+  };
   if (split != HexSplit::six)
     throw std::invalid_argument(
         "sphere: only split 6 is offered; 5 and 12 put slivers in the "
         "wedge-shaped cells under the surface");
   check_cells({cells_across, cells_across, cells_across}, "sphere");
   return lattice({cells_across, cells_across, cells_across}, split,
-                 [&](const Vec3& p) { return Vec3(radius * blend_to_ball(p, 3)); });
+                 [&](const Vec3& p) { return Vec3(radius * blend_to_ball(graded(p), 3)); });
 }
 
 void translate(TetMesh& mesh, const Vec3& offset) {

@@ -306,8 +306,10 @@ TEST(CaseFile, ReadmeExampleIsValid) {
   test::write_text(dir / "example.yaml", yaml);
   const Case c = load_case(dir / "example.yaml");
   EXPECT_EQ(c.name, "my-case");
-  ASSERT_EQ(c.bodies.size(), 1u);
+  ASSERT_EQ(c.bodies.size(), 2u);
   EXPECT_EQ(c.bodies[0].transform.size(), 3u);
+  EXPECT_TRUE(c.contact);
+  EXPECT_EQ(c.contact_settings.pairs.size(), 1u);
   EXPECT_EQ(c.boundary_conditions.size(), 2u);
   EXPECT_EQ(c.output.fields.size(), 9u);
   EXPECT_EQ(c.materials.size(), 4u);

@@ -272,3 +272,36 @@ TEST(Surface, FaceSharedByThreeTetsIsRejected) {
   bad.node_body.assign(6, 0);
   EXPECT_THROW(build_surfaces(bad), MeshError);
 }
+
+TEST(Generators, GradedSphereRefinesAtItsPoleWithoutSlivers) {
+  const double r = 0.005;
+  const TetMesh uniform = make_sphere(r, 12, HexSplit::six);
+  const TetMesh graded = make_sphere(r, 12, HexSplit::six, Grading{Vec3(1, 0, 0), 0.15});
+  EXPECT_GT(min_volume(graded), 0.0);
+  EXPECT_NEAR(total_volume(graded), total_volume(uniform), 0.02 * total_volume(uniform));
+  // Surface on the sphere, closed.
+  Mesh mesh;
+  add_body(mesh, "ball", graded);
+  const Surface s = build_surfaces(mesh).front();
+  EXPECT_EQ(s.euler_characteristic(), 2);
+  for (Index v : s.nodes) EXPECT_NEAR(mesh.x[v].norm(), r, 1e-15);
+  // The edge at the pole is about `factor` times the uniform one.
+  const auto pole_edge = [&](const TetMesh& m) {
+    double shortest = 1e300;
+    for (const Tet& t : m.tets)
+      for (const auto& e : k_tet_edges) {
+        const Vec3 &a = m.x[t[e[0]]], &b = m.x[t[e[1]]];
+        if ((a - Vec3(r, 0, 0)).norm() < 1e-12 || (b - Vec3(r, 0, 0)).norm() < 1e-12)
+          shortest = std::min(shortest, (a - b).norm());
+      }
+    return shortest;
+  };
+  const double ratio = pole_edge(graded) / pole_edge(uniform);
+  EXPECT_GT(ratio, 0.10);
+  EXPECT_LT(ratio, 0.25);
+  EXPECT_GT(min_dihedral(graded), 5.0);  // stretched, not flattened
+  EXPECT_THROW(make_sphere(r, 8, HexSplit::six, Grading{Vec3(1, 1, 0), 0.5}),
+               std::invalid_argument);
+  EXPECT_THROW(make_sphere(r, 8, HexSplit::six, Grading{Vec3(0, 0, -1), 0.0}),
+               std::invalid_argument);
+}

@@ -33,8 +33,10 @@ struct MeshSpec {
   int cells_across = 0;               // cylinder, sphere
   int cells_axial = 0;                // cylinder
   int split = 6;                      // 5, 6 or 12
-  std::string file;                   // file: path resolved against the case file's folder
-  std::string physical;               // file: physical volume name ("" = all tets)
+  Vec3 refine_toward = Vec3::Zero();  // sphere: grading toward a pole (±x, ±y, ±z)
+  double refine_factor = 1.0;
+  std::string file;      // file: path resolved against the case file's folder
+  std::string physical;  // file: physical volume name ("" = all tets)
 };
 
 struct TransformOp {

@@ -35,8 +35,16 @@ TetMesh make_plate(const Vec3& size, int cells_through_thickness, HexSplit split
 TetMesh make_cylinder(double radius, double height, int cells_across, int cells_axial,
                       HexSplit split);
 
+/// Grading toward one face centre of the lattice (a pole of a sphere, the centre of a
+/// cylinder's end): cells there are `factor` times the uniform size (0 < factor ≤ 1), growing
+/// smoothly away from it. `toward` is ±x, ±y or ±z (a unit axis).
+struct Grading {
+  Vec3 toward = Vec3::Zero();  // zero: uniform
+  double factor = 1.0;
+};
+
 /// Sphere: `cells_across` cells across the diameter; split must be 6.
-TetMesh make_sphere(double radius, int cells_across, HexSplit split);
+TetMesh make_sphere(double radius, int cells_across, HexSplit split, const Grading& grading = {});
 
 void translate(TetMesh& mesh, const Vec3& offset);
 /// Rotation by `radians` about `axis` (right-hand rule) through the origin.
