@@ -35,9 +35,9 @@ int profile_case(const ProfileOptions& o) {
   for (const Surface& s : probe.surfaces) all_pairs += s.nodes.size() * (faces - s.faces.size());
   Json out = Json::array();
   if (!o.json)
-    std::printf("%-12s %10s %12s %10s %12s %12s %10s %10s %10s %8s\n", "method", "primitives",
+    std::printf("%-12s %10s %11s %10s %10s %10s %9s %9s %9s %9s %9s\n", "method", "primitives",
                 "cand/step", "cont/step", "cand/all", "cont/cand", "build ms", "query ms",
-                "step ms", "share");
+                "step ms", "bp share", "contact");
   for (const std::string& m : methods_for(o.method, all_pairs)) {
     std::vector<std::string> ov = o.overrides;
     ov.push_back("contact.enabled=true");
@@ -51,9 +51,11 @@ int profile_case(const ProfileOptions& o) {
     const auto& ct = sim.contact_totals();
     const double n = std::max(1L, steps);
     const double cand = ct.candidates / n, cont = ct.node_face / n;
-    double bp = 0.0;
-    for (const auto& [name, sec] : sim.profile().stages)
+    double bp = 0.0, contact = 0.0;  // broadphase; broadphase + narrowphase + response
+    for (const auto& [name, sec] : sim.profile().stages) {
       if (name == "broadphase") bp = sec;
+      if (name == "broadphase" || name == "narrowphase" || name == "response") contact += sec;
+    }
     Json j = Json::object();
     j["method"] = m;
     j["primitives"] = nodes + faces;
@@ -71,12 +73,14 @@ int profile_case(const ProfileOptions& o) {
     sec["broadphase"] = bp / n;
     sec["step"] = wall / n;
     j["broadphase_share"] = wall > 0 ? bp / wall : 0.0;
+    j["contact_share"] = wall > 0 ? contact / wall : 0.0;
     out.push_back(j);
     if (!o.json)
-      std::printf("%-12s %10.0f %12.1f %10.1f %12.3e %12.3f %10.3f %10.3f %10.3f %7.1f%%\n",
+      std::printf("%-12s %10.0f %11.1f %10.1f %10.3e %10.3f %9.3f %9.3f %9.3f %8.1f%% %8.1f%%\n",
                   m.c_str(), nodes + faces, cand, cont, all_pairs > 0 ? cand / all_pairs : 0.0,
                   cand > 0 ? cont / cand : 0.0, 1e3 * ct.broadphase_build / n,
-                  1e3 * ct.broadphase_query / n, 1e3 * wall / n, wall > 0 ? 100 * bp / wall : 0.0);
+                  1e3 * ct.broadphase_query / n, 1e3 * wall / n, wall > 0 ? 100 * bp / wall : 0.0,
+                  wall > 0 ? 100 * contact / wall : 0.0);
   }
   if (o.json) std::cout << out.dump();
   return 0;

@@ -118,3 +118,16 @@ TEST(Validation, BindingListsGiveIdenticalResults) {
   };
   EXPECT_LT(runs(with), runs(without) / 2);  // the lists are reused
 }
+
+// Hertz: the contact time within 10 % at the default (graded) mesh. The peak force is recorded,
+// not asserted: it is 17 % high at this mesh (linear tets too stiff; README, issue note).
+TEST(Validation, HertzSpheresContactTime) {
+  const Outcome o = run_case("data/cases/hertz-spheres.yaml");
+  ASSERT_EQ(o.refs.size(), 2u);
+  EXPECT_TRUE(o.refs[0].pass) << "contact time " << o.refs[0].measured << " s, error "
+                              << 100 * o.refs[0].relative_error << " %";
+  ::testing::Test::RecordProperty("contact_time", std::to_string(o.refs[0].measured));
+  ::testing::Test::RecordProperty("peak_force", std::to_string(o.refs[1].measured));
+  EXPECT_LT(o.balance_error_max, 0.01);
+  EXPECT_LT(o.momentum_error, 1e-12);
+}
