@@ -130,6 +130,13 @@ class Reader {
     return v;
   }
 
+  // Calls f(entry, "path.i") for each entry of a list.
+  template <class F>
+  void each(const YAML::Node& list, const std::string& path, const char* what, F&& f) const {
+    if (!list.IsSequence()) fail(list, path, std::string("expected a list of ") + what);
+    for (std::size_t i = 0; i < list.size(); ++i) f(list[i], join(path, std::to_string(i)));
+  }
+
   double positive(const YAML::Node& node, const std::string& path, const char* unit) const {
     const double v = number(node, path);
     if (!(v > 0.0))
@@ -597,67 +604,60 @@ Case load_case(const std::string& path, const std::vector<std::string>& override
 
   // Boundary conditions.
   if (const YAML::Node bcs = root["boundary_conditions"]) {
-    if (!bcs.IsSequence()) r.fail(bcs, "boundary_conditions", "expected a list");
-    for (std::size_t i = 0; i < bcs.size(); ++i) {
-      const std::string p = join("boundary_conditions", std::to_string(i));
-      const YAML::Node n = bcs[i];
-      r.keys(n, p, {"body", "region", "type", "velocity", "components"});
-      BoundarySpec bc;
-      bc.key = p;
-      const YAML::Node body = r.require(n, p, "body");
-      bc.body = r.string(body, join(p, "body"));
-      if (std::none_of(c.bodies.begin(), c.bodies.end(),
-                       [&](const BodySpec& b) { return b.name == bc.body; }))
-        r.fail(body, join(p, "body"), "no body named '" + bc.body + "'");
-      if (n["region"]) bc.region = parse_region(r, n["region"], join(p, "region"));
-      const YAML::Node type = r.require(n, p, "type");
-      const std::string t = r.string(type, join(p, "type"));
-      if (t != "fixed" && t != "velocity")
-        r.fail(type, join(p, "type"), "type must be 'fixed' or 'velocity', got '" + t + "'");
-      bc.fixed = t == "fixed";
-      if (bc.fixed && n["velocity"])
-        r.fail(n["velocity"], join(p, "velocity"), "a fixed condition takes no velocity");
-      if (!bc.fixed) bc.velocity = r.vec3(r.require(n, p, "velocity"), join(p, "velocity"));
-      if (const YAML::Node comp = n["components"]) {
-        const std::string cp = join(p, "components");
-        if (!comp.IsSequence() || comp.size() == 0)
-          r.fail(comp, cp, "expected a list of components, e.g. [x, z]");
-        bc.components = {false, false, false};
-        for (std::size_t k = 0; k < comp.size(); ++k) {
-          const std::string s = r.string(comp[k], join(cp, std::to_string(k)));
-          if (s != "x" && s != "y" && s != "z")
-            r.fail(comp[k], join(cp, std::to_string(k)), "component must be x, y or z");
-          bc.components[s[0] - 'x'] = true;
-        }
-      }
-      c.boundary_conditions.push_back(bc);
-    }
+    r.each(bcs, "boundary_conditions", "boundary conditions",
+           [&](const YAML::Node& n, const std::string& p) {
+             r.keys(n, p, {"body", "region", "type", "velocity", "components"});
+             BoundarySpec bc;
+             bc.key = p;
+             const YAML::Node body = r.require(n, p, "body");
+             bc.body = r.string(body, join(p, "body"));
+             if (std::none_of(c.bodies.begin(), c.bodies.end(),
+                              [&](const BodySpec& b) { return b.name == bc.body; }))
+               r.fail(body, join(p, "body"), "no body named '" + bc.body + "'");
+             if (n["region"]) bc.region = parse_region(r, n["region"], join(p, "region"));
+             const YAML::Node type = r.require(n, p, "type");
+             const std::string t = r.string(type, join(p, "type"));
+             if (t != "fixed" && t != "velocity")
+               r.fail(type, join(p, "type"), "type must be 'fixed' or 'velocity', got '" + t + "'");
+             bc.fixed = t == "fixed";
+             if (bc.fixed && n["velocity"])
+               r.fail(n["velocity"], join(p, "velocity"), "a fixed condition takes no velocity");
+             if (!bc.fixed) bc.velocity = r.vec3(r.require(n, p, "velocity"), join(p, "velocity"));
+             if (const YAML::Node comp = n["components"]) {
+               const std::string cp = join(p, "components");
+               if (!comp.IsSequence() || comp.size() == 0)
+                 r.fail(comp, cp, "expected a list of components, e.g. [x, z]");
+               bc.components = {false, false, false};
+               for (std::size_t k = 0; k < comp.size(); ++k) {
+                 const std::string s = r.string(comp[k], join(cp, std::to_string(k)));
+                 if (s != "x" && s != "y" && s != "z")
+                   r.fail(comp[k], join(cp, std::to_string(k)), "component must be x, y or z");
+                 bc.components[s[0] - 'x'] = true;
+               }
+             }
+             c.boundary_conditions.push_back(bc);
+           });
   }
 
   // Rigid walls.
   if (const YAML::Node walls = root["walls"]) {
-    if (!walls.IsSequence()) r.fail(walls, "walls", "expected a list of walls");
-    for (std::size_t i = 0; i < walls.size(); ++i) {
-      const std::string p = join("walls", std::to_string(i));
-      const YAML::Node n = walls[i];
+    r.each(walls, "walls", "walls", [&](const YAML::Node& n, const std::string& p) {
       r.keys(n, p, {"name", "point", "normal", "friction"});
       RigidWall w;
-      w.name = n["name"] ? r.string(n["name"], join(p, "name")) : "wall-" + std::to_string(i);
+      w.name = n["name"] ? r.string(n["name"], join(p, "name"))
+                         : "wall-" + std::to_string(c.walls.size());
       w.point = r.vec3(r.require(n, p, "point"), join(p, "point"));
       w.normal = r.vec3(r.require(n, p, "normal"), join(p, "normal"));
       if (w.normal.norm() == 0.0) r.fail(n["normal"], join(p, "normal"), "normal must be non-zero");
       w.normal.normalize();
       if (n["friction"]) w.friction = r.non_negative(n["friction"], join(p, "friction"));
       c.walls.push_back(w);
-    }
+    });
   }
 
   // Reference values.
   if (const YAML::Node refs = root["reference"]) {
-    if (!refs.IsSequence()) r.fail(refs, "reference", "expected a list of reference values");
-    for (std::size_t i = 0; i < refs.size(); ++i) {
-      const std::string p = join("reference", std::to_string(i));
-      const YAML::Node n = refs[i];
+    r.each(refs, "reference", "reference values", [&](const YAML::Node& n, const std::string& p) {
       r.keys(n, p,
              {"name", "measure", "body", "axis", "component", "region", "area", "value",
               "tolerance", "source"});
@@ -723,7 +723,7 @@ Case load_case(const std::string& path, const std::vector<std::string>& override
       ref.tolerance = r.positive(r.require(n, p, "tolerance"), join(p, "tolerance"), "relative");
       if (n["source"]) ref.source = r.string(n["source"], join(p, "source"));
       c.references.push_back(ref);
-    }
+    });
   }
 
   // Output.

@@ -13,20 +13,36 @@ bool point_in_tet(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c, co
   return !outside(b, c, d) && !outside(a, d, c) && !outside(a, b, d) && !outside(a, c, b);
 }
 
+namespace {
+
+// p is on the inner side of (or within `slack` of) each edge of triangle (a, b, c) with normal
+// n: the edge test of edge e at a point outside it by s is −|e| s |n|.
+bool inside_edges(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& n,
+                  double slack) {
+  return (b - a).cross(p - a).dot(n) >= -slack && (c - b).cross(p - b).dot(n) >= -slack &&
+         (a - c).cross(p - c).dot(n) >= -slack;
+}
+
+// Whether p lies in triangle (a, b, c) assumed coplanar with it, up to a relative tolerance.
+bool in_triangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
+  const Vec3 n = (b - a).cross(c - a);
+  const double nn = n.squaredNorm();
+  return nn > 0.0 && inside_edges(p, a, b, c, n, 1e-12 * nn);  // false for a degenerate face
+}
+
+}  // namespace
+
 bool behind_face(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c, double depth) {
   const Vec3 n = (b - a).cross(c - a);
   const double nn = n.squaredNorm();
   if (nn == 0.0) return false;
   const double d = (p - a).dot(n) / std::sqrt(nn);  // signed distance, > 0 in front
   if (d > 0.0 || d < -depth) return false;
-  // Outside an edge e by a distance s, the edge test is −|e| s |n|; accept s up to 1e-3 of
-  // the longest edge, so that a node on the rim of one surface stays on the rim of the other
-  // when round-off moves it sideways.
+  // Accept points outside an edge by up to 1e-3 of the longest edge, so that a node on the
+  // rim of one surface stays on the rim of the other when round-off moves it sideways.
   const double longest =
       std::sqrt(std::max({(b - a).squaredNorm(), (c - b).squaredNorm(), (a - c).squaredNorm()}));
-  const double tol = -1e-3 * longest * longest * std::sqrt(nn);
-  return (b - a).cross(p - a).dot(n) >= tol && (c - b).cross(p - b).dot(n) >= tol &&
-         (a - c).cross(p - c).dot(n) >= tol;
+  return inside_edges(p, a, b, c, n, 1e-3 * longest * longest * std::sqrt(nn));
 }
 
 TrianglePoint closest_point_on_triangle(const Vec3& p, const Vec3& a, const Vec3& b,
@@ -66,20 +82,6 @@ TrianglePoint closest_point_on_triangle(const Vec3& p, const Vec3& a, const Vec3
   const double v = vb * denom, w = vc * denom;
   return done(1 - v - w, v, w);
 }
-
-namespace {
-
-// Whether p lies in triangle (a, b, c) assumed coplanar with it, up to a relative tolerance.
-bool in_triangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
-  const Vec3 n = (b - a).cross(c - a);
-  const double nn = n.squaredNorm();
-  if (nn == 0.0) return false;  // degenerate face
-  const double tol = -1e-12 * nn;
-  return (b - a).cross(p - a).dot(n) >= tol && (c - b).cross(p - b).dot(n) >= tol &&
-         (a - c).cross(p - c).dot(n) >= tol;
-}
-
-}  // namespace
 
 std::optional<double> vertex_face_ccd(const Vec3& p0, const Vec3& a0, const Vec3& b0,
                                       const Vec3& c0, const Vec3& p1, const Vec3& a1,
