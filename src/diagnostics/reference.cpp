@@ -1,6 +1,7 @@
 #include "tetcontact/diagnostics/reference.hpp"
 
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 namespace tc {
@@ -70,9 +71,14 @@ std::vector<ReferenceResult> evaluate_references(const std::vector<ReferenceSpec
   for (const ReferenceSpec& r : refs) {
     ReferenceResult res;
     res.spec = &r;
-    res.measured = measure(r, model, st, run);
-    res.relative_error = (res.measured - r.value) / std::abs(r.value);
-    res.pass = std::abs(res.relative_error) <= r.tolerance;
+    try {
+      res.measured = measure(r, model, st, run);
+      res.relative_error = (res.measured - r.value) / std::abs(r.value);
+      res.pass = std::abs(res.relative_error) <= r.tolerance;
+    } catch (const std::runtime_error& e) {
+      res.measured = res.relative_error = std::numeric_limits<double>::quiet_NaN();
+      res.error = e.what();
+    }
     out.push_back(res);
   }
   return out;

@@ -58,7 +58,17 @@ void OutputWriter::write_frame(const State& st, double t) {
   if (!frames_.empty() && frames_.back().first == t) return;
   char name[32];
   std::snprintf(name, sizeof name, "frame_%04zu.vtu", frames_.size());
-  write_file_atomic(dir_ + "/" + name, vtu_frame(model_, st, spec_.fields));
+  std::vector<double> depth;
+  if (probe_) {
+    Penetration p = probe_->measure(st.x);
+    penetration_max_.nodes_inside = std::max(penetration_max_.nodes_inside, p.nodes_inside);
+    penetration_max_.max_depth = std::max(penetration_max_.max_depth, p.max_depth);
+    penetration_max_.max_depth_over_h =
+        std::max(penetration_max_.max_depth_over_h, p.max_depth_over_h);
+    penetration_max_.crossings = std::max(penetration_max_.crossings, p.crossings);
+    depth = std::move(p.node_depth);
+  }
+  write_file_atomic(dir_ + "/" + name, vtu_frame(model_, st, spec_.fields, depth));
   frames_.emplace_back(t, name);
   // Keep the series current so that a run stopped midway still opens in ParaView.
   write_file_atomic(dir_ + "/case.pvd", pvd_series(frames_));

@@ -37,7 +37,8 @@ void data_array(std::string& out, const char* type, const char* name, int per_li
 
 }  // namespace
 
-std::string vtu_frame(const Model& model, const State& st, const std::vector<std::string>& fields) {
+std::string vtu_frame(const Model& model, const State& st, const std::vector<std::string>& fields,
+                      const std::vector<double>& penetration_depth) {
   const Mesh& mesh = model.mesh;
   const std::size_t n = mesh.x.size(), m = mesh.tets.size();
   std::string out;
@@ -58,6 +59,9 @@ std::string vtu_frame(const Model& model, const State& st, const std::vector<std
     data_array(out, "Float64", "velocity", 3, n, [&](std::size_t i, int c) {
       return centred_velocity(st, static_cast<Index>(i))[c];
     });
+  if (!penetration_depth.empty())
+    data_array(out, "Float64", "penetration_depth", 1, n,
+               [&](std::size_t i, int) { return penetration_depth[i]; });
   if (wants(fields, "body"))
     data_array(out, "Int32", "body", 1, n,
                [&](std::size_t i, int) { return static_cast<double>(mesh.node_body[i]); });

@@ -131,3 +131,20 @@ TEST(Validation, HertzSpheresContactTime) {
   EXPECT_LT(o.balance_error_max, 0.01);
   EXPECT_LT(o.momentum_error, 1e-12);
 }
+
+// A reference the run cannot measure is reported as missed, with the reason, and the run still
+// writes its summary (a case with contact switched off has no contact duration).
+TEST(Validation, UnmeasurableReferenceIsReportedNotFatal) {
+  test::TempDir dir("unmeasurable");
+  const auto r = test::run_cli(
+      "run '" + test::source_path("data/cases/bars-impact.yaml") +
+          "' --quiet --check --set contact.enabled=false --set end_time=1.0e-6 --out '" +
+          dir / "o" + "'",
+      dir.str());
+  EXPECT_EQ(r.code, 1);  // --check: references missed
+  const std::string summary = test::read_text(dir / "o/summary.json");
+  EXPECT_NE(summary.find("\"error\": \"reference 'contact duration': the run had no contact\""),
+            std::string::npos)
+      << summary;
+  EXPECT_NE(summary.find("\"references_pass\": false"), std::string::npos);
+}

@@ -39,6 +39,7 @@ struct ReferenceResult {
   double measured = 0.0;
   double relative_error = 0.0;  // (measured − value) / |value|
   bool pass = false;
+  std::string error;  // why it could not be measured (then measured is NaN, pass false)
 };
 
 /// Figures of the whole run that some references measure.
@@ -49,9 +50,9 @@ struct RunFigures {
   std::vector<Vec3> body_velocity;  // mass-averaged, at the end
 };
 
-/// Measures each reference on the final state and the run's figures. Throws
-/// std::runtime_error when a measure has nothing to measure (unknown body, empty region, no
-/// contact).
+/// Measures each reference on the final state and the run's figures. A reference with
+/// nothing to measure (unknown body, empty region, no contact) is reported as missed, with
+/// the reason in `error`.
 std::vector<ReferenceResult> evaluate_references(const std::vector<ReferenceSpec>& refs,
                                                  const Model& model, const State& st,
                                                  const RunFigures& run = {});

@@ -7,6 +7,7 @@
 #include <utility>
 #include <vector>
 
+#include "tetcontact/diagnostics/penetration.hpp"
 #include "tetcontact/io/case.hpp"
 #include "tetcontact/io/files.hpp"
 #include "tetcontact/solver/simulation.hpp"
@@ -24,6 +25,12 @@ class OutputWriter : public Observer {
   /// what was written is true data up to the failure.
   void close();
   std::size_t frames() const { return frames_.size(); }
+  /// Measures interpenetration at every frame (issue 5's diagnostics; off the contact path),
+  /// writes it per node as `penetration_depth`, and keeps the run's maxima.
+  void set_penetration_probe(PenetrationProbe* probe) { probe_ = probe; }
+  /// Maxima over the frames: nodes_inside, max_depth, max_depth_over_h, crossings.
+  const Penetration& penetration_max() const { return penetration_max_; }
+  bool measured_penetration() const { return probe_ != nullptr && !frames_.empty(); }
 
  private:
   void write_frame(const State& st, double t);
@@ -38,6 +45,8 @@ class OutputWriter : public Observer {
   long rows_ = 0;
   double next_frame_ = 0.0;
   std::vector<std::pair<double, std::string>> frames_;
+  PenetrationProbe* probe_ = nullptr;
+  Penetration penetration_max_;
 };
 
 }  // namespace tc

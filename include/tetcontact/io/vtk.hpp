@@ -14,7 +14,9 @@ namespace tc {
 /// body; cell data: stress (6 components xx, yy, zz, xy, yz, xz, viscosity included),
 /// pressure (EOS), von_mises, plastic_strain, internal_energy (J/m³ of reference volume),
 /// viscosity (q), body — each only when listed in `fields`.
-std::string vtu_frame(const Model& model, const State& st, const std::vector<std::string>& fields);
+/// `penetration_depth`, when not empty, is written as point data of that name.
+std::string vtu_frame(const Model& model, const State& st, const std::vector<std::string>& fields,
+                      const std::vector<double>& penetration_depth = {});
 
 /// The .pvd collection: (time, file name) per frame.
 std::string pvd_series(const std::vector<std::pair<double, std::string>>& frames);

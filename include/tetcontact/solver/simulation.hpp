@@ -46,6 +46,8 @@ class Simulation {
   bool done() const;
 
   void add_observer(Observer* observer, const std::string& module_name);
+  /// Names a stage run outside the step (listed in `modules`).
+  void add_module(const std::string& name) { modules_.push_back(name); }
 
   const State& state() const { return state_; }
   const Model& model() const { return model_; }

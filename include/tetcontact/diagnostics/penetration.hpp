@@ -1,0 +1,48 @@
+// Interpenetration of bodies, measured independently of the contact code (issue 5's
+// diagnostics stage): boundary nodes inside another body's tets, and boundary edges of one
+// body crossing boundary faces of another, decided with exact predicates (CGAL).
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include "tetcontact/broadphase/broadphase.hpp"
+#include "tetcontact/solver/model.hpp"
+
+namespace tc {
+
+struct Penetration {
+  long nodes_inside = 0;           // boundary nodes inside another body (depth > 0)
+  double max_depth = 0.0;          // m: distance of such a node to that body's surface
+  double max_depth_over_h = 0.0;   // the same over that body's mean tet edge length
+  long crossings = 0;              // boundary edges crossing another body's boundary faces
+  std::vector<double> node_depth;  // per node (0 unless inside another body), m
+};
+
+/// Exact predicates (CGAL's, in penetration_cgal.cpp): p in the closed tet (a, b, c, d);
+/// segment (p, q) passes through the closed triangle (a, b, c), its ends strictly on opposite
+/// sides of the triangle's plane (an edge lying in or touching the face does not cross it).
+bool exact_point_in_tet(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d);
+bool exact_segment_crosses_triangle(const Vec3& p, const Vec3& q, const Vec3& a, const Vec3& b,
+                                    const Vec3& c);
+
+class PenetrationProbe {
+ public:
+  explicit PenetrationProbe(const Model& model);
+  /// Measures at positions x. A node's depth is its distance to the nearest boundary face of
+  /// the body it is inside, searched within two mean edge lengths (a deeper node reports
+  /// that bound).
+  Penetration measure(const std::vector<Vec3>& x);
+
+ private:
+  const Model& model_;
+  std::unique_ptr<Broadphase> broadphase_;
+  std::vector<Index> nodes_, node_body_;
+  std::vector<Edge> edges_;
+  std::vector<Index> edge_body_;
+  std::vector<Face> faces_;
+  std::vector<Index> face_body_;
+  std::vector<double> body_h_;  // mean tet edge per body
+};
+
+}  // namespace tc

@@ -1,0 +1,103 @@
+#include "tetcontact/diagnostics/penetration.hpp"
+
+#include <algorithm>
+
+#include "tetcontact/narrowphase/vertex_face.hpp"
+
+namespace tc {
+
+PenetrationProbe::PenetrationProbe(const Model& model)
+    : model_(model), broadphase_(make_broadphase("sweep")) {
+  for (const Surface& s : model.surfaces) {
+    for (Index n : s.nodes) nodes_.push_back(n), node_body_.push_back(s.body);
+    for (const Edge& e : s.edges) edges_.push_back(e), edge_body_.push_back(s.body);
+    for (const Face& f : s.faces) faces_.push_back(f), face_body_.push_back(s.body);
+    body_h_.push_back(s.mean_edge_length);
+  }
+}
+
+Penetration PenetrationProbe::measure(const std::vector<Vec3>& x) {
+  Penetration r;
+  r.node_depth.assign(x.size(), 0.0);
+  const Mesh& mesh = model_.mesh;
+  if (mesh.bodies.size() < 2) return r;
+
+  // Boundary nodes against the tets of other bodies: the broadphase's "faces" are tets here.
+  BroadphaseInput in;
+  for (std::size_t i = 0; i < nodes_.size(); ++i) {
+    in.node_box.push_back(swept_box({&x[nodes_[i]]}, 0.0));
+    in.node_id.push_back(nodes_[i]);
+    in.node_body.push_back(node_body_[i]);
+  }
+  for (Index t = 0; t < mesh.tet_count(); ++t) {
+    const Tet& k = mesh.tets[t];
+    in.face_box.push_back(swept_box({&x[k[0]], &x[k[1]], &x[k[2]], &x[k[3]]}, 0.0));
+    in.face_nodes.push_back({k[0], k[1], k[2]});
+    in.face_body.push_back(mesh.tet_body[t]);
+  }
+  const Candidates inside = broadphase_->find(in);
+  std::vector<Index> inside_body(x.size(), -1);
+  for (const auto& [ni, t] : inside.node_face) {
+    const Index node = nodes_[ni];
+    if (inside_body[node] >= 0) continue;
+    const Tet& k = mesh.tets[t];
+    if (exact_point_in_tet(x[node], x[k[0]], x[k[1]], x[k[2]], x[k[3]]))
+      inside_body[node] = mesh.tet_body[t];
+  }
+
+  // Depth: distance to the nearest boundary face of the body the node is in, within 2h.
+  BroadphaseInput near;
+  for (std::size_t i = 0; i < nodes_.size(); ++i) {
+    const Index node = nodes_[i];
+    if (inside_body[node] < 0) continue;
+    near.node_box.push_back(swept_box({&x[node]}, 2.0 * body_h_[inside_body[node]]));
+    near.node_id.push_back(node);
+    near.node_body.push_back(node_body_[i]);
+  }
+  if (!near.node_box.empty()) {
+    for (std::size_t f = 0; f < faces_.size(); ++f) {
+      const Face& k = faces_[f];
+      near.face_box.push_back(swept_box({&x[k[0]], &x[k[1]], &x[k[2]]}, 0.0));
+      near.face_nodes.push_back(k);
+      near.face_body.push_back(face_body_[f]);
+    }
+    for (std::size_t i = 0; i < near.node_id.size(); ++i)
+      r.node_depth[near.node_id[i]] = 2.0 * body_h_[inside_body[near.node_id[i]]];
+    for (const auto& [ni, f] : broadphase_->find(near).node_face) {
+      const Index node = near.node_id[ni];
+      if (face_body_[f] != inside_body[node]) continue;
+      const Face& k = faces_[f];
+      const double d = closest_point_on_triangle(x[node], x[k[0]], x[k[1]], x[k[2]]).distance;
+      r.node_depth[node] = std::min(r.node_depth[node], d);
+    }
+    for (std::size_t i = 0; i < near.node_id.size(); ++i) {
+      const Index node = near.node_id[i];
+      r.nodes_inside += r.node_depth[node] > 0.0;
+      r.max_depth = std::max(r.max_depth, r.node_depth[node]);
+      r.max_depth_over_h =
+          std::max(r.max_depth_over_h, r.node_depth[node] / body_h_[inside_body[node]]);
+    }
+  }
+
+  // Boundary edges of one body crossing boundary faces of another.
+  BroadphaseInput cross;
+  for (std::size_t e = 0; e < edges_.size(); ++e) {
+    cross.node_box.push_back(swept_box({&x[edges_[e][0]], &x[edges_[e][1]]}, 0.0));
+    cross.node_id.push_back(edges_[e][0]);
+    cross.node_body.push_back(edge_body_[e]);
+  }
+  for (std::size_t f = 0; f < faces_.size(); ++f) {
+    const Face& k = faces_[f];
+    cross.face_box.push_back(swept_box({&x[k[0]], &x[k[1]], &x[k[2]]}, 0.0));
+    cross.face_nodes.push_back(k);
+    cross.face_body.push_back(face_body_[f]);
+  }
+  for (const auto& [e, f] : broadphase_->find(cross).node_face) {
+    const Face& k = faces_[f];
+    if (exact_segment_crosses_triangle(x[edges_[e][0]], x[edges_[e][1]], x[k[0]], x[k[1]], x[k[2]]))
+      ++r.crossings;
+  }
+  return r;
+}
+
+}  // namespace tc

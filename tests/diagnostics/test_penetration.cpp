@@ -1,0 +1,61 @@
+// The penetration diagnostics against configurations of known overlap.
+#include <gtest/gtest.h>
+
+#include "../solver/solver_fixture.hpp"
+#include "tetcontact/diagnostics/penetration.hpp"
+
+using namespace tc;
+
+namespace {
+
+Model two_cubes(double offset) {
+  Model model;
+  add_body(model.mesh, "a", make_box(Vec3(1, 1, 1), {4, 4, 4}, HexSplit::six));
+  TetMesh b = make_box(Vec3(1, 1, 1), {4, 4, 4}, HexSplit::six);
+  translate(b, Vec3(offset, 0, 0));
+  add_body(model.mesh, "b", b);
+  model.materials = {test::aluminium()};
+  model.body_material = {0, 0};
+  model.surfaces = build_surfaces(model.mesh);
+  return model;
+}
+
+}  // namespace
+
+TEST(Penetration, OverlappingCubesHaveTheirDepthAndCrossings) {
+  // b's left face at x = 0.4 is 0.1 inside a (a's right face at x = 0.5).
+  const Model m = two_cubes(0.9);
+  PenetrationProbe probe(m);
+  const Penetration p = probe.measure(m.mesh.x);
+  EXPECT_NEAR(p.max_depth, 0.1, 1e-12);
+  EXPECT_NEAR(p.max_depth_over_h, 0.1 / m.surfaces[0].mean_edge_length, 1e-12);
+  EXPECT_GT(p.nodes_inside, 0);
+  EXPECT_GT(p.crossings, 0);
+  // The deepest nodes are b's nodes on x = 0.4 away from a's sides.
+  for (Index i = m.mesh.bodies[1].node_begin; i < m.mesh.bodies[1].node_end; ++i) {
+    const Vec3& x = m.mesh.x[i];
+    if (std::abs(x.x() - 0.4) < 1e-12 && std::abs(x.y()) < 0.3 && std::abs(x.z()) < 0.3)
+      EXPECT_NEAR(p.node_depth[i], 0.1, 1e-12);
+  }
+}
+
+TEST(Penetration, TouchingAndSeparatedCubesHaveNone) {
+  for (double offset : {1.0, 1.5}) {  // faces touching exactly; apart
+    const Model m = two_cubes(offset);
+    PenetrationProbe probe(m);
+    const Penetration p = probe.measure(m.mesh.x);
+    EXPECT_EQ(p.nodes_inside, 0) << offset;
+    EXPECT_EQ(p.max_depth, 0.0) << offset;
+    EXPECT_EQ(p.crossings, 0) << offset;  // an edge lying in a touching face does not cross it
+  }
+}
+
+TEST(Penetration, ExactPredicatesOnTheBoundary) {
+  const Vec3 a(0, 0, 0), b(1, 0, 0), c(0, 1, 0), d(0, 0, 1);
+  EXPECT_TRUE(exact_point_in_tet(Vec3(0.25, 0.25, 0.25), a, b, c, d));
+  EXPECT_TRUE(exact_point_in_tet(Vec3(0.5, 0.5, 0.0), a, b, c, d));  // on a face
+  EXPECT_FALSE(exact_point_in_tet(Vec3(0.5, 0.5, 1e-300), a, b, c, d));
+  EXPECT_TRUE(exact_segment_crosses_triangle(Vec3(0.2, 0.2, -1), Vec3(0.2, 0.2, 1), a, b, c));
+  EXPECT_FALSE(exact_segment_crosses_triangle(Vec3(0.2, 0.2, 0), Vec3(0.2, 0.2, 1), a, b, c));
+  EXPECT_FALSE(exact_segment_crosses_triangle(Vec3(0.6, 0.6, -1), Vec3(0.6, 0.6, 1), a, b, c));
+}
