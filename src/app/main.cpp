@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "tetcontact/app/ccd.hpp"
 #include "tetcontact/app/profile.hpp"
 #include "tetcontact/app/run.hpp"
 
@@ -17,6 +18,7 @@ const char* k_usage =
     "commands:\n"
     "  run CASE.yaml     run a case and write its results\n"
     "  check CASE.yaml   validate a case (file, meshes, time step) without running it\n"
+    "  ccd FILE          exact continuous collision queries (../shared/ccd format)\n"
     "  profile CASE.yaml | --frames A.ply B.ply\n"
     "                    broadphase pruning and cost per method\n"
     "\n"
@@ -86,6 +88,30 @@ int main(int argc, char** argv) {
   if (cmd == "--version") {
     std::cout << "tetcontact " << TETCONTACT_VERSION << "\n";
     return 0;
+  }
+  if (cmd == "ccd") {
+    tc::CcdOptions c;
+    for (std::size_t i = 1; i < args.size(); ++i) {
+      const std::string& a = args[i];
+      if (a == "--help" || a == "-h") {
+        std::cout << "usage: tetcontact ccd FILE [--json] [--quiet]\n\n"
+                     "One query a line: TYPE [GT] 24 coordinates (ee: a0 a1 b0 b1 at t=0, then at\n"
+                     "t=1; vf: v f0 f1 f2 at t=0, then at t=1). Prints 0/1 per query, and with\n"
+                     "ground truth the false positives, false negatives and mean time per type.\n"
+                     "--json: one object {\"ee\": {...}, \"vf\": {...}}. Answers are exact.\n";
+        return 0;
+      } else if (a == "--json") {
+        c.json = true;
+      } else if (a == "--quiet") {
+        c.quiet = true;
+      } else if (!a.empty() && a[0] == '-') {
+        return usage_error("unknown option '" + a + "'", k_usage);
+      } else {
+        c.file = a;
+      }
+    }
+    if (c.file.empty()) return usage_error("no query file given", k_usage);
+    return tc::ccd_command(c);
   }
   if (cmd == "profile") {
     tc::ProfileOptions p;

@@ -1,0 +1,17 @@
+// `tetcontact ccd FILE`: exact continuous collision queries from a file (../shared/ccd format).
+#pragma once
+
+#include <string>
+
+namespace tc {
+
+struct CcdOptions {
+  std::string file;
+  bool json = false;
+  bool quiet = false;  // no per-query lines
+};
+
+/// Exit codes: 0, 2 bad input.
+int ccd_command(const CcdOptions& options);
+
+}  // namespace tc

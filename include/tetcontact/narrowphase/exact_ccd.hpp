@@ -1,0 +1,28 @@
+// Exact continuous collision queries: every point moves linearly from its position at t = 0
+// to its position at t = 1, and the answer is the exact mathematical one (touching counts; a
+// motion that stays coplanar the whole step is handled; parallel, collinear, zero-length and
+// degenerate primitives are handled).
+//
+// Method (exact rational arithmetic: every double is a rational):
+//   - the coplanarity condition det[…](t) = 0 is a polynomial of degree ≤ 3 (seed 000 eq. 13);
+//     its real roots in [0, 1] are isolated with Sturm sequences on its square-free part;
+//   - at each root the intersection test needs only the signs of a few polynomials of the
+//     coordinates; a sign at an algebraic root is 0 exactly when the polynomial shares that
+//     root (gcd), otherwise the isolating interval is refined until the sign is constant;
+//   - when the condition is identically zero (coplanar all step), the same test runs at every
+//     root of every polynomial it uses and at a rational point between consecutive ones.
+#pragma once
+
+#include <array>
+
+#include "tetcontact/mesh/mesh.hpp"
+
+namespace tc {
+
+/// Vertex–face: q = v(0), f0(0), f1(0), f2(0), v(1), f0(1), f1(1), f2(1).
+bool exact_vertex_face_ccd(const std::array<Vec3, 8>& q);
+
+/// Edge–edge: q = a0(0), a1(0), b0(0), b1(0), a0(1), a1(1), b0(1), b1(1).
+bool exact_edge_edge_ccd(const std::array<Vec3, 8>& q);
+
+}  // namespace tc

@@ -1,0 +1,390 @@
+#include "tetcontact/narrowphase/exact_ccd.hpp"
+
+#include <gmpxx.h>
+
+#include <algorithm>
+#include <functional>
+#include <vector>
+
+namespace tc {
+namespace {
+
+using Q = mpq_class;
+
+// A polynomial in t with rational coefficients, c[k] the coefficient of t^k.
+struct Poly {
+  std::vector<Q> c;
+  Poly() = default;
+  explicit Poly(std::vector<Q> v) : c(std::move(v)) { trim(); }
+  void trim() {
+    while (!c.empty() && c.back() == 0) c.pop_back();
+  }
+  int degree() const { return static_cast<int>(c.size()) - 1; }  // −1 for the zero polynomial
+  bool zero() const { return c.empty(); }
+  Q operator()(const Q& t) const {
+    Q r = 0;
+    for (std::size_t k = c.size(); k-- > 0;) r = r * t + c[k];
+    return r;
+  }
+};
+
+Poly operator+(const Poly& a, const Poly& b) {
+  std::vector<Q> r(std::max(a.c.size(), b.c.size()));
+  for (std::size_t k = 0; k < a.c.size(); ++k) r[k] += a.c[k];
+  for (std::size_t k = 0; k < b.c.size(); ++k) r[k] += b.c[k];
+  return Poly(r);
+}
+Poly operator-(const Poly& a, const Poly& b) {
+  std::vector<Q> r(std::max(a.c.size(), b.c.size()));
+  for (std::size_t k = 0; k < a.c.size(); ++k) r[k] += a.c[k];
+  for (std::size_t k = 0; k < b.c.size(); ++k) r[k] -= b.c[k];
+  return Poly(r);
+}
+Poly operator*(const Poly& a, const Poly& b) {
+  if (a.zero() || b.zero()) return Poly();
+  std::vector<Q> r(a.c.size() + b.c.size() - 1);
+  for (std::size_t i = 0; i < a.c.size(); ++i)
+    for (std::size_t j = 0; j < b.c.size(); ++j) r[i + j] += a.c[i] * b.c[j];
+  return Poly(r);
+}
+Poly derivative(const Poly& a) {
+  std::vector<Q> r;
+  for (std::size_t k = 1; k < a.c.size(); ++k) r.push_back(a.c[k] * static_cast<long>(k));
+  return Poly(r);
+}
+// Remainder of a divided by b (b ≠ 0).
+Poly remainder(Poly a, const Poly& b) {
+  while (!a.zero() && a.degree() >= b.degree()) {
+    const Q f = a.c.back() / b.c.back();
+    const int shift = a.degree() - b.degree();
+    for (std::size_t k = 0; k < b.c.size(); ++k) a.c[k + shift] -= f * b.c[k];
+    a.c.back() = 0;  // exact cancellation of the leading term
+    a.trim();
+  }
+  return a;
+}
+Poly quotient(Poly a, const Poly& b) {
+  std::vector<Q> q(std::max(0, a.degree() - b.degree() + 1));
+  while (!a.zero() && a.degree() >= b.degree()) {
+    const Q f = a.c.back() / b.c.back();
+    const int shift = a.degree() - b.degree();
+    q[shift] = f;
+    for (std::size_t k = 0; k < b.c.size(); ++k) a.c[k + shift] -= f * b.c[k];
+    a.c.back() = 0;
+    a.trim();
+  }
+  return Poly(q);
+}
+Poly gcd(Poly a, Poly b) {
+  while (!b.zero()) {
+    Poly r = remainder(a, b);
+    a = std::move(b);
+    b = std::move(r);
+  }
+  return a;
+}
+int sign(const Q& q) {
+  return sgn(q);
+}
+
+// Number of distinct real roots in (lo, hi] of a square-free p, from its Sturm sequence.
+int sturm_count(const std::vector<Poly>& seq, const Q& lo, const Q& hi) {
+  const auto changes = [&](const Q& t) {
+    int n = 0, last = 0;
+    for (const Poly& p : seq) {
+      const int s = sign(p(t));
+      if (s == 0) continue;
+      if (last != 0 && s != last) ++n;
+      last = s;
+    }
+    return n;
+  };
+  return changes(lo) - changes(hi);
+}
+std::vector<Poly> sturm_sequence(const Poly& p) {
+  std::vector<Poly> seq{p, derivative(p)};
+  while (!seq.back().zero() && seq.back().degree() > 0) {
+    Poly r = remainder(seq[seq.size() - 2], seq.back());
+    for (Q& x : r.c) x = -x;
+    if (r.zero()) break;
+    seq.push_back(r);
+  }
+  return seq;
+}
+
+// A point of [0, 1] where signs are asked: a rational, or the single root of a square-free q in
+// the open interval (lo, hi).
+struct Point {
+  bool rational = true;
+  Q t;
+  Poly q;
+  Q lo, hi;
+};
+
+// Sign of g at the point, exactly.
+int sign_at(const Poly& g, Point& pt) {
+  if (g.zero()) return 0;
+  if (pt.rational) return sign(g(pt.t));
+  const Poly h = gcd(pt.q, g);
+  if (h.degree() >= 1 && sign(h(pt.lo)) * sign(h(pt.hi)) < 0) return 0;  // shares the root
+  const std::vector<Poly> seq = sturm_sequence(g);
+  for (;;) {
+    const int a = sign(g(pt.lo)), b = sign(g(pt.hi));
+    if (a != 0 && a == b && sturm_count(seq, pt.lo, pt.hi) == 0) return a;
+    // Bisect, keeping q's sign change.
+    const Q mid = (pt.lo + pt.hi) / 2;
+    const int sm = sign(pt.q(mid));
+    if (sm == 0) {  // the root itself is rational after all
+      pt.rational = true;
+      pt.t = mid;
+      return sign(g(mid));
+    }
+    if (sm == sign(pt.q(pt.lo)))
+      pt.lo = mid;
+    else
+      pt.hi = mid;
+  }
+}
+
+// Halves an irrational point's interval, keeping its root; false if the root turned out to be
+// the rational midpoint (the point is then rational).
+void bisect(Point& pt) {
+  const Q mid = (pt.lo + pt.hi) / 2;
+  const int sm = sign(pt.q(mid));
+  if (sm == 0) {
+    pt.rational = true;
+    pt.t = mid;
+  } else if (sm == sign(pt.q(pt.lo))) {
+    pt.lo = mid;
+  } else {
+    pt.hi = mid;
+  }
+}
+
+// The real roots of p (not identically zero) in [0, 1], as points.
+std::vector<Point> roots_in_unit(const Poly& p) {
+  std::vector<Point> out;
+  if (p.degree() < 1) return out;
+  const Poly sf = quotient(p, gcd(p, derivative(p)));  // square-free part
+  for (const Q& end : {Q(0), Q(1)})
+    if (sf(end) == 0) out.push_back(Point{true, end, {}, {}, {}});
+  const std::vector<Poly> seq = sturm_sequence(sf);
+  // Isolate the roots in the open interval (0, 1) by bisection on Sturm counts.
+  std::vector<std::pair<Q, Q>> todo{{Q(0), Q(1)}};
+  while (!todo.empty()) {
+    auto [lo, hi] = todo.back();
+    todo.pop_back();
+    int n = sturm_count(seq, lo, hi);
+    if (sf(hi) == 0) --n;  // (lo, hi] counted a root at hi: an endpoint, handled apart
+    if (n <= 0) continue;
+    if (n == 1 && sf(lo) != 0 && sf(hi) != 0 && sign(sf(lo)) != sign(sf(hi))) {
+      out.push_back(Point{false, {}, sf, lo, hi});
+      continue;
+    }
+    const Q mid = (lo + hi) / 2;
+    if (sf(mid) == 0) out.push_back(Point{true, mid, {}, {}, {}});
+    todo.push_back({lo, mid});
+    todo.push_back({mid, hi});
+  }
+  return out;
+}
+
+// Polynomial vectors: a point moving linearly, x(t) = x0 + t (x1 − x0).
+using PVec = std::array<Poly, 3>;
+PVec moving(const Vec3& x0, const Vec3& x1) {
+  PVec v;
+  for (int d = 0; d < 3; ++d) v[d] = Poly({Q(x0[d]), Q(x1[d]) - Q(x0[d])});
+  return v;
+}
+PVec sub(const PVec& a, const PVec& b) {
+  return {a[0] - b[0], a[1] - b[1], a[2] - b[2]};
+}
+PVec cross(const PVec& a, const PVec& b) {
+  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+}
+Poly dot(const PVec& a, const PVec& b) {
+  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+bool is_zero_at(const PVec& v, Point& pt) {
+  return sign_at(v[0], pt) == 0 && sign_at(v[1], pt) == 0 && sign_at(v[2], pt) == 0;
+}
+
+// p on the closed segment [a, b] at the point (collinearity and betweenness; a = b: p = a).
+bool on_segment(const PVec& p, const PVec& a, const PVec& b, Point& pt) {
+  const PVec ab = sub(b, a), ap = sub(p, a);
+  if (is_zero_at(ab, pt)) return is_zero_at(ap, pt);
+  if (!is_zero_at(cross(ab, ap), pt)) return false;
+  return sign_at(dot(ap, ab), pt) >= 0 && sign_at(dot(sub(p, b), sub(a, b)), pt) >= 0;
+}
+
+// Coplanar closed segments [a, b] and [c, d] meet at the point.
+bool segments_meet(const PVec& a, const PVec& b, const PVec& c, const PVec& d, Point& pt) {
+  const PVec u = sub(b, a), v = sub(d, c);
+  const PVec m = cross(u, v);
+  if (!is_zero_at(m, pt)) {  // not parallel: proper orientation tests in the plane
+    const int o1 = sign_at(dot(cross(u, sub(c, a)), m), pt);
+    const int o2 = sign_at(dot(cross(u, sub(d, a)), m), pt);
+    const int o3 = sign_at(dot(cross(v, sub(a, c)), m), pt);
+    const int o4 = sign_at(dot(cross(v, sub(b, c)), m), pt);
+    return o1 * o2 <= 0 && o3 * o4 <= 0;
+  }
+  // Parallel, collinear or degenerate: some endpoint lies on the other segment.
+  return on_segment(a, c, d, pt) || on_segment(b, c, d, pt) || on_segment(c, a, b, pt) ||
+         on_segment(d, a, b, pt);
+}
+
+// Coplanar point p in the closed triangle (a, b, c) at the point.
+bool point_in_triangle(const PVec& p, const PVec& a, const PVec& b, const PVec& c, Point& pt) {
+  const PVec n = cross(sub(b, a), sub(c, a));
+  if (is_zero_at(n, pt))  // degenerate triangle: a segment or a point
+    return on_segment(p, a, b, pt) || on_segment(p, b, c, pt) || on_segment(p, c, a, pt);
+  return sign_at(dot(cross(sub(b, a), sub(p, a)), n), pt) >= 0 &&
+         sign_at(dot(cross(sub(c, b), sub(p, b)), n), pt) >= 0 &&
+         sign_at(dot(cross(sub(a, c), sub(p, c)), n), pt) >= 0;
+}
+
+// ∃ t ∈ [0, 1]: coplanar(t) ∧ test(t). `polys` are the polynomials the test's signs depend on
+// (their roots split [0, 1] where the coplanarity holds identically).
+bool exists(const Poly& coplanar, const std::vector<Poly>& polys,
+            const std::function<bool(Point&)>& test) {
+  if (!coplanar.zero()) {
+    for (Point& pt : roots_in_unit(coplanar))
+      if (test(pt)) return true;
+    return false;
+  }
+  // Coplanar all step: the test's outcome is constant between consecutive roots of its
+  // polynomials. Each irrational root's interval is shrunk until no other polynomial has a
+  // root in it (but the root itself), so that its rational ends lie in the neighbouring
+  // intervals; then every root, every cut and a point between consecutive cuts is tried.
+  std::vector<Poly> squarefree;
+  for (const Poly& g : polys)
+    if (g.degree() >= 1) squarefree.push_back(quotient(g, gcd(g, derivative(g))));
+  std::vector<Point> pts;
+  for (const Poly& g : squarefree)
+    for (Point& r : roots_in_unit(g)) pts.push_back(r);
+  for (Point& r : pts) {
+    while (!r.rational) {
+      bool clean = true;
+      for (const Poly& g : squarefree) {
+        if (g(r.lo) == 0 || g(r.hi) == 0) {
+          clean = false;
+          break;
+        }
+        const int inside = sturm_count(sturm_sequence(g), r.lo, r.hi);
+        const Poly h = gcd(r.q, g);
+        const bool shares = h.degree() >= 1 && sign(h(r.lo)) * sign(h(r.hi)) < 0;
+        if (inside > (shares ? 1 : 0)) {
+          clean = false;
+          break;
+        }
+      }
+      if (clean) break;
+      bisect(r);
+    }
+  }
+  std::vector<Q> cuts{Q(0), Q(1)};
+  for (Point& r : pts) {
+    if (r.rational) {
+      cuts.push_back(r.t);
+    } else {
+      cuts.push_back(r.lo);
+      cuts.push_back(r.hi);
+    }
+  }
+  for (Point& r : pts)
+    if (test(r)) return true;
+  std::sort(cuts.begin(), cuts.end());
+  cuts.erase(std::unique(cuts.begin(), cuts.end()), cuts.end());
+  for (std::size_t i = 0; i < cuts.size(); ++i) {
+    Point a{true, cuts[i], {}, {}, {}};
+    if (test(a)) return true;
+    if (i + 1 < cuts.size()) {
+      Point mid{true, (cuts[i] + cuts[i + 1]) / 2, {}, {}, {}};
+      if (test(mid)) return true;
+    }
+  }
+  return false;
+}
+
+// The polynomials the predicates above may ask a sign of, in any branch, without repeats.
+void add(std::vector<Poly>& out, const Poly& p) {
+  if (p.degree() < 1) return;  // constants split nothing
+  for (const Poly& q : out)
+    if (q.c == p.c) return;
+  out.push_back(p);
+}
+void add(std::vector<Poly>& out, const PVec& v) {
+  for (const Poly& p : v) add(out, p);
+}
+void on_segment_polys(const PVec& p, const PVec& a, const PVec& b, std::vector<Poly>& out) {
+  const PVec ab = sub(b, a), ap = sub(p, a);
+  add(out, ab);
+  add(out, ap);
+  add(out, cross(ab, ap));
+  add(out, dot(ap, ab));
+  add(out, dot(sub(p, b), sub(a, b)));
+}
+std::vector<Poly> segment_polys(const PVec& a, const PVec& b, const PVec& c, const PVec& d) {
+  std::vector<Poly> out;
+  const PVec u = sub(b, a), v = sub(d, c), m = cross(u, v);
+  add(out, m);
+  add(out, dot(cross(u, sub(c, a)), m));
+  add(out, dot(cross(u, sub(d, a)), m));
+  add(out, dot(cross(v, sub(a, c)), m));
+  add(out, dot(cross(v, sub(b, c)), m));
+  on_segment_polys(a, c, d, out);
+  on_segment_polys(b, c, d, out);
+  on_segment_polys(c, a, b, out);
+  on_segment_polys(d, a, b, out);
+  return out;
+}
+std::vector<Poly> triangle_polys(const PVec& p, const PVec& a, const PVec& b, const PVec& c) {
+  std::vector<Poly> out;
+  const PVec n = cross(sub(b, a), sub(c, a));
+  add(out, n);
+  add(out, dot(cross(sub(b, a), sub(p, a)), n));
+  add(out, dot(cross(sub(c, b), sub(p, b)), n));
+  add(out, dot(cross(sub(a, c), sub(p, c)), n));
+  on_segment_polys(p, a, b, out);
+  on_segment_polys(p, b, c, out);
+  on_segment_polys(p, c, a, out);
+  return out;
+}
+
+// Exact filter: the boxes of the two primitives over the step (their points at both ends) are
+// disjoint. The coordinates are doubles and comparisons of doubles are exact.
+bool boxes_apart(const std::array<Vec3, 8>& q, std::array<int, 8> side) {
+  for (int d = 0; d < 3; ++d) {
+    double lo[2] = {1e308, 1e308}, hi[2] = {-1e308, -1e308};
+    for (int k = 0; k < 8; ++k) {
+      lo[side[k]] = std::min(lo[side[k]], q[k][d]);
+      hi[side[k]] = std::max(hi[side[k]], q[k][d]);
+    }
+    if (hi[0] < lo[1] || hi[1] < lo[0]) return true;
+  }
+  return false;
+}
+
+}  // namespace
+
+bool exact_vertex_face_ccd(const std::array<Vec3, 8>& q) {
+  if (boxes_apart(q, {0, 1, 1, 1, 0, 1, 1, 1})) return false;
+  const PVec p = moving(q[0], q[4]), a = moving(q[1], q[5]), b = moving(q[2], q[6]),
+             c = moving(q[3], q[7]);
+  const Poly coplanar = dot(cross(sub(b, a), sub(c, a)), sub(p, a));
+  std::vector<Poly> polys;
+  if (coplanar.zero()) polys = triangle_polys(p, a, b, c);
+  return exists(coplanar, polys, [&](Point& pt) { return point_in_triangle(p, a, b, c, pt); });
+}
+
+bool exact_edge_edge_ccd(const std::array<Vec3, 8>& q) {
+  if (boxes_apart(q, {0, 0, 1, 1, 0, 0, 1, 1})) return false;
+  const PVec a = moving(q[0], q[4]), b = moving(q[1], q[5]), c = moving(q[2], q[6]),
+             d = moving(q[3], q[7]);
+  const Poly coplanar = dot(cross(sub(b, a), sub(c, a)), sub(d, a));
+  std::vector<Poly> polys;
+  if (coplanar.zero()) polys = segment_polys(a, b, c, d);
+  return exists(coplanar, polys, [&](Point& pt) { return segments_meet(a, b, c, d, pt); });
+}
+
+}  // namespace tc

@@ -1,0 +1,106 @@
+// Exact CCD: known answers, degenerate configurations, and the shared query set.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <random>
+
+#include "../test_util.hpp"
+#include "tetcontact/narrowphase/exact_ccd.hpp"
+#include "tetcontact/narrowphase/vertex_face.hpp"
+
+using namespace tc;
+
+namespace {
+
+std::array<Vec3, 8> vf(const Vec3& p0, const Vec3& a0, const Vec3& b0, const Vec3& c0,
+                       const Vec3& p1, const Vec3& a1, const Vec3& b1, const Vec3& c1) {
+  return {p0, a0, b0, c0, p1, a1, b1, c1};
+}
+
+}  // namespace
+
+TEST(ExactCcd, VertexFaceKnownAnswers) {
+  const Vec3 a(0, 0, 0), b(1, 0, 0), c(0, 1, 0);
+  // Crossing at t = 0.3; beside; parallel above.
+  EXPECT_TRUE(
+      exact_vertex_face_ccd(vf(Vec3(0.2, 0.2, 0.3), a, b, c, Vec3(0.2, 0.2, -0.7), a, b, c)));
+  EXPECT_FALSE(
+      exact_vertex_face_ccd(vf(Vec3(0.8, 0.8, 0.3), a, b, c, Vec3(0.8, 0.8, -0.7), a, b, c)));
+  EXPECT_FALSE(
+      exact_vertex_face_ccd(vf(Vec3(0.2, 0.2, 0.1), a, b, c, Vec3(0.3, 0.2, 0.1), a, b, c)));
+  // Touching exactly at t = 1 (counts), and at t = 0 on an edge (counts).
+  EXPECT_TRUE(exact_vertex_face_ccd(vf(Vec3(0.2, 0.2, 1), a, b, c, Vec3(0.2, 0.2, 0), a, b, c)));
+  EXPECT_TRUE(exact_vertex_face_ccd(vf(Vec3(0.5, 0, 0), a, b, c, Vec3(0.5, -1, 1), a, b, c)));
+  // Stopping a hair above the face: no contact, however small the gap.
+  EXPECT_FALSE(
+      exact_vertex_face_ccd(vf(Vec3(0.2, 0.2, 1), a, b, c, Vec3(0.2, 0.2, 0x1p-1000), a, b, c)));
+  // Coplanar all step, sliding into the triangle from outside: a collision.
+  EXPECT_TRUE(exact_vertex_face_ccd(vf(Vec3(-1, 0.2, 0), a, b, c, Vec3(0.2, 0.2, 0), a, b, c)));
+  // Coplanar all step, sliding past it: none.
+  EXPECT_FALSE(exact_vertex_face_ccd(vf(Vec3(-1, -0.2, 0), a, b, c, Vec3(2, -0.2, 0), a, b, c)));
+  // A degenerate (collinear) triangle swept over the point.
+  EXPECT_TRUE(
+      exact_vertex_face_ccd(vf(Vec3(0.5, 0.5, 0), Vec3(0, 0, -1), Vec3(1, 1, -1), Vec3(2, 2, -1),
+                               Vec3(0.5, 0.5, 0), Vec3(0, 0, 1), Vec3(1, 1, 1), Vec3(2, 2, 1))));
+}
+
+TEST(ExactCcd, EdgeEdgeKnownAnswers) {
+  // Perpendicular edges passing through each other at t = 0.5.
+  const auto q = [](double z0, double z1) {
+    return std::array<Vec3, 8>{Vec3(-1, 0, 0), Vec3(1, 0, 0), Vec3(0, -1, z0), Vec3(0, 1, z0),
+                               Vec3(-1, 0, 0), Vec3(1, 0, 0), Vec3(0, -1, z1), Vec3(0, 1, z1)};
+  };
+  EXPECT_TRUE(exact_edge_edge_ccd(q(1, -1)));
+  EXPECT_TRUE(exact_edge_edge_ccd(q(1, 0)));          // touching at t = 1
+  EXPECT_FALSE(exact_edge_edge_ccd(q(1, 0x1p-900)));  // stopping just short
+  // Parallel edges sliding along one line into overlap (coplanar all step): a collision.
+  EXPECT_TRUE(
+      exact_edge_edge_ccd({Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(3, 0, 0), Vec3(4, 0, 0),
+                           Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0.5, 0, 0), Vec3(1.5, 0, 0)}));
+  // Parallel edges one unit apart, never meeting.
+  EXPECT_FALSE(
+      exact_edge_edge_ccd({Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(1, 1, 0),
+                           Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0.5, 1, 0), Vec3(1.5, 1, 0)}));
+  // A zero-length edge (a point) passing through the other edge.
+  EXPECT_TRUE(
+      exact_edge_edge_ccd({Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0.5, 0, 1), Vec3(0.5, 0, 1),
+                           Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0.5, 0, -1), Vec3(0.5, 0, -1)}));
+}
+
+// Generic random queries (no degeneracy): the exact answer and the floating-point crossing
+// test agree.
+TEST(ExactCcd, AgreesWithFloatingPointOnGenericQueries) {
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(-1, 1);
+  int hits = 0;
+  for (int k = 0; k < 300; ++k) {
+    std::array<Vec3, 8> q;
+    for (Vec3& p : q) p = Vec3(u(rng), u(rng), u(rng));
+    const bool exact = exact_vertex_face_ccd(q);
+    const bool fp = vertex_face_ccd(q[0], q[1], q[2], q[3], q[4], q[5], q[6], q[7]).has_value();
+    EXPECT_EQ(exact, fp) << k;
+    hits += exact;
+  }
+  EXPECT_GT(hits, 10);
+}
+
+// ../shared/ccd/handcrafted.txt: 7,279 degenerate queries with exact ground truth.
+TEST(ExactCcd, SharedQuerySetHasNoFalsePositivesOrNegatives) {
+  const std::string file = test::source_path("../shared/ccd/handcrafted.txt");
+  if (!std::filesystem::exists(file)) GTEST_SKIP() << "no " << file;
+  test::TempDir dir("ccd-shared");
+  const auto r = test::run_cli("ccd '" + file + "' --json", dir.str());
+  ASSERT_EQ(r.code, 0) << r.err;
+  for (const char* key :
+       {"\"queries\": 4194", "\"queries\": 3085", "\"collisions\": 187", "\"collisions\": 248"})
+    EXPECT_NE(r.out.find(key), std::string::npos) << key << "\n" << r.out;
+  std::size_t fp = 0, fn = 0;
+  for (std::size_t at = r.out.find("\"false_positives\": 0"); at != std::string::npos;
+       at = r.out.find("\"false_positives\": 0", at + 1))
+    ++fp;
+  for (std::size_t at = r.out.find("\"false_negatives\": 0"); at != std::string::npos;
+       at = r.out.find("\"false_negatives\": 0", at + 1))
+    ++fn;
+  EXPECT_EQ(fp, 2u) << r.out;  // both types
+  EXPECT_EQ(fn, 2u) << r.out;
+}
