@@ -167,6 +167,8 @@ Json summary_json(const Case& c, const Simulation& sim, const std::string& statu
   if (sim.has_contact()) {
     const auto& ct = sim.contact_totals();
     contact["node_face"] = ct.node_face;
+    contact["edge_edge"] = model.contact->edge_edge ? Json(ct.edge_edge) : Json();
+    contact["edge_candidates"] = model.contact->edge_edge ? Json(ct.edge_candidates) : Json();
     contact["candidates"] = ct.candidates;
     contact["max_contacts_per_step"] = ct.max_per_step;
     contact["steps_in_contact"] = ct.steps_in_contact;
@@ -321,6 +323,7 @@ int run_case(const RunOptions& o) {
     pen["max_depth"] = pm.max_depth;
     pen["max_depth_over_h"] = pm.max_depth_over_h;
     pen["max_crossings"] = pm.crossings;
+    pen["max_crossing_depth"] = pm.max_crossing_depth;
     pen["max_nodes_inside"] = pm.nodes_inside;
     pen["measured_at"] = "output frames";
   }

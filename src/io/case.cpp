@@ -758,9 +758,10 @@ Case load_case(const std::string& path, const std::vector<std::string>& override
   if (const YAML::Node s = root["contact"]) {
     r.keys(s, "contact",
            {"enabled", "broadphase", "margin", "passes", "order", "normal", "friction", "pairs",
-            "binding_lists"});
+            "binding_lists", "edge_edge"});
     c.contact = s["enabled"] ? r.boolean(s["enabled"], "contact.enabled") : true;
     ContactSettings& cs = c.contact_settings;
+    if (s["edge_edge"]) cs.edge_edge = r.boolean(s["edge_edge"], "contact.edge_edge");
     if (s["binding_lists"])
       cs.binding_lists = r.boolean(s["binding_lists"], "contact.binding_lists");
     if (s["broadphase"]) {

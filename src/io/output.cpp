@@ -66,6 +66,8 @@ void OutputWriter::write_frame(const State& st, double t) {
     penetration_max_.max_depth_over_h =
         std::max(penetration_max_.max_depth_over_h, p.max_depth_over_h);
     penetration_max_.crossings = std::max(penetration_max_.crossings, p.crossings);
+    penetration_max_.max_crossing_depth =
+        std::max(penetration_max_.max_crossing_depth, p.max_crossing_depth);
     depth = std::move(p.node_depth);
   }
   write_file_atomic(dir_ + "/" + name, vtu_frame(model_, st, spec_.fields, depth));

@@ -83,6 +83,41 @@ TrianglePoint closest_point_on_triangle(const Vec3& p, const Vec3& a, const Vec3
   return done(1 - v - w, v, w);
 }
 
+SegmentPoints closest_points_on_segments(const Vec3& a0, const Vec3& a1, const Vec3& b0,
+                                         const Vec3& b1) {
+  // Ericson, Real-Time Collision Detection §5.1.9, with the degenerate cases.
+  const Vec3 d1 = a1 - a0, d2 = b1 - b0, r = a0 - b0;
+  const double a = d1.squaredNorm(), e = d2.squaredNorm(), f = d2.dot(r);
+  double s = 0.0, t = 0.0;
+  if (a == 0.0 && e == 0.0) {
+    // both are points
+  } else if (a == 0.0) {
+    t = std::clamp(f / e, 0.0, 1.0);
+  } else {
+    const double c = d1.dot(r);
+    if (e == 0.0) {
+      s = std::clamp(-c / a, 0.0, 1.0);
+    } else {
+      const double b = d1.dot(d2), denom = a * e - b * b;
+      s = denom > 0.0 ? std::clamp((b * f - c * e) / denom, 0.0, 1.0) : 0.0;
+      t = (b * s + f) / e;
+      if (t < 0.0) {
+        t = 0.0;
+        s = std::clamp(-c / a, 0.0, 1.0);
+      } else if (t > 1.0) {
+        t = 1.0;
+        s = std::clamp((b - c) / a, 0.0, 1.0);
+      }
+    }
+  }
+  SegmentPoints p;
+  p.alpha = s;
+  p.beta = t;
+  p.on_a = a0 + s * d1;
+  p.on_b = b0 + t * d2;
+  return p;
+}
+
 std::optional<double> vertex_face_ccd(const Vec3& p0, const Vec3& a0, const Vec3& b0,
                                       const Vec3& c0, const Vec3& p1, const Vec3& a1,
                                       const Vec3& b1, const Vec3& c1) {

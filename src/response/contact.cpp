@@ -4,6 +4,7 @@
 #include <chrono>
 
 #include "tetcontact/mesh/surface.hpp"
+#include "tetcontact/narrowphase/exact_ccd.hpp"
 #include "tetcontact/narrowphase/vertex_face.hpp"
 #include "tetcontact/solver/model.hpp"
 
@@ -36,8 +37,17 @@ NodeFaceContact::NodeFaceContact(const Model& model, const ContactSettings& sett
   input_.node_body = node_body_;
   input_.face_body = face_body_;
   for (const Face& f : faces_) input_.face_nodes.push_back(f);
+  if (settings.edge_edge)
+    for (const Surface& surf : model.surfaces)
+      for (const Edge& e : surf.edges) {
+        edges_.push_back(e);
+        edge_body_.push_back(surf.body);
+        input_.edge_nodes.push_back(e);
+        input_.edge_body.push_back(surf.body);
+      }
   input_.node_box.resize(nodes_.size());
   input_.face_box.resize(faces_.size());
+  input_.edge_box.resize(edges_.size());
   // Reach of the binding lists: 0.2 of the mean tet edge over all bodies.
   double dx = 0.0;
   for (const Surface& s : model.surfaces) dx += s.mean_edge_length;
@@ -91,6 +101,10 @@ std::vector<ContactPoint> NodeFaceContact::detect(const State& st, ContactStepSt
     for (std::size_t i = 0; i < nodes_.size(); ++i)
       input_.node_box[i] = swept_box({&x0[nodes_[i]], &x1[nodes_[i]]}, margin);
     for (std::size_t f = 0; f < faces_.size(); ++f) input_.face_box[f] = layer_box(f, st, margin);
+    for (std::size_t e = 0; e < edges_.size(); ++e) {
+      const Edge& k = edges_[e];
+      input_.edge_box[e] = swept_box({&x0[k[0]], &x0[k[1]], &x1[k[0]], &x1[k[1]]}, margin);
+    }
     candidates_ = broadphase_->find(input_);
     anchor_.resize(nodes_.size());
     for (std::size_t i = 0; i < nodes_.size(); ++i) anchor_[i] = x0[nodes_[i]];
@@ -150,6 +164,71 @@ std::vector<ContactPoint> NodeFaceContact::detect(const State& st, ContactStepSt
       }
     contacts.push_back(c);
   }
+  // Seed 000: surface edges of different bodies that cross during the step, and the pairs in
+  // contact last step that are still close (kept with their normal's orientation).
+  stats.edge_candidates = static_cast<long>(cand.edge_edge.size());
+  stats.edge_contacts = 0;
+  std::vector<std::pair<std::pair<Index, Index>, Vec3>> active;
+  const auto previous_normal = [&](Index ea, Index eb) -> const Vec3* {
+    for (const auto& [pair, n] : active_edges_)
+      if (pair.first == ea && pair.second == eb) return &n;
+    return nullptr;
+  };
+  const auto add_edge_contact = [&](Index ea, Index eb, const Vec3* kept) {
+    const Edge& e1 = edges_[ea];
+    const Edge& e2 = edges_[eb];
+    const auto cp = closest_points_on_segments(x0[e1[0]], x0[e1[1]], x0[e2[0]], x0[e2[1]]);
+    const Vec3 u = x0[e1[1]] - x0[e1[0]], v = x0[e2[1]] - x0[e2[0]];
+    const Vec3 apart = cp.on_a - cp.on_b;
+    const Vec3 rel = (1 - cp.alpha) * st.v_star[e1[0]] + cp.alpha * st.v_star[e1[1]] -
+                     (1 - cp.beta) * st.v_star[e2[0]] - cp.beta * st.v_star[e2[1]];
+    // The normal along the common perpendicular, from B's point to A's: oriented as it was
+    // when the contact began (kept), or by the side A's edge is on, or against the relative
+    // velocity when they touch; for nearly parallel edges, along the points' difference.
+    Vec3 n = u.cross(v);
+    if (n.squaredNorm() <= 1e-12 * u.squaredNorm() * v.squaredNorm()) n = kept ? *kept : apart;
+    if (n.squaredNorm() == 0.0) n = -rel;
+    if (n.squaredNorm() == 0.0) return;
+    n.normalize();
+    if (kept) {
+      if (n.dot(*kept) < 0.0) n = -n;
+    } else {
+      const double side = apart.dot(n);
+      if (side < 0.0 || (side == 0.0 && rel.dot(n) > 0.0)) n = -n;
+    }
+    ContactPoint c;  // side A: edge e1 (a, b) at α; side B: edge e2 (e, f) at β
+    c.a_nodes = {e1[0], e1[1], 0, 0};
+    c.a_w = {1.0 - cp.alpha, cp.alpha, 0, 0};
+    c.a_count = 2;
+    c.b_nodes = {e2[0], e2[1], 0, 0};
+    c.b_w = {1.0 - cp.beta, cp.beta, 0, 0};
+    c.b_count = 2;
+    c.normal = n;
+    c.gap = apart.dot(n);  // < 0: already through by round-off: held, not pushed back
+    c.mode = settings_.mode;
+    c.friction = settings_.coefficient;
+    contacts.push_back(c);
+    active.push_back({{ea, eb}, n});
+    ++stats.edge_contacts;
+  };
+  for (const auto& [ea, eb] : cand.edge_edge) {
+    const Edge& e1 = edges_[ea];
+    const Edge& e2 = edges_[eb];
+    const Vec3* kept = previous_normal(ea, eb);
+    if (kept) {
+      // Still in contact: the closest points interior to both edges and within the reach.
+      const auto cp = closest_points_on_segments(x0[e1[0]], x0[e1[1]], x0[e2[0]], x0[e2[1]]);
+      if (cp.alpha > 0.0 && cp.alpha < 1.0 && cp.beta > 0.0 && cp.beta < 1.0 &&
+          (cp.on_a - cp.on_b).dot(*kept) < reach_) {
+        add_edge_contact(ea, eb, kept);
+        continue;
+      }
+    }
+    if (exact_edge_edge_ccd({x0[e1[0]], x0[e1[1]], x0[e2[0]], x0[e2[1]], x1[e1[0]], x1[e1[1]],
+                             x1[e2[0]], x1[e2[1]]}))
+      add_edge_contact(ea, eb, nullptr);
+  }
+  active_edges_ = std::move(active);
   if (settings_.order == ContactSettings::Order::lighter_first)
     std::stable_sort(contacts.begin(), contacts.end(),
                      [&](const ContactPoint& a, const ContactPoint& b) {

@@ -231,6 +231,8 @@ void Simulation::sample_stage() {
     s.contacts = contact_stats_.contacts;
     ContactTotals& ct = contact_totals_;
     ct.node_face += contact_stats_.contacts;
+    ct.edge_edge += contact_stats_.edge_contacts;
+    ct.edge_candidates += contact_stats_.edge_candidates;
     ct.candidates += contact_stats_.candidates;
     ct.max_per_step = std::max(ct.max_per_step, contact_stats_.contacts);
     ct.normal_impulse += lambda;

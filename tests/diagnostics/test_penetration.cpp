@@ -8,11 +8,11 @@ using namespace tc;
 
 namespace {
 
-Model two_cubes(double offset) {
+Model two_cubes(double offset, const Vec3& sideways = Vec3::Zero()) {
   Model model;
   add_body(model.mesh, "a", make_box(Vec3(1, 1, 1), {4, 4, 4}, HexSplit::six));
   TetMesh b = make_box(Vec3(1, 1, 1), {4, 4, 4}, HexSplit::six);
-  translate(b, Vec3(offset, 0, 0));
+  translate(b, Vec3(offset, 0, 0) + sideways);
   add_body(model.mesh, "b", b);
   model.materials = {test::aluminium()};
   model.body_material = {0, 0};
@@ -23,18 +23,23 @@ Model two_cubes(double offset) {
 }  // namespace
 
 TEST(Penetration, OverlappingCubesHaveTheirDepthAndCrossings) {
-  // b's left face at x = 0.4 is 0.1 inside a (a's right face at x = 0.5).
-  const Model m = two_cubes(0.9);
+  // b's left face at x = 0.4 is 0.1 inside a (a's right face at x = 0.5); b is shifted
+  // sideways so that its edges cross a's faces inside them, not through a's vertices.
+  const Model m = two_cubes(0.9, Vec3(0, 0.1, 0.07));
   PenetrationProbe probe(m);
   const Penetration p = probe.measure(m.mesh.x);
   EXPECT_NEAR(p.max_depth, 0.1, 1e-12);
   EXPECT_NEAR(p.max_depth_over_h, 0.1 / m.surfaces[0].mean_edge_length, 1e-12);
   EXPECT_GT(p.nodes_inside, 0);
   EXPECT_GT(p.crossings, 0);
+  // b's edges along x cross a's face x = 0.5 at points 0.05–0.125 inside a's triangles.
+  EXPECT_GT(p.max_crossing_depth, 0.01);
+  EXPECT_LT(p.max_crossing_depth, 0.25);
   // The deepest nodes are b's nodes on x = 0.4 away from a's sides.
   for (Index i = m.mesh.bodies[1].node_begin; i < m.mesh.bodies[1].node_end; ++i) {
     const Vec3& x = m.mesh.x[i];
-    if (std::abs(x.x() - 0.4) < 1e-12 && std::abs(x.y()) < 0.3 && std::abs(x.z()) < 0.3)
+    if (std::abs(x.x() - 0.4) < 1e-12 && std::abs(x.y() - 0.1) < 0.3 &&
+        std::abs(x.z() - 0.07) < 0.3)
       EXPECT_NEAR(p.node_depth[i], 0.1, 1e-12);
   }
 }
@@ -58,4 +63,7 @@ TEST(Penetration, ExactPredicatesOnTheBoundary) {
   EXPECT_TRUE(exact_segment_crosses_triangle(Vec3(0.2, 0.2, -1), Vec3(0.2, 0.2, 1), a, b, c));
   EXPECT_FALSE(exact_segment_crosses_triangle(Vec3(0.2, 0.2, 0), Vec3(0.2, 0.2, 1), a, b, c));
   EXPECT_FALSE(exact_segment_crosses_triangle(Vec3(0.6, 0.6, -1), Vec3(0.6, 0.6, 1), a, b, c));
+  // Through the triangle's edge or vertex: it touches, it does not cross.
+  EXPECT_FALSE(exact_segment_crosses_triangle(Vec3(0.5, 0.0, -1), Vec3(0.5, 0.0, 1), a, b, c));
+  EXPECT_FALSE(exact_segment_crosses_triangle(Vec3(0, 0, -1), Vec3(0, 0, 1), a, b, c));
 }

@@ -12,16 +12,19 @@
 namespace tc {
 
 struct Penetration {
-  long nodes_inside = 0;           // boundary nodes inside another body (depth > 0)
-  double max_depth = 0.0;          // m: distance of such a node to that body's surface
-  double max_depth_over_h = 0.0;   // the same over that body's mean tet edge length
-  long crossings = 0;              // boundary edges crossing another body's boundary faces
-  std::vector<double> node_depth;  // per node (0 unless inside another body), m
+  long nodes_inside = 0;            // boundary nodes inside another body (depth > 0)
+  double max_depth = 0.0;           // m: distance of such a node to that body's surface
+  double max_depth_over_h = 0.0;    // the same over that body's mean tet edge length
+  long crossings = 0;               // boundary edges crossing another body's boundary faces
+  double max_crossing_depth = 0.0;  // m: how far inside the face such an edge passes (the
+                                    // crossing point's distance to the face's boundary)
+  std::vector<double> node_depth;   // per node (0 unless inside another body), m
 };
 
 /// Exact predicates (CGAL's, in penetration_cgal.cpp): p in the closed tet (a, b, c, d);
-/// segment (p, q) passes through the closed triangle (a, b, c), its ends strictly on opposite
-/// sides of the triangle's plane (an edge lying in or touching the face does not cross it).
+/// segment (p, q) passes through the interior of triangle (a, b, c), its ends strictly on
+/// opposite sides of the triangle's plane (an edge lying in the face, or touching it at its
+/// boundary, does not cross it).
 bool exact_point_in_tet(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d);
 bool exact_segment_crosses_triangle(const Vec3& p, const Vec3& q, const Vec3& a, const Vec3& b,
                                     const Vec3& c);

@@ -26,6 +26,15 @@ struct TrianglePoint {
 };
 TrianglePoint closest_point_on_triangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c);
 
+/// Closest points of segments [a0, a1] and [b0, b1]: parameters α, β ∈ [0, 1] and the points
+/// (seed 000's d = (1−α) x_a + α x_b on the first, c = (1−β) x_e + β x_f on the second).
+struct SegmentPoints {
+  double alpha = 0.0, beta = 0.0;
+  Vec3 on_a = Vec3::Zero(), on_b = Vec3::Zero();
+};
+SegmentPoints closest_points_on_segments(const Vec3& a0, const Vec3& a1, const Vec3& b0,
+                                         const Vec3& b1);
+
 /// Continuous vertex–face test, every point moving linearly over t ∈ [0, 1]: the earliest t
 /// at which p(t) lies in the triangle (a(t), b(t), c(t)). The coplanarity condition
 ///   det[b − a, c − a, p − a](t) = 0

@@ -63,6 +63,7 @@ class Simulation {
   /// Contact between bodies over the run (zeros when no contact stage exists).
   struct ContactTotals {
     long node_face = 0, candidates = 0, max_per_step = 0, steps_in_contact = 0;
+    long edge_edge = 0, edge_candidates = 0;
     double first_time = -1.0, last_time = -1.0, max_force = 0.0;
     double normal_impulse = 0.0;                            // Σ λ over the run, N s
     double broadphase_build = 0.0, broadphase_query = 0.0;  // seconds over the run
