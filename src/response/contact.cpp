@@ -204,7 +204,8 @@ std::vector<ContactPoint> NodeFaceContact::detect(const State& st, ContactStepSt
     c.b_w = {1.0 - cp.beta, cp.beta, 0, 0};
     c.b_count = 2;
     c.normal = n;
-    c.gap = apart.dot(n);  // < 0: already through by round-off: held, not pushed back
+    c.gap = apart.dot(n);  // < 0: already through by round-off: closed within the step
+    c.restore = true;
     c.mode = settings_.mode;
     c.friction = settings_.coefficient;
     contacts.push_back(c);

@@ -36,7 +36,7 @@ double apply_contact(ContactPoint& c, State& st, double tau, std::vector<Vec3>& 
   const Vec3& n = c.normal;
   const Vec3 v_rel = point_velocity(c.a_nodes, c.a_w, c.a_count, st) -
                      point_velocity(c.b_nodes, c.b_w, c.b_count, st);
-  const double target = c.gap >= 0.0 ? -c.gap / tau : 0.0;
+  const double target = (c.gap >= 0.0 || c.restore) ? -c.gap / tau : 0.0;
   // The accumulated impulse of the step pushes, never pulls: an increment may take back what
   // earlier passes over-pushed (the corrections of neighbouring contacts move shared nodes),
   // but the total stays ≥ 0 (projected Gauss–Seidel).

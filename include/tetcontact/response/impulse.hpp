@@ -24,6 +24,10 @@ struct ContactPoint {
   double gap = 0.0;             // signed normal distance at tⁿ (≥ 0: apart)
   FrictionMode mode = FrictionMode::slip;
   double friction = 0.0;  // Coulomb coefficient k
+  /// Close a negative gap within the step too (target −g/τ for g < 0): for edge–edge pairs,
+  /// whose touching edges drift through by round-off; node–face contacts hold penetration
+  /// (seed 001: no projection back).
+  bool restore = false;
   // Accumulated over the passes of one step:
   double lambda = 0.0;             // normal impulse, N s
   Vec3 tangential = Vec3::Zero();  // tangential impulse on A, N s
