@@ -5,6 +5,7 @@
 #include <cstdlib>
 #include <fstream>
 #include <iostream>
+#include <optional>
 #include <sstream>
 #include <vector>
 
@@ -59,7 +60,14 @@ int ccd_command(const CcdOptions& o) {
     std::array<Vec3, 8> q;
     for (int k = 0; k < 8; ++k) q[k] = Vec3(v[off + 3 * k], v[off + 3 * k + 1], v[off + 3 * k + 2]);
     const auto t0 = std::chrono::steady_clock::now();
-    const bool hit = type == "ee" ? exact_edge_edge_ccd(q) : exact_vertex_face_ccd(q);
+    std::optional<double> toi;
+    bool hit;
+    if (o.toi) {
+      toi = type == "ee" ? exact_edge_edge_toi(q) : exact_vertex_face_toi(q);
+      hit = toi.has_value();
+    } else {
+      hit = type == "ee" ? exact_edge_edge_ccd(q) : exact_vertex_face_ccd(q);
+    }
     const double sec = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     Tally& t = type == "ee" ? ee : vf;
     ++t.queries;
@@ -71,7 +79,15 @@ int ccd_command(const CcdOptions& o) {
       t.fp += hit && !gt;
       t.fn += !hit && gt;
     }
-    if (!o.quiet && !o.json) answers += hit ? "1\n" : "0\n";
+    if (!o.quiet && !o.json) {
+      if (toi) {
+        char buf[40];
+        std::snprintf(buf, sizeof buf, "1 %.17g\n", *toi);
+        answers += buf;
+      } else {
+        answers += hit ? "1\n" : "0\n";
+      }
+    }
   }
   if (o.json) {
     Json j = Json::object();

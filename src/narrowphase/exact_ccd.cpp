@@ -243,19 +243,40 @@ bool point_in_triangle(const PVec& p, const PVec& a, const PVec& b, const PVec& 
          sign_at(dot(cross(sub(a, c), sub(p, c)), n), pt) >= 0;
 }
 
+// The time of a point as a double: a rational's nearest-below double, an irrational root's
+// interval refined until both ends round to the same double (its lower end is returned).
+double time_of(Point pt) {
+  for (int i = 0; i < 2000 && !pt.rational && pt.lo.get_d() != pt.hi.get_d(); ++i) bisect(pt);
+  return pt.rational ? pt.t.get_d() : pt.lo.get_d();
+}
+
+// A sort key that orders isolated roots: rationals by value, irrational roots by their interval
+// (isolating intervals are disjoint and hold no other root, so the midpoint orders them).
+Q key(const Point& pt) {
+  return pt.rational ? pt.t : (pt.lo + pt.hi) / 2;
+}
+
 // ∃ t ∈ [0, 1]: coplanar(t) ∧ test(t). `polys` are the polynomials the test's signs depend on
-// (their roots split [0, 1] where the coplanarity holds identically).
-bool exists(const Poly& coplanar, const std::vector<Poly>& polys,
-            const std::function<bool(Point&)>& test) {
+// (their roots split [0, 1] where the coplanarity holds identically). Returns a time where the
+// test holds, or −1; with `earliest`, the earliest such time (the set of such times is closed,
+// so it has a least element), otherwise the first one found.
+double exists(const Poly& coplanar, const std::vector<Poly>& polys,
+              const std::function<bool(Point&)>& test, bool earliest) {
   if (!coplanar.zero()) {
-    for (Point& pt : roots_in_unit(coplanar))
-      if (test(pt)) return true;
-    return false;
+    std::vector<Point> roots = roots_in_unit(coplanar);
+    if (earliest)
+      std::sort(roots.begin(), roots.end(),
+                [](const Point& a, const Point& b) { return key(a) < key(b); });
+    for (Point& pt : roots)
+      if (test(pt)) return earliest ? time_of(pt) : 0.0;
+    return -1.0;
   }
   // Coplanar all step: the test's outcome is constant between consecutive roots of its
   // polynomials. Each irrational root's interval is shrunk until no other polynomial has a
   // root in it (but the root itself), so that its rational ends lie in the neighbouring
-  // intervals; then every root, every cut and a point between consecutive cuts is tried.
+  // intervals; then every root, every cut and a point between consecutive cuts is tried. The
+  // set of hits is closed, so an open interval of hits has a hit at its left cut: the earliest
+  // hit is among the roots and the cuts.
   std::vector<Poly> squarefree;
   for (const Poly& g : polys)
     if (g.degree() >= 1) squarefree.push_back(quotient(g, gcd(g, derivative(g))));
@@ -291,19 +312,26 @@ bool exists(const Poly& coplanar, const std::vector<Poly>& polys,
       cuts.push_back(r.hi);
     }
   }
+  double best = -1.0;
+  const auto hit = [&](Point& p) {
+    if (!test(p)) return false;
+    const double t = earliest ? time_of(p) : 0.0;
+    if (best < 0.0 || t < best) best = t;
+    return !earliest;  // stop at the first hit unless the earliest is asked
+  };
   for (Point& r : pts)
-    if (test(r)) return true;
+    if (hit(r)) return best;
   std::sort(cuts.begin(), cuts.end());
   cuts.erase(std::unique(cuts.begin(), cuts.end()), cuts.end());
   for (std::size_t i = 0; i < cuts.size(); ++i) {
     Point a{true, cuts[i], {}, {}, {}};
-    if (test(a)) return true;
-    if (i + 1 < cuts.size()) {
+    if (hit(a)) return best;
+    if (!earliest && i + 1 < cuts.size()) {
       Point mid{true, (cuts[i] + cuts[i + 1]) / 2, {}, {}, {}};
-      if (test(mid)) return true;
+      if (hit(mid)) return best;
     }
   }
-  return false;
+  return best;
 }
 
 // The polynomials the predicates above may ask a sign of, in any branch, without repeats.
@@ -365,26 +393,43 @@ bool boxes_apart(const std::array<Vec3, 8>& q, std::array<int, 8> side) {
   return false;
 }
 
-}  // namespace
-
-bool exact_vertex_face_ccd(const std::array<Vec3, 8>& q) {
-  if (boxes_apart(q, {0, 1, 1, 1, 0, 1, 1, 1})) return false;
+double vertex_face_query(const std::array<Vec3, 8>& q, bool earliest) {
+  if (boxes_apart(q, {0, 1, 1, 1, 0, 1, 1, 1})) return -1.0;
   const PVec p = moving(q[0], q[4]), a = moving(q[1], q[5]), b = moving(q[2], q[6]),
              c = moving(q[3], q[7]);
   const Poly coplanar = dot(cross(sub(b, a), sub(c, a)), sub(p, a));
   std::vector<Poly> polys;
   if (coplanar.zero()) polys = triangle_polys(p, a, b, c);
-  return exists(coplanar, polys, [&](Point& pt) { return point_in_triangle(p, a, b, c, pt); });
+  return exists(
+      coplanar, polys, [&](Point& pt) { return point_in_triangle(p, a, b, c, pt); }, earliest);
 }
 
-bool exact_edge_edge_ccd(const std::array<Vec3, 8>& q) {
-  if (boxes_apart(q, {0, 0, 1, 1, 0, 0, 1, 1})) return false;
+double edge_edge_query(const std::array<Vec3, 8>& q, bool earliest) {
+  if (boxes_apart(q, {0, 0, 1, 1, 0, 0, 1, 1})) return -1.0;
   const PVec a = moving(q[0], q[4]), b = moving(q[1], q[5]), c = moving(q[2], q[6]),
              d = moving(q[3], q[7]);
   const Poly coplanar = dot(cross(sub(b, a), sub(c, a)), sub(d, a));
   std::vector<Poly> polys;
   if (coplanar.zero()) polys = segment_polys(a, b, c, d);
-  return exists(coplanar, polys, [&](Point& pt) { return segments_meet(a, b, c, d, pt); });
+  return exists(
+      coplanar, polys, [&](Point& pt) { return segments_meet(a, b, c, d, pt); }, earliest);
+}
+
+}  // namespace
+
+bool exact_vertex_face_ccd(const std::array<Vec3, 8>& q) {
+  return vertex_face_query(q, false) >= 0.0;
+}
+bool exact_edge_edge_ccd(const std::array<Vec3, 8>& q) {
+  return edge_edge_query(q, false) >= 0.0;
+}
+std::optional<double> exact_vertex_face_toi(const std::array<Vec3, 8>& q) {
+  const double t = vertex_face_query(q, true);
+  return t >= 0.0 ? std::optional<double>(t) : std::nullopt;
+}
+std::optional<double> exact_edge_edge_toi(const std::array<Vec3, 8>& q) {
+  const double t = edge_edge_query(q, true);
+  return t >= 0.0 ? std::optional<double>(t) : std::nullopt;
 }
 
 }  // namespace tc

@@ -1,6 +1,7 @@
 // Exact CCD: known answers, degenerate configurations, and the shared query set.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <random>
 
@@ -103,4 +104,81 @@ TEST(ExactCcd, SharedQuerySetHasNoFalsePositivesOrNegatives) {
     ++fn;
   EXPECT_EQ(fp, 2u) << r.out;  // both types
   EXPECT_EQ(fn, 2u) << r.out;
+}
+
+// Earliest time of impact: analytical answers, including the coplanar-all-step cases.
+TEST(ExactCcd, TimeOfImpactKnownAnswers) {
+  const Vec3 a(0, 0, 0), b(1, 0, 0), c(0, 1, 0);
+  // Through the face: z = 0.25 − t.
+  EXPECT_EQ(
+      exact_vertex_face_toi(vf(Vec3(0.2, 0.2, 0.25), a, b, c, Vec3(0.2, 0.2, -0.75), a, b, c)),
+      0.25);
+  // Touching at t = 0 and at t = 1.
+  EXPECT_EQ(exact_vertex_face_toi(vf(Vec3(0.5, 0, 0), a, b, c, Vec3(0.5, -1, 1), a, b, c)), 0.0);
+  EXPECT_EQ(exact_vertex_face_toi(vf(Vec3(0.2, 0.2, 1), a, b, c, Vec3(0.2, 0.2, 0), a, b, c)), 1.0);
+  EXPECT_FALSE(
+      exact_vertex_face_toi(vf(Vec3(0.8, 0.8, 0.3), a, b, c, Vec3(0.8, 0.8, -0.7), a, b, c)));
+  // Coplanar all step, x = −1 + 1.2 t enters the triangle at x = 0: t = 5/6.
+  EXPECT_NEAR(*exact_vertex_face_toi(vf(Vec3(-1, 0.2, 0), a, b, c, Vec3(0.2, 0.2, 0), a, b, c)),
+              5.0 / 6.0, 2e-16);  // rounded down: within one ulp
+  // Collinear edges: [3 − 2.5 t, 4 − 2.5 t] reaches [0, 1] at t = 4/5.
+  EXPECT_NEAR(
+      *exact_edge_edge_toi({Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(3, 0, 0), Vec3(4, 0, 0),
+                            Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0.5, 0, 0), Vec3(1.5, 0, 0)}),
+      0.8, 2e-16);  // rounded down: within one ulp
+  // A tilting face: c(t) = (0, 1, 2t), so the plane is z = 2t·y. A falling point
+  // (0.25, 0.25, 1 − t) meets it at 1 − t = 0.5 t, t = 2/3; one that also moves in y,
+  // y = 0.25 + 0.25 t, meets it at t² + 3t − 2 = 0, t = (√17 − 3)/2 (irrational).
+  const Vec3 c1(0, 1, 2);
+  EXPECT_NEAR(
+      *exact_vertex_face_toi(vf(Vec3(0.25, 0.25, 1), a, b, c, Vec3(0.25, 0.25, 0), a, b, c1)),
+      2.0 / 3.0, 2e-16);  // rounded down: within one ulp
+  const auto t =
+      exact_vertex_face_toi(vf(Vec3(0.25, 0.25, 1), a, b, c, Vec3(0.25, 0.5, 0), a, b, c1));
+  ASSERT_TRUE(t);
+  EXPECT_NEAR(*t, (std::sqrt(17.0) - 3) / 2, 2e-16);
+}
+
+// The earliest time is the earliest: on random hits, the exact query restricted to the
+// sub-step [0, t(1 − 1e−6)] finds no collision, and on [0, t(1 + 1e−6)] it does.
+TEST(ExactCcd, TimeOfImpactIsTheEarliestCollision) {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(-1, 1);
+  const auto until = [](std::array<Vec3, 8> q, double s) {
+    for (int k = 0; k < 4; ++k) q[4 + k] = q[k] + s * (q[4 + k] - q[k]);
+    return q;
+  };
+  int checked = 0;
+  for (int k = 0; k < 400 && checked < 40; ++k) {
+    std::array<Vec3, 8> q;
+    for (Vec3& p : q) p = Vec3(u(rng), u(rng), u(rng));
+    for (int type = 0; type < 2; ++type) {
+      const auto toi = type ? exact_edge_edge_toi(q) : exact_vertex_face_toi(q);
+      const bool hit = type ? exact_edge_edge_ccd(q) : exact_vertex_face_ccd(q);
+      ASSERT_EQ(toi.has_value(), hit) << k;
+      if (!toi || *toi < 1e-3 || *toi > 1 - 1e-3) continue;
+      const auto before = until(q, *toi * (1 - 1e-6)), after = until(q, *toi * (1 + 1e-6));
+      EXPECT_FALSE(type ? exact_edge_edge_ccd(before) : exact_vertex_face_ccd(before)) << k;
+      EXPECT_TRUE(type ? exact_edge_edge_ccd(after) : exact_vertex_face_ccd(after)) << k;
+      ++checked;
+    }
+  }
+  EXPECT_GE(checked, 40);
+}
+
+// `ccd --toi` prints the time after each hit; a bad line names the file and line.
+TEST(ExactCcd, CliPrintsTimeOfImpactAndRejectsBadLines) {
+  test::TempDir dir("ccd-toi");
+  const std::string file = dir.str() + "/q.txt";
+  test::write_text(file,
+                   "vf 0.2 0.2 0.25  0 0 0  1 0 0  0 1 0  0.2 0.2 -0.75  0 0 0  1 0 0  0 1 0\n"
+                   "vf 1 0.8 0.8 0.3  0 0 0  1 0 0  0 1 0  0.8 0.8 -0.7  0 0 0  1 0 0  0 1 0\n");
+  auto r = test::run_cli("ccd '" + file + "' --toi", dir.str());
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(r.out.substr(0, r.out.find("ee:")), "1 0.25\n0\n");
+  EXPECT_NE(r.out.find("1 false negatives"), std::string::npos) << r.out;  // its GT said 1
+  test::write_text(file, "vf 1 2 3\n");
+  r = test::run_cli("ccd '" + file + "' --toi", dir.str());
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("q.txt:1: expected 24 coordinates"), std::string::npos) << r.err;
 }

@@ -9,6 +9,7 @@ struct CcdOptions {
   std::string file;
   bool json = false;
   bool quiet = false;  // no per-query lines
+  bool toi = false;    // earliest time of impact after each `1`
 };
 
 /// Exit codes: 0, 2 bad input.

@@ -14,6 +14,7 @@
 #pragma once
 
 #include <array>
+#include <optional>
 
 #include "tetcontact/mesh/mesh.hpp"
 
@@ -24,5 +25,11 @@ bool exact_vertex_face_ccd(const std::array<Vec3, 8>& q);
 
 /// Edge–edge: q = a0(0), a1(0), b0(0), b1(0), a0(1), a1(1), b0(1), b1(1).
 bool exact_edge_edge_ccd(const std::array<Vec3, 8>& q);
+
+/// Earliest time of impact in [0, 1], or none. The time is exact up to its rounding to a
+/// double: an irrational root is returned as the lower end of an isolating interval whose ends
+/// round to the same double, a rational one as its nearest double toward zero.
+std::optional<double> exact_vertex_face_toi(const std::array<Vec3, 8>& q);
+std::optional<double> exact_edge_edge_toi(const std::array<Vec3, 8>& q);
 
 }  // namespace tc
