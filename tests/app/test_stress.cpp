@@ -1,0 +1,74 @@
+// The robustness harness: every degenerate family's constructed answers against the exact CCD.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "../test_util.hpp"
+#include "tetcontact/app/stress.hpp"
+#include "tetcontact/narrowphase/exact_ccd.hpp"
+
+using namespace tc;
+
+namespace {
+
+const std::vector<StressFamily>& families() {
+  static const std::vector<StressFamily> f = stress_families(7, 300);
+  return f;
+}
+
+class StressFamilyTest : public ::testing::TestWithParam<int> {};
+
+}  // namespace
+
+// Each family: both answers occur, coordinates span 1e-9 … 1e9, and the exact CCD agrees with
+// every constructed answer.
+TEST_P(StressFamilyTest, ExactCcdAgreesWithTheConstructedAnswers) {
+  const StressFamily& fam = families().at(static_cast<std::size_t>(GetParam()));
+  SCOPED_TRACE(fam.name);
+  ASSERT_EQ(fam.queries.size(), 300u);
+  int truths = 0;
+  double smallest = 1e300, largest = 0;
+  for (std::size_t i = 0; i < fam.queries.size(); ++i) {
+    const StressQuery& s = fam.queries[i];
+    const bool hit = s.edge_edge ? exact_edge_edge_ccd(s.q) : exact_vertex_face_ccd(s.q);
+    EXPECT_EQ(hit, s.truth) << "query " << i;
+    truths += s.truth;
+    for (const Vec3& p : s.q)
+      for (int d = 0; d < 3; ++d)
+        if (p[d] != 0) {
+          smallest = std::min(smallest, std::abs(p[d]));
+          largest = std::max(largest, std::abs(p[d]));
+        }
+  }
+  EXPECT_GT(truths, 10);
+  EXPECT_LT(truths, 290);
+  EXPECT_LT(smallest, 1e-8);
+  EXPECT_GT(largest, 1e8);
+}
+
+INSTANTIATE_TEST_SUITE_P(AllFamilies, StressFamilyTest, ::testing::Range(0, 8));
+
+TEST(Stress, FamiliesAreDeterministicAndCoverTheIssueList) {
+  const auto again = stress_families(7, 300);
+  ASSERT_EQ(again.size(), families().size());
+  for (std::size_t f = 0; f < again.size(); ++f)
+    for (std::size_t i = 0; i < again[f].queries.size(); ++i)
+      ASSERT_EQ(again[f].queries[i].q, families()[f].queries[i].q) << again[f].name << " " << i;
+  std::string names;
+  for (const auto& f : again) names += f.name + " ";
+  for (const char* n : {"parallel-edges", "collinear-edges", "crossing-edges", "zero-length-edges",
+                        "near-parallel-ulps", "coplanar-vertex-face", "vertex-on-face-edge-vertex",
+                        "degenerate-faces"})
+    EXPECT_NE(names.find(n), std::string::npos) << n;
+}
+
+TEST(Stress, CliReportsZeroDisagreementsAndRejectsBadArguments) {
+  test::TempDir dir("stress");
+  auto r = test::run_cli("stress --seed 3 --count 100 --json", dir.str());
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.out.find("\"families\": ["), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("\"disagreements\": 0\n}"), std::string::npos) << r.out;
+  r = test::run_cli("stress --count 0", dir.str());
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("--count needs a whole number >= 1"), std::string::npos) << r.err;
+}
