@@ -109,13 +109,16 @@ int main(int argc, char** argv) {
     for (std::size_t i = 1; i < args.size(); ++i) {
       const std::string& a = args[i];
       if (a == "--help" || a == "-h") {
-        std::cout << "usage: tetcontact ccd FILE [--toi] [--json] [--quiet]\n\n"
-                     "One query a line: TYPE [GT] 24 coordinates (ee: a0 a1 b0 b1 at t=0, then at\n"
-                     "t=1; vf: v f0 f1 f2 at t=0, then at t=1). Prints 0/1 per query, and with\n"
-                     "ground truth the false positives, false negatives and mean time per type.\n"
-                     "--toi: after each 1, the earliest time of impact in [0, 1] (exact, rounded\n"
-                     "down to a double; the mean time then includes finding it).\n"
-                     "--json: one object {\"ee\": {...}, \"vf\": {...}}. Answers are exact.\n";
+        std::cout
+            << "usage: tetcontact ccd FILE [--toi] [--fcl] [--json] [--quiet]\n\n"
+               "One query a line: TYPE [GT] 24 coordinates (ee: a0 a1 b0 b1 at t=0, then at\n"
+               "t=1; vf: v f0 f1 f2 at t=0, then at t=1). Prints 0/1 per query, and with\n"
+               "ground truth the false positives, false negatives and mean time per type.\n"
+               "--toi: after each 1, the earliest time of impact in [0, 1] (exact, rounded\n"
+               "down to a double; the mean time then includes finding it).\n"
+               "--fcl: also FCL 0.7's cubic CCD on the same queries (its answers, errors and\n"
+               "time; JSON: an \"fcl\" object per type). Times are batch means over >= 0.2 s.\n"
+               "--json: one object {\"ee\": {...}, \"vf\": {...}}. Answers are exact.\n";
         return 0;
       } else if (a == "--json") {
         c.json = true;
@@ -123,6 +126,8 @@ int main(int argc, char** argv) {
         c.quiet = true;
       } else if (a == "--toi") {
         c.toi = true;
+      } else if (a == "--fcl") {
+        c.fcl = true;
       } else if (!a.empty() && a[0] == '-') {
         return usage_error("unknown option '" + a + "'", k_usage);
       } else {

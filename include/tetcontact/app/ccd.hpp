@@ -10,6 +10,7 @@ struct CcdOptions {
   bool json = false;
   bool quiet = false;  // no per-query lines
   bool toi = false;    // earliest time of impact after each `1`
+  bool fcl = false;    // FCL 0.7's cubic CCD on the same queries, for comparison
 };
 
 /// Exit codes: 0, 2 bad input.
