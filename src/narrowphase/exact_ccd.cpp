@@ -3,6 +3,7 @@
 #include <gmpxx.h>
 
 #include <algorithm>
+#include <cmath>
 #include <functional>
 #include <vector>
 
@@ -121,9 +122,42 @@ struct Point {
   Q lo, hi;
 };
 
+// Halves an irrational point's interval, keeping its root; false if the root turned out to be
+// the rational midpoint (the point is then rational).
+void bisect(Point& pt) {
+  const Q mid = (pt.lo + pt.hi) / 2;
+  const int sm = sign(pt.q(mid));
+  if (sm == 0) {
+    pt.rational = true;
+    pt.t = mid;
+  } else if (sm == sign(pt.q(pt.lo))) {
+    pt.lo = mid;
+  } else {
+    pt.hi = mid;
+  }
+}
+
+// L = Σ k |c_k| ≥ max |g'| on [0, 1]: on [lo, hi] ⊂ [0, 1], |g(lo)| > (hi − lo) L means g has
+// no root there and keeps g(lo)'s sign.
+Q slope_bound(const Poly& g) {
+  Q lip = 0;
+  for (std::size_t k = 1; k < g.c.size(); ++k) lip += static_cast<long>(k) * abs(g.c[k]);
+  return lip;
+}
+
 // Sign of g at the point, exactly.
 int sign_at(const Poly& g, Point& pt) {
   if (g.zero()) return 0;
+  if (pt.rational) return sign(g(pt.t));
+  // Fast path, no gcd or Sturm sequence: on [lo, hi] ⊂ [0, 1], |g(x) − g(lo)| ≤ (hi − lo) L
+  // with L = Σ k |c_k| ≥ max |g'|, so |g(lo)| > (hi − lo) L gives the sign. Tried while the
+  // root's interval is halved a few times (g not vanishing at the root passes soon).
+  const Q lip = slope_bound(g);
+  for (int it = 0; it < 12 && !pt.rational; ++it) {
+    const Q glo = g(pt.lo);
+    if (abs(glo) > lip * (pt.hi - pt.lo)) return sign(glo);
+    bisect(pt);
+  }
   if (pt.rational) return sign(g(pt.t));
   const Poly h = gcd(pt.q, g);
   if (h.degree() >= 1 && sign(h(pt.lo)) * sign(h(pt.hi)) < 0) return 0;  // shares the root
@@ -143,21 +177,6 @@ int sign_at(const Poly& g, Point& pt) {
       pt.lo = mid;
     else
       pt.hi = mid;
-  }
-}
-
-// Halves an irrational point's interval, keeping its root; false if the root turned out to be
-// the rational midpoint (the point is then rational).
-void bisect(Point& pt) {
-  const Q mid = (pt.lo + pt.hi) / 2;
-  const int sm = sign(pt.q(mid));
-  if (sm == 0) {
-    pt.rational = true;
-    pt.t = mid;
-  } else if (sm == sign(pt.q(pt.lo))) {
-    pt.lo = mid;
-  } else {
-    pt.hi = mid;
   }
 }
 
@@ -283,16 +302,28 @@ double exists(const Poly& coplanar, const std::vector<Poly>& polys,
   std::vector<Point> pts;
   for (const Poly& g : squarefree)
     for (Point& r : roots_in_unit(g)) pts.push_back(r);
+  std::vector<std::vector<Poly>> sequences;  // Sturm sequences, computed once
+  std::vector<Q> slopes;
+  for (const Poly& g : squarefree) {
+    sequences.push_back(sturm_sequence(g));
+    slopes.push_back(slope_bound(g));
+  }
   for (Point& r : pts) {
+    if (r.rational) continue;
+    std::vector<Poly> common;  // gcd(r.q, g) per polynomial, computed once
+    for (const Poly& g : squarefree) common.push_back(gcd(r.q, g));
     while (!r.rational) {
       bool clean = true;
-      for (const Poly& g : squarefree) {
-        if (g(r.lo) == 0 || g(r.hi) == 0) {
+      for (std::size_t n = 0; n < squarefree.size(); ++n) {
+        const Poly& g = squarefree[n];
+        const Q glo = g(r.lo);
+        if (glo == 0 || g(r.hi) == 0) {
           clean = false;
           break;
         }
-        const int inside = sturm_count(sturm_sequence(g), r.lo, r.hi);
-        const Poly h = gcd(r.q, g);
+        if (abs(glo) > slopes[n] * (r.hi - r.lo)) continue;  // no root of g in it at all
+        const int inside = sturm_count(sequences[n], r.lo, r.hi);
+        const Poly& h = common[n];
         const bool shares = h.degree() >= 1 && sign(h(r.lo)) * sign(h(r.hi)) < 0;
         if (inside > (shares ? 1 : 0)) {
           clean = false;
@@ -393,8 +424,47 @@ bool boxes_apart(const std::array<Vec3, 8>& q, std::array<int, 8> side) {
   return false;
 }
 
+// Certified floating-point filter: the coplanarity determinant (seed 000 eq. 13)
+//   f(t) = det[u(t), v(t), w(t)],  u = P_i − P_o, v = P_j − P_o, w = P_k − P_o, each linear in t,
+// is trilinear in (u, v, w), so in the Bernstein basis of [0, 1]
+//   f(t) = Σ_k S_k C(3,k)⁻¹ · C(3,k) (1 − t)^{3−k} t^k,  S_k = Σ of det[u_a, v_b, w_c] over
+// a + b + c = k (a, b, c ∈ {0, 1}: the vectors at t = 0 or 1).
+// When all four S_k have one strict sign, f has no root in [0, 1]: no contact. Each det is
+// computed in doubles; its error, from the rounded differences (1 ulp each), the products and
+// the sums, is below 8 ε Σ|terms| (ε = 2⁻⁵³); we use 16 ε. Undecided (false) when the sizes
+// leave the normal range.
+bool coplanarity_never_zero(const std::array<Vec3, 8>& q, int o, int i, int j, int k) {
+  constexpr double eps = 0x1p-53;
+  Vec3 u[2], v[2], w[2];
+  for (int s = 0; s < 2; ++s) {
+    u[s] = q[4 * s + i] - q[4 * s + o];
+    v[s] = q[4 * s + j] - q[4 * s + o];
+    w[s] = q[4 * s + k] - q[4 * s + o];
+  }
+  double S[4] = {0, 0, 0, 0}, E[4] = {0, 0, 0, 0};
+  for (int a = 0; a < 2; ++a)
+    for (int b = 0; b < 2; ++b)
+      for (int c = 0; c < 2; ++c) {
+        const Vec3 &x = u[a], &y = v[b], &z = w[c];
+        const double t1 = x[0] * (y[1] * z[2]), t2 = x[0] * (y[2] * z[1]),
+                     t3 = x[1] * (y[2] * z[0]), t4 = x[1] * (y[0] * z[2]),
+                     t5 = x[2] * (y[0] * z[1]), t6 = x[2] * (y[1] * z[0]);
+        const double det = ((t1 - t2) + (t3 - t4)) + (t5 - t6);
+        const double perm = ((std::abs(t1) + std::abs(t2)) + (std::abs(t3) + std::abs(t4))) +
+                            (std::abs(t5) + std::abs(t6));
+        S[a + b + c] += det;
+        E[a + b + c] += 16 * eps * perm;
+      }
+  for (int n = 0; n < 4; ++n)
+    if (!(E[n] < 1e300) || (E[n] != 0 && E[n] < 1e-280)) return false;  // overflow, underflow
+  const bool pos = S[0] > E[0] && S[1] > E[1] && S[2] > E[2] && S[3] > E[3];
+  const bool neg = S[0] < -E[0] && S[1] < -E[1] && S[2] < -E[2] && S[3] < -E[3];
+  return pos || neg;
+}
+
 double vertex_face_query(const std::array<Vec3, 8>& q, bool earliest) {
   if (boxes_apart(q, {0, 1, 1, 1, 0, 1, 1, 1})) return -1.0;
+  if (coplanarity_never_zero(q, 1, 2, 3, 0)) return -1.0;  // det[b − a, c − a, p − a]
   const PVec p = moving(q[0], q[4]), a = moving(q[1], q[5]), b = moving(q[2], q[6]),
              c = moving(q[3], q[7]);
   const Poly coplanar = dot(cross(sub(b, a), sub(c, a)), sub(p, a));
@@ -406,6 +476,7 @@ double vertex_face_query(const std::array<Vec3, 8>& q, bool earliest) {
 
 double edge_edge_query(const std::array<Vec3, 8>& q, bool earliest) {
   if (boxes_apart(q, {0, 0, 1, 1, 0, 0, 1, 1})) return -1.0;
+  if (coplanarity_never_zero(q, 0, 1, 2, 3)) return -1.0;  // det[b − a, c − a, d − a]
   const PVec a = moving(q[0], q[4]), b = moving(q[1], q[5]), c = moving(q[2], q[6]),
              d = moving(q[3], q[7]);
   const Poly coplanar = dot(cross(sub(b, a), sub(c, a)), sub(d, a));
