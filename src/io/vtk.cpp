@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 
 #include "tetcontact/diagnostics/balance.hpp"
 #include "tetcontact/io/files.hpp"
@@ -24,11 +25,17 @@ void data_array(std::string& out, const char* type, const char* name, int per_li
   out += "\" Name=\"";
   out += name;
   out += "\" NumberOfComponents=\"" + std::to_string(components) + "\" format=\"ascii\">\n";
+  // Integer arrays as integers: the shortest double form of 100000 is "1e+05", which VTK's
+  // integer reader stops at (it then finds the offsets too short and reads no cells).
+  const bool integer = type[0] == 'I' || type[0] == 'U';
   for (std::size_t i = 0; i < count; ++i) {
     out += "          ";
     for (int c = 0; c < per_line; ++c) {
       if (c) out += ' ';
-      out += format_double(value(i, c));
+      if (integer)
+        out += std::to_string(static_cast<long long>(value(i, c)));
+      else
+        out += format_double(value(i, c));
     }
     out += '\n';
   }
