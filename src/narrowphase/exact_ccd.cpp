@@ -122,8 +122,8 @@ struct Point {
   Q lo, hi;
 };
 
-// Halves an irrational point's interval, keeping its root; false if the root turned out to be
-// the rational midpoint (the point is then rational).
+// Halves an irrational point's interval, keeping its root; if the root turns out to be
+// the rational midpoint, the point becomes rational.
 void bisect(Point& pt) {
   const Q mid = (pt.lo + pt.hi) / 2;
   const int sm = sign(pt.q(mid));
