@@ -417,6 +417,20 @@ Material parse_material(const Reader& r, const YAML::Node& m, const std::string&
   return mat;
 }
 
+// A YAML file, or a CaseError naming FILE:LINE:COL of a syntax error.
+YAML::Node load_yaml(const std::string& path, const char* what) {
+  try {
+    return YAML::LoadFile(path);
+  } catch (const YAML::ParserException& e) {
+    std::ostringstream os;
+    os << path << ":" << e.mark.line + 1 << ":" << e.mark.column + 1
+       << ": YAML syntax error: " << e.msg;
+    throw CaseError(os.str());
+  } catch (const YAML::Exception& e) {
+    throw CaseError(path + ": cannot read " + what + ": " + e.msg);
+  }
+}
+
 }  // namespace
 
 std::string default_material_library() {
@@ -425,15 +439,7 @@ std::string default_material_library() {
 
 std::vector<Material> load_material_library(const std::string& path) {
   if (!fs::is_regular_file(path)) throw CaseError(path + ": material library not found");
-  YAML::Node root;
-  try {
-    root = YAML::LoadFile(path);
-  } catch (const YAML::ParserException& e) {
-    std::ostringstream os;
-    os << path << ":" << e.mark.line + 1 << ":" << e.mark.column + 1
-       << ": YAML syntax error: " << e.msg;
-    throw CaseError(os.str());
-  }
+  const YAML::Node root = load_yaml(path, "material library");
   const Reader r(path, {});
   r.map(root, "");
   std::vector<Material> out;
@@ -464,17 +470,7 @@ const Material& Case::material(const std::string& n) const {
 Case load_case(const std::string& path, const std::vector<std::string>& overrides) {
   if (!fs::exists(path)) throw CaseError(path + ": case file not found");
   if (!fs::is_regular_file(path)) throw CaseError(path + ": not a regular file");
-  YAML::Node root;
-  try {
-    root = YAML::LoadFile(path);
-  } catch (const YAML::ParserException& e) {
-    std::ostringstream os;
-    os << path << ":" << e.mark.line + 1 << ":" << e.mark.column + 1
-       << ": YAML syntax error: " << e.msg;
-    throw CaseError(os.str());
-  } catch (const YAML::Exception& e) {
-    throw CaseError(path + ": cannot read case file: " + e.msg);
-  }
+  YAML::Node root = load_yaml(path, "case file");
   if (!root || root.IsNull()) throw CaseError(path + ": empty case file");
   std::set<std::string> overridden;
   for (const std::string& o : overrides) overridden.insert(apply_override(root, path, o));
