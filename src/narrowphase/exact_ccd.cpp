@@ -383,31 +383,37 @@ void on_segment_polys(const PVec& p, const PVec& a, const PVec& b, std::vector<P
   add(out, dot(ap, ab));
   add(out, dot(sub(p, b), sub(a, b)));
 }
-std::vector<Poly> segment_polys(const PVec& a, const PVec& b, const PVec& c, const PVec& d) {
-  std::vector<Poly> out;
-  const PVec u = sub(b, a), v = sub(d, c), m = cross(u, v);
-  add(out, m);
-  add(out, dot(cross(u, sub(c, a)), m));
-  add(out, dot(cross(u, sub(d, a)), m));
-  add(out, dot(cross(v, sub(a, c)), m));
-  add(out, dot(cross(v, sub(b, c)), m));
-  on_segment_polys(a, c, d, out);
-  on_segment_polys(b, c, d, out);
-  on_segment_polys(c, a, b, out);
-  on_segment_polys(d, a, b, out);
-  return out;
+// p on the segment [a, b] at some time (a vertex passing over an edge): where
+// cross(b − a, p − a) vanishes, at the roots of the gcd of its components, or, when they all
+// vanish identically (always collinear), wherever the betweenness signs allow.
+double vertex_on_edge(const PVec& p, const PVec& a, const PVec& b, bool earliest) {
+  const PVec c = cross(sub(b, a), sub(p, a));
+  const Poly g = gcd(gcd(c[0], c[1]), c[2]);
+  std::vector<Poly> polys;
+  if (g.zero()) on_segment_polys(p, a, b, polys);
+  return exists(
+      g, polys, [&](Point& pt) { return on_segment(p, a, b, pt); }, earliest);
 }
-std::vector<Poly> triangle_polys(const PVec& p, const PVec& a, const PVec& b, const PVec& c) {
-  std::vector<Poly> out;
-  const PVec n = cross(sub(b, a), sub(c, a));
-  add(out, n);
-  add(out, dot(cross(sub(b, a), sub(p, a)), n));
-  add(out, dot(cross(sub(c, b), sub(p, b)), n));
-  add(out, dot(cross(sub(a, c), sub(p, c)), n));
-  on_segment_polys(p, a, b, out);
-  on_segment_polys(p, b, c, out);
-  on_segment_polys(p, c, a, out);
-  return out;
+
+// Motion coplanar all step (the cubic of seed 000 eq. 13 vanishes identically). The times where
+// the primitives meet form a closed set; at a time on its boundary other than 0 and 1 a vertex
+// lies on an edge of the other primitive, because in a plane a proper crossing of two segments
+// and a vertex strictly inside a triangle persist under small motions. So they meet at some time
+// iff they meet at t = 0, at t = 1, or when a vertex passes over an edge, and the earliest time
+// is among those. `passes` lists (vertex, edge end, edge end).
+double coplanar_motion(const std::function<bool(Point&)>& meet,
+                       const std::vector<std::array<const PVec*, 3>>& passes, bool earliest) {
+  Point start{true, Q(0), {}, {}, {}};
+  if (meet(start)) return 0.0;
+  double best = -1.0;
+  for (const auto& e : passes) {
+    const double t = vertex_on_edge(*e[0], *e[1], *e[2], earliest);
+    if (t >= 0.0 && (best < 0.0 || t < best)) best = t;
+    if (best >= 0.0 && !earliest) return best;
+  }
+  if (best >= 0.0) return best;
+  Point end{true, Q(1), {}, {}, {}};
+  return meet(end) ? 1.0 : -1.0;
 }
 
 // Exact filter: the boxes of the two primitives over the step (their points at both ends) are
@@ -468,10 +474,10 @@ double vertex_face_query(const std::array<Vec3, 8>& q, bool earliest) {
   const PVec p = moving(q[0], q[4]), a = moving(q[1], q[5]), b = moving(q[2], q[6]),
              c = moving(q[3], q[7]);
   const Poly coplanar = dot(cross(sub(b, a), sub(c, a)), sub(p, a));
-  std::vector<Poly> polys;
-  if (coplanar.zero()) polys = triangle_polys(p, a, b, c);
-  return exists(
-      coplanar, polys, [&](Point& pt) { return point_in_triangle(p, a, b, c, pt); }, earliest);
+  const auto meet = [&](Point& pt) { return point_in_triangle(p, a, b, c, pt); };
+  if (coplanar.zero())
+    return coplanar_motion(meet, {{&p, &a, &b}, {&p, &b, &c}, {&p, &c, &a}}, earliest);
+  return exists(coplanar, {}, meet, earliest);
 }
 
 double edge_edge_query(const std::array<Vec3, 8>& q, bool earliest) {
@@ -480,10 +486,11 @@ double edge_edge_query(const std::array<Vec3, 8>& q, bool earliest) {
   const PVec a = moving(q[0], q[4]), b = moving(q[1], q[5]), c = moving(q[2], q[6]),
              d = moving(q[3], q[7]);
   const Poly coplanar = dot(cross(sub(b, a), sub(c, a)), sub(d, a));
-  std::vector<Poly> polys;
-  if (coplanar.zero()) polys = segment_polys(a, b, c, d);
-  return exists(
-      coplanar, polys, [&](Point& pt) { return segments_meet(a, b, c, d, pt); }, earliest);
+  const auto meet = [&](Point& pt) { return segments_meet(a, b, c, d, pt); };
+  if (coplanar.zero())
+    return coplanar_motion(meet, {{&a, &c, &d}, {&b, &c, &d}, {&c, &a, &b}, {&d, &a, &b}},
+                           earliest);
+  return exists(coplanar, {}, meet, earliest);
 }
 
 }  // namespace

@@ -9,8 +9,10 @@
 //   - at each root the intersection test needs only the signs of a few polynomials of the
 //     coordinates; a sign at an algebraic root is 0 exactly when the polynomial shares that
 //     root (gcd), otherwise the isolating interval is refined until the sign is constant;
-//   - when the condition is identically zero (coplanar all step), the same test runs at every
-//     root of every polynomial it uses and at a rational point between consecutive ones.
+//   - when the condition is identically zero (coplanar all step), the primitives meet at some
+//     time iff they meet at t = 0, at t = 1, or when a vertex passes over an edge of the other
+//     (in a plane, a proper crossing and a vertex strictly inside a triangle persist under
+//     small motions), and each vertex–edge passage is the same kind of question of degree 2.
 #pragma once
 
 #include <array>
