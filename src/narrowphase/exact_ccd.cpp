@@ -1,5 +1,7 @@
 #include "tetcontact/narrowphase/exact_ccd.hpp"
 
+#include "tetcontact/narrowphase/interval_ccd.hpp"
+
 #include <gmpxx.h>
 
 #include <algorithm>
@@ -471,6 +473,9 @@ bool coplanarity_never_zero(const std::array<Vec3, 8>& q, int o, int i, int j, i
 double vertex_face_query(const std::array<Vec3, 8>& q, bool earliest) {
   if (boxes_apart(q, {0, 1, 1, 1, 0, 1, 1, 1})) return -1.0;
   if (coplanarity_never_zero(q, 1, 2, 3, 0)) return -1.0;  // det[b − a, c − a, p − a]
+  const Certain sure = interval_vertex_face_ccd(q);
+  if (sure == Certain::no) return -1.0;
+  if (sure == Certain::yes && !earliest) return 0.0;  // the time, when asked, is exact
   const PVec p = moving(q[0], q[4]), a = moving(q[1], q[5]), b = moving(q[2], q[6]),
              c = moving(q[3], q[7]);
   const Poly coplanar = dot(cross(sub(b, a), sub(c, a)), sub(p, a));
@@ -483,6 +488,9 @@ double vertex_face_query(const std::array<Vec3, 8>& q, bool earliest) {
 double edge_edge_query(const std::array<Vec3, 8>& q, bool earliest) {
   if (boxes_apart(q, {0, 0, 1, 1, 0, 0, 1, 1})) return -1.0;
   if (coplanarity_never_zero(q, 0, 1, 2, 3)) return -1.0;  // det[b − a, c − a, d − a]
+  const Certain sure = interval_edge_edge_ccd(q);
+  if (sure == Certain::no) return -1.0;
+  if (sure == Certain::yes && !earliest) return 0.0;  // the time, when asked, is exact
   const PVec a = moving(q[0], q[4]), b = moving(q[1], q[5]), c = moving(q[2], q[6]),
              d = moving(q[3], q[7]);
   const Poly coplanar = dot(cross(sub(b, a), sub(c, a)), sub(d, a));

@@ -6,6 +6,7 @@
 #include "../test_util.hpp"
 #include "tetcontact/app/stress.hpp"
 #include "tetcontact/narrowphase/exact_ccd.hpp"
+#include "tetcontact/narrowphase/interval_ccd.hpp"
 
 using namespace tc;
 
@@ -21,7 +22,7 @@ class StressFamilyTest : public ::testing::TestWithParam<int> {};
 }  // namespace
 
 // Each family: both answers occur, coordinates span 1e-9 … 1e9, and the exact CCD agrees with
-// every constructed answer.
+// every constructed answer, and so does the interval filter where it decides.
 TEST_P(StressFamilyTest, ExactCcdAgreesWithTheConstructedAnswers) {
   const StressFamily& fam = families().at(static_cast<std::size_t>(GetParam()));
   SCOPED_TRACE(fam.name);
@@ -32,6 +33,8 @@ TEST_P(StressFamilyTest, ExactCcdAgreesWithTheConstructedAnswers) {
     const StressQuery& s = fam.queries[i];
     const bool hit = s.edge_edge ? exact_edge_edge_ccd(s.q) : exact_vertex_face_ccd(s.q);
     EXPECT_EQ(hit, s.truth) << "query " << i;
+    const Certain c = s.edge_edge ? interval_edge_edge_ccd(s.q) : interval_vertex_face_ccd(s.q);
+    if (c != Certain::unknown) EXPECT_EQ(c == Certain::yes, s.truth) << "interval, query " << i;
     truths += s.truth;
     for (const Vec3& p : s.q)
       for (int d = 0; d < 3; ++d)

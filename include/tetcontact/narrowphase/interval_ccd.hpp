@@ -1,0 +1,29 @@
+// Certified floating-point CCD: decides the non-degenerate majority of queries in interval
+// arithmetic, and says "unknown" for the rest, which the exact path answers.
+//
+// The step [0, 1] is cut into time intervals T. On each, the coplanarity determinant (seed 000
+// eq. 13) and the inside test are evaluated in interval arithmetic over all of T (every
+// rounding widened outward), so that
+//   - T is dropped when the determinant is nonzero on all of T, or the inside test fails at
+//     every time of T;
+//   - a collision is certain when the determinant has opposite strict signs at T's ends (a root
+//     inside, by continuity) and the inside test holds strictly at every time of T;
+//   - otherwise T is split in two (off-centre, 15/32 : 17/32, so that roots at 1/2, 1/4, …
+//     do not sit on a split point), up to a fixed depth and a fixed number of intervals.
+// Touching (a barycentric coordinate exactly 0), roots at interval ends, double roots and
+// motions coplanar all step come out "unknown".
+#pragma once
+
+#include <array>
+
+#include "tetcontact/mesh/mesh.hpp"
+
+namespace tc {
+
+enum class Certain { no, yes, unknown };
+
+/// Same point order as exact_vertex_face_ccd / exact_edge_edge_ccd.
+Certain interval_vertex_face_ccd(const std::array<Vec3, 8>& q);
+Certain interval_edge_edge_ccd(const std::array<Vec3, 8>& q);
+
+}  // namespace tc
