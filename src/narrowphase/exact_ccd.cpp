@@ -12,71 +12,155 @@
 namespace tc {
 namespace {
 
-using Q = mpq_class;
+using Z = mpz_class;
 
-// A polynomial in t with rational coefficients, c[k] the coefficient of t^k.
+// The exact path works on integers. Every double is m·2^e with an integer m, so the 24
+// coordinates of a query, multiplied by one power of two, are integers; the questions asked
+// (signs, roots in t) do not change under that scaling. Polynomials in t then have integer
+// coefficients, and every point of [0, 1] where a sign is asked is a dyadic rational (0, 1,
+// midpoints of dyadic intervals): nothing here ever needs a rational, or a gcd of numbers but
+// to keep coefficients small.
+
+// A dyadic rational k / 2^j.
+struct Q {
+  Z k;
+  unsigned long j = 0;
+  Q() = default;
+  Q(long v) : k(v) {}  // NOLINT: integers convert
+  Q(Z kk, unsigned long jj) : k(std::move(kk)), j(jj) {}
+  double get_d() const {  // rounded toward zero, as mpq_get_d does
+    long e = 0;
+    const double m = mpz_get_d_2exp(&e, k.get_mpz_t());
+    return std::ldexp(m, static_cast<int>(e - static_cast<long>(j)));
+  }
+};
+Z shifted(const Q& a, unsigned long to) {  // a.k · 2^(to − a.j), to ≥ a.j
+  Z r;
+  mpz_mul_2exp(r.get_mpz_t(), a.k.get_mpz_t(), to - a.j);
+  return r;
+}
+Q operator+(const Q& a, const Q& b) {
+  const unsigned long j = std::max(a.j, b.j);
+  return {shifted(a, j) + shifted(b, j), j};
+}
+Q operator-(const Q& a, const Q& b) {
+  const unsigned long j = std::max(a.j, b.j);
+  return {shifted(a, j) - shifted(b, j), j};
+}
+Q operator*(const Q& a, const Q& b) {
+  return {a.k * b.k, a.j + b.j};
+}
+Q operator*(const Z& a, const Q& b) {
+  return {a * b.k, b.j};
+}
+int sign(const Q& q) {
+  return sgn(q.k);
+}
+int cmp(const Q& a, const Q& b) {
+  return sign(a - b);
+}
+bool operator<(const Q& a, const Q& b) {
+  return cmp(a, b) < 0;
+}
+bool operator>(const Q& a, const Q& b) {
+  return cmp(a, b) > 0;
+}
+bool operator==(const Q& a, const Q& b) {
+  return cmp(a, b) == 0;
+}
+Q abs(const Q& a) {
+  return {::abs(a.k), a.j};
+}
+// (a + b)/2, in lowest terms so that repeated halving keeps the numbers short.
+Q midpoint(const Q& a, const Q& b) {
+  Q m = a + b;
+  ++m.j;
+  if (m.k == 0) return Q(0);
+  const unsigned long zeros = std::min(mpz_scan1(m.k.get_mpz_t(), 0), m.j);
+  mpz_fdiv_q_2exp(m.k.get_mpz_t(), m.k.get_mpz_t(), zeros);
+  m.j -= zeros;
+  return m;
+}
+
+// A polynomial in t with integer coefficients, c[k] the coefficient of t^k.
 struct Poly {
-  std::vector<Q> c;
+  std::vector<Z> c;
   Poly() = default;
-  explicit Poly(std::vector<Q> v) : c(std::move(v)) { trim(); }
+  explicit Poly(std::vector<Z> v) : c(std::move(v)) { trim(); }
   void trim() {
     while (!c.empty() && c.back() == 0) c.pop_back();
   }
   int degree() const { return static_cast<int>(c.size()) - 1; }  // −1 for the zero polynomial
   bool zero() const { return c.empty(); }
-  Q operator()(const Q& t) const {
-    Q r = 0;
-    for (std::size_t k = c.size(); k-- > 0;) r = r * t + c[k];
+  Q operator()(const Q& t) const {  // exact, by Horner
+    Q r(0);
+    for (std::size_t k = c.size(); k-- > 0;) r = r * t + Q(c[k], 0);
     return r;
   }
 };
 
 Poly operator+(const Poly& a, const Poly& b) {
-  std::vector<Q> r(std::max(a.c.size(), b.c.size()));
+  std::vector<Z> r(std::max(a.c.size(), b.c.size()));
   for (std::size_t k = 0; k < a.c.size(); ++k) r[k] += a.c[k];
   for (std::size_t k = 0; k < b.c.size(); ++k) r[k] += b.c[k];
   return Poly(r);
 }
 Poly operator-(const Poly& a, const Poly& b) {
-  std::vector<Q> r(std::max(a.c.size(), b.c.size()));
+  std::vector<Z> r(std::max(a.c.size(), b.c.size()));
   for (std::size_t k = 0; k < a.c.size(); ++k) r[k] += a.c[k];
   for (std::size_t k = 0; k < b.c.size(); ++k) r[k] -= b.c[k];
   return Poly(r);
 }
 Poly operator*(const Poly& a, const Poly& b) {
   if (a.zero() || b.zero()) return Poly();
-  std::vector<Q> r(a.c.size() + b.c.size() - 1);
+  std::vector<Z> r(a.c.size() + b.c.size() - 1);
   for (std::size_t i = 0; i < a.c.size(); ++i)
     for (std::size_t j = 0; j < b.c.size(); ++j) r[i + j] += a.c[i] * b.c[j];
   return Poly(r);
 }
 Poly derivative(const Poly& a) {
-  std::vector<Q> r;
+  std::vector<Z> r;
   for (std::size_t k = 1; k < a.c.size(); ++k) r.push_back(a.c[k] * static_cast<long>(k));
   return Poly(r);
 }
-// Remainder of a divided by b (b ≠ 0).
-Poly remainder(Poly a, const Poly& b) {
+// a divided by the gcd of its coefficients (a positive number: signs and roots unchanged).
+Poly primitive(Poly a) {
+  Z g = 0;
+  for (const Z& x : a.c) mpz_gcd(g.get_mpz_t(), g.get_mpz_t(), x.get_mpz_t());
+  if (g > 1)
+    for (Z& x : a.c) mpz_divexact(x.get_mpz_t(), x.get_mpz_t(), g.get_mpz_t());
+  return a;
+}
+// Pseudo-division by b ≠ 0 with positive multipliers only: each step
+//   a ← |lc b| a − sgn(lc b) lc(a) t^s b,   q ← |lc b| q + sgn(lc b) lc(a) t^s,
+// keeps |lc b|^m a₀ = q b + a, so the remainder and the quotient come out as positive multiples
+// of the true ones (what Sturm sequences, gcds and square-free parts need).
+void pseudo_divide(Poly& a, const Poly& b, Poly* q) {
+  const Z lb = ::abs(b.c.back());
+  const int sb = sgn(b.c.back());
+  if (q) q->c.assign(std::max(0, a.degree() - b.degree() + 1), Z(0));
   while (!a.zero() && a.degree() >= b.degree()) {
-    const Q f = a.c.back() / b.c.back();
+    const Z f = sb * a.c.back();
     const int shift = a.degree() - b.degree();
+    for (Z& x : a.c) x *= lb;
     for (std::size_t k = 0; k < b.c.size(); ++k) a.c[k + shift] -= f * b.c[k];
     a.c.back() = 0;  // exact cancellation of the leading term
     a.trim();
+    if (q) {
+      for (Z& x : q->c) x *= lb;
+      q->c[shift] += f;
+    }
   }
-  return a;
+  if (q) q->trim();
 }
-Poly quotient(Poly a, const Poly& b) {
-  std::vector<Q> q(std::max(0, a.degree() - b.degree() + 1));
-  while (!a.zero() && a.degree() >= b.degree()) {
-    const Q f = a.c.back() / b.c.back();
-    const int shift = a.degree() - b.degree();
-    q[shift] = f;
-    for (std::size_t k = 0; k < b.c.size(); ++k) a.c[k + shift] -= f * b.c[k];
-    a.c.back() = 0;
-    a.trim();
-  }
-  return Poly(q);
+Poly remainder(Poly a, const Poly& b) {  // a positive multiple of a mod b
+  pseudo_divide(a, b, nullptr);
+  return primitive(std::move(a));
+}
+Poly quotient(Poly a, const Poly& b) {  // a positive multiple of a / b, when b divides a
+  Poly q;
+  pseudo_divide(a, b, &q);
+  return primitive(std::move(q));
 }
 Poly gcd(Poly a, Poly b) {
   while (!b.zero()) {
@@ -84,10 +168,7 @@ Poly gcd(Poly a, Poly b) {
     a = std::move(b);
     b = std::move(r);
   }
-  return a;
-}
-int sign(const Q& q) {
-  return sgn(q);
+  return primitive(std::move(a));
 }
 
 // Number of distinct real roots in (lo, hi] of a square-free p, from its Sturm sequence.
@@ -108,7 +189,7 @@ std::vector<Poly> sturm_sequence(const Poly& p) {
   std::vector<Poly> seq{p, derivative(p)};
   while (!seq.back().zero() && seq.back().degree() > 0) {
     Poly r = remainder(seq[seq.size() - 2], seq.back());
-    for (Q& x : r.c) x = -x;
+    for (Z& x : r.c) x = -x;
     if (r.zero()) break;
     seq.push_back(r);
   }
@@ -127,7 +208,7 @@ struct Point {
 // Halves an irrational point's interval, keeping its root; if the root turns out to be
 // the rational midpoint, the point becomes rational.
 void bisect(Point& pt) {
-  const Q mid = (pt.lo + pt.hi) / 2;
+  const Q mid = midpoint(pt.lo, pt.hi);
   const int sm = sign(pt.q(mid));
   if (sm == 0) {
     pt.rational = true;
@@ -141,9 +222,9 @@ void bisect(Point& pt) {
 
 // L = Σ k |c_k| ≥ max |g'| on [0, 1]: on [lo, hi] ⊂ [0, 1], |g(lo)| > (hi − lo) L means g has
 // no root there and keeps g(lo)'s sign.
-Q slope_bound(const Poly& g) {
-  Q lip = 0;
-  for (std::size_t k = 1; k < g.c.size(); ++k) lip += static_cast<long>(k) * abs(g.c[k]);
+Z slope_bound(const Poly& g) {
+  Z lip = 0;
+  for (std::size_t k = 1; k < g.c.size(); ++k) lip += static_cast<long>(k) * ::abs(g.c[k]);
   return lip;
 }
 
@@ -154,7 +235,7 @@ int sign_at(const Poly& g, Point& pt) {
   // Fast path, no gcd or Sturm sequence: on [lo, hi] ⊂ [0, 1], |g(x) − g(lo)| ≤ (hi − lo) L
   // with L = Σ k |c_k| ≥ max |g'|, so |g(lo)| > (hi − lo) L gives the sign. Tried while the
   // root's interval is halved a few times (g not vanishing at the root passes soon).
-  const Q lip = slope_bound(g);
+  const Z lip = slope_bound(g);
   for (int it = 0; it < 12 && !pt.rational; ++it) {
     const Q glo = g(pt.lo);
     if (abs(glo) > lip * (pt.hi - pt.lo)) return sign(glo);
@@ -168,7 +249,7 @@ int sign_at(const Poly& g, Point& pt) {
     const int a = sign(g(pt.lo)), b = sign(g(pt.hi));
     if (a != 0 && a == b && sturm_count(seq, pt.lo, pt.hi) == 0) return a;
     // Bisect, keeping q's sign change.
-    const Q mid = (pt.lo + pt.hi) / 2;
+    const Q mid = midpoint(pt.lo, pt.hi);
     const int sm = sign(pt.q(mid));
     if (sm == 0) {  // the root itself is rational after all
       pt.rational = true;
@@ -202,7 +283,7 @@ std::vector<Point> roots_in_unit(const Poly& p) {
       out.push_back(Point{false, {}, sf, lo, hi});
       continue;
     }
-    const Q mid = (lo + hi) / 2;
+    const Q mid = midpoint(lo, hi);
     if (sf(mid) == 0) out.push_back(Point{true, mid, {}, {}, {}});
     todo.push_back({lo, mid});
     todo.push_back({mid, hi});
@@ -212,9 +293,36 @@ std::vector<Point> roots_in_unit(const Poly& p) {
 
 // Polynomial vectors: a point moving linearly, x(t) = x0 + t (x1 − x0).
 using PVec = std::array<Poly, 3>;
-PVec moving(const Vec3& x0, const Vec3& x1) {
+// The power of two that makes every coordinate of the query an integer: the least exponent of
+// a last mantissa bit, 2^(e − 53) for x = m 2^e, 0.5 ≤ |m| < 1.
+long integer_exponent(const std::array<Vec3, 8>& q) {
+  long least = 0;
+  bool any = false;
+  for (const Vec3& x : q)
+    for (int d = 0; d < 3; ++d) {
+      if (x[d] == 0.0) continue;
+      int e = 0;
+      std::frexp(x[d], &e);
+      least = any ? std::min(least, static_cast<long>(e) - 53) : static_cast<long>(e) - 53;
+      any = true;
+    }
+  return least;
+}
+// x · 2^(−E), an integer when E ≤ the exponent of x's last mantissa bit.
+Z integer(double x, long E) {
+  if (x == 0.0) return Z(0);
+  int e = 0;
+  const double m = std::frexp(x, &e);
+  Z r(static_cast<long>(std::ldexp(m, 53)));  // exact: 53 bits
+  mpz_mul_2exp(r.get_mpz_t(), r.get_mpz_t(), static_cast<unsigned long>(e - 53 - E));
+  return r;
+}
+PVec moving(const Vec3& x0, const Vec3& x1, long E) {
   PVec v;
-  for (int d = 0; d < 3; ++d) v[d] = Poly({Q(x0[d]), Q(x1[d]) - Q(x0[d])});
+  for (int d = 0; d < 3; ++d) {
+    const Z a = integer(x0[d], E);
+    v[d] = Poly({a, integer(x1[d], E) - a});
+  }
   return v;
 }
 PVec sub(const PVec& a, const PVec& b) {
@@ -274,7 +382,7 @@ double time_of(Point pt) {
 // A sort key that orders isolated roots: rationals by value, irrational roots by their interval
 // (isolating intervals are disjoint and hold no other root, so the midpoint orders them).
 Q key(const Point& pt) {
-  return pt.rational ? pt.t : (pt.lo + pt.hi) / 2;
+  return pt.rational ? pt.t : midpoint(pt.lo, pt.hi);
 }
 
 // ∃ t ∈ [0, 1]: coplanar(t) ∧ test(t). `polys` are the polynomials the test's signs depend on
@@ -305,7 +413,7 @@ double exists(const Poly& coplanar, const std::vector<Poly>& polys,
   for (const Poly& g : squarefree)
     for (Point& r : roots_in_unit(g)) pts.push_back(r);
   std::vector<std::vector<Poly>> sequences;  // Sturm sequences, computed once
-  std::vector<Q> slopes;
+  std::vector<Z> slopes;
   for (const Poly& g : squarefree) {
     sequences.push_back(sturm_sequence(g));
     slopes.push_back(slope_bound(g));
@@ -360,7 +468,7 @@ double exists(const Poly& coplanar, const std::vector<Poly>& polys,
     Point a{true, cuts[i], {}, {}, {}};
     if (hit(a)) return best;
     if (!earliest && i + 1 < cuts.size()) {
-      Point mid{true, (cuts[i] + cuts[i + 1]) / 2, {}, {}, {}};
+      Point mid{true, midpoint(cuts[i], cuts[i + 1]), {}, {}, {}};
       if (hit(mid)) return best;
     }
   }
@@ -476,8 +584,9 @@ double vertex_face_query(const std::array<Vec3, 8>& q, bool earliest) {
   const Certain sure = interval_vertex_face_ccd(q);
   if (sure == Certain::no) return -1.0;
   if (sure == Certain::yes && !earliest) return 0.0;  // the time, when asked, is exact
-  const PVec p = moving(q[0], q[4]), a = moving(q[1], q[5]), b = moving(q[2], q[6]),
-             c = moving(q[3], q[7]);
+  const long E = integer_exponent(q);
+  const PVec p = moving(q[0], q[4], E), a = moving(q[1], q[5], E), b = moving(q[2], q[6], E),
+             c = moving(q[3], q[7], E);
   const Poly coplanar = dot(cross(sub(b, a), sub(c, a)), sub(p, a));
   const auto meet = [&](Point& pt) { return point_in_triangle(p, a, b, c, pt); };
   if (coplanar.zero())
@@ -491,8 +600,9 @@ double edge_edge_query(const std::array<Vec3, 8>& q, bool earliest) {
   const Certain sure = interval_edge_edge_ccd(q);
   if (sure == Certain::no) return -1.0;
   if (sure == Certain::yes && !earliest) return 0.0;  // the time, when asked, is exact
-  const PVec a = moving(q[0], q[4]), b = moving(q[1], q[5]), c = moving(q[2], q[6]),
-             d = moving(q[3], q[7]);
+  const long E = integer_exponent(q);
+  const PVec a = moving(q[0], q[4], E), b = moving(q[1], q[5], E), c = moving(q[2], q[6], E),
+             d = moving(q[3], q[7], E);
   const Poly coplanar = dot(cross(sub(b, a), sub(c, a)), sub(d, a));
   const auto meet = [&](Point& pt) { return segments_meet(a, b, c, d, pt); };
   if (coplanar.zero())

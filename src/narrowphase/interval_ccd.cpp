@@ -114,6 +114,13 @@ Certain bisect_step(const std::array<Vec3, 8>& q, int o, int i, int j, int k, In
   const auto coplanarity = [&](const Points& p) {
     return dot(p[i] - p[o], cross(p[j] - p[o], p[k] - p[o]));
   };
+  // Coplanar and possibly meeting at t = 0 or 1 (touching at the start, as resting contact
+  // gives): no span ending there can ever be certified, so the exact path answers at once.
+  for (const double t : {0.0, 1.0}) {
+    const Points p = at({t, t});
+    const Iv f = coplanarity(p);
+    if (!positive(f) && !negative(f) && inside(p) != Certain::no) return Certain::unknown;
+  }
   struct Span {
     double t0, t1;
     int depth;

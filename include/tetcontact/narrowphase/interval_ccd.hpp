@@ -11,7 +11,8 @@
 //   - otherwise T is split in two (off-centre, 15/32 : 17/32, so that roots at 1/2, 1/4, …
 //     do not sit on a split point), up to a fixed depth and a fixed number of intervals.
 // Touching (a barycentric coordinate exactly 0), roots at interval ends, double roots and
-// motions coplanar all step come out "unknown".
+// motions coplanar all step come out "unknown"; a query that may be coplanar and meeting at
+// t = 0 or 1 (resting contact) does so at once.
 #pragma once
 
 #include <array>
