@@ -120,9 +120,7 @@ Json summary_json(const Case& c, const Simulation& sim, const std::string& statu
   p["final"] = last.momentum;
   p["boundary_impulse"] = last.boundary.impulse;
   p["wall_impulse"] = last.walls.impulse;
-  const double scale = std::max(first.momentum_scale, last.momentum_scale);
-  p["relative_error"] =
-      scale > 0 ? (last.momentum - first.momentum - last.external_impulse()).norm() / scale : 0.0;
+  p["relative_error"] = momentum_error(first, last);
 
   Json& mass = j["mass"];
   mass["initial"] = first.mass;

@@ -2,6 +2,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <fstream>
+#include <sstream>
 
 #include "../test_util.hpp"
 #include "tetcontact/app/stress.hpp"
@@ -70,8 +72,45 @@ TEST(Stress, CliReportsZeroDisagreementsAndRejectsBadArguments) {
   auto r = test::run_cli("stress --seed 3 --count 100 --json", dir.str());
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_NE(r.out.find("\"families\": ["), std::string::npos) << r.out;
-  EXPECT_NE(r.out.find("\"disagreements\": 0\n}"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("\"disagreements\": 0,"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("\"scenes_failed\": 0\n}"), std::string::npos) << r.out;
+  r = test::run_cli("stress --count 10 --scenes " + (dir / "none"), dir.str());
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("micro-scene directory not found"), std::string::npos) << r.err;
   r = test::run_cli("stress --count 0", dir.str());
   EXPECT_EQ(r.code, 2);
   EXPECT_NE(r.err.find("--count needs a whole number >= 1"), std::string::npos) << r.err;
+}
+
+// The micro-scenes run through the solver: coincident faces, an edge lying in a face, a
+// vertex on an edge and a single touching point, each without NaN, inverted elements or lost
+// momentum; a scene that breaks down is reported as failed, not passed.
+TEST(Stress, MicroScenesRunWithoutNanInversionOrLostMomentum) {
+  const std::vector<SceneResult> scenes = run_micro_scenes(default_scenes_dir());
+  std::string names;
+  for (const SceneResult& r : scenes) {
+    names += r.name + " ";
+    EXPECT_EQ(r.status, "ok") << r.name;
+    EXPECT_TRUE(r.pass) << r.name;
+    EXPECT_GT(r.steps, 10) << r.name;
+    EXPECT_LT(r.momentum_error, 1e-12) << r.name;
+    EXPECT_LT(r.balance_error, 0.01) << r.name;
+    EXPECT_LT(r.max_depth_over_h, 1e-3) << r.name;
+  }
+  EXPECT_EQ(names, "coincident-faces edge-in-face point-touch vertex-on-edge ");
+
+  test::TempDir dir("micro-fail");
+  std::ifstream in(default_scenes_dir() + "/coincident-faces.yaml");
+  std::stringstream text;
+  text << in.rdbuf();
+  std::string yaml = text.str();
+  const std::string slow = "velocity: [7, 3, -100]";
+  ASSERT_NE(yaml.find(slow), std::string::npos);
+  yaml.replace(yaml.find(slow), slow.size(), "velocity: [0, 0, -2.0e5]");  // crushes the tets
+  test::write_text(dir / "crash.yaml", yaml);
+  const std::vector<SceneResult> crash = run_micro_scenes(dir.str());
+  ASSERT_EQ(crash.size(), 1u);
+  EXPECT_FALSE(crash[0].pass);
+  EXPECT_NE(crash[0].status.find("failed"), std::string::npos) << crash[0].status;
+  EXPECT_THROW(run_micro_scenes(dir / "none"), std::runtime_error);
 }

@@ -28,10 +28,7 @@ Outcome run_case(const std::string& file, const std::vector<std::string>& overri
   Outcome o;
   o.refs = evaluate_references(c.references, sim.model(), sim.state(), sim.run_figures());
   o.balance_error_max = sim.balance_error_max();
-  const Sample& a = sim.first_sample();
-  const Sample& b = sim.last_sample();
-  o.momentum_error = (b.momentum - a.momentum - b.external_impulse()).norm() /
-                     std::max(a.momentum_scale, b.momentum_scale);
+  o.momentum_error = momentum_error(sim.first_sample(), sim.last_sample());
   return o;
 }
 

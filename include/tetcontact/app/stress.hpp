@@ -29,13 +29,37 @@ struct StressFamily {
 /// which leaves its answer unchanged.
 std::vector<StressFamily> stress_families(std::uint64_t seed, int count);
 
+/// A micro-scene: a small case (data/cases/micro/) that puts bodies in a degenerate contact
+/// (coincident faces, an edge lying in a face, a vertex on an edge, a single touching point)
+/// and runs the solver through it.
+struct SceneResult {
+  std::string name;  // the case file's stem
+  long steps = 0;
+  std::string status = "ok";      // or what stopped it (non-finite values, inverted element, …)
+  double momentum_error = 0.0;    // |ΔP − external impulse| / momentum scale
+  double balance_error = 0.0;     // the energy balance's largest relative error over the run
+  double max_depth_over_h = 0.0;  // penetration diagnostics, largest after any step
+  long nodes_inside = 0;
+  long crossings = 0;
+  bool pass = false;  // status ok and momentum conserved to 1e-12
+};
+
+/// Runs every `*.yaml` in `dir` (sorted by name), measuring penetration after every step.
+/// Throws std::runtime_error when `dir` holds no case.
+std::vector<SceneResult> run_micro_scenes(const std::string& dir);
+
+/// Where the micro-scenes of the source tree are.
+std::string default_scenes_dir();
+
 struct StressOptions {
   std::uint64_t seed = 1;
   int count = 1000;
   bool json = false;
+  std::string scenes_dir = default_scenes_dir();  // empty: no micro-scenes
 };
 
-/// Prints a table (or JSON) per family; exit code 0 when no query disagrees, 1 otherwise.
+/// Prints a table (or JSON) per family and per micro-scene; exit code 0 when no query
+/// disagrees and every scene passes, 1 otherwise.
 int stress_command(const StressOptions& options);
 
 }  // namespace tc

@@ -1,6 +1,8 @@
 // Conservation measures: energy and momentum at a time level, and per-body statistics.
 #pragma once
 
+#include <algorithm>
+
 #include <string>
 #include <vector>
 
@@ -59,6 +61,14 @@ struct Sample {
 /// f J^n at t^n and (1 − f) J^n at t^{n+1}. So `previous` must be the sample of the step
 /// before (nullptr for the first).
 Sample sample_balance(const State& st, const Sample* previous);
+
+/// Momentum balance over a run, relative: |P_last − P_first − external impulse| over the larger
+/// momentum scale (0 when nothing moves).
+inline double momentum_error(const Sample& first, const Sample& last) {
+  const double scale = std::max(first.momentum_scale, last.momentum_scale);
+  return scale > 0 ? (last.momentum - first.momentum - last.external_impulse()).norm() / scale
+                   : 0.0;
+}
 
 /// f = τ^{n-1/2} / (2 τ_v): how far the velocity at t^n lies from U^n towards U*.
 inline double kick_fraction(const State& st) {
