@@ -97,13 +97,15 @@ Penetration PenetrationProbe::measure(const std::vector<Vec3>& x) {
     if (exact_segment_crosses_triangle(x[edges_[e][0]], x[edges_[e][1]], x[k[0]], x[k[1]],
                                        x[k[2]])) {
       ++r.crossings;
-      // Depth of the crossing: how far inside the face the edge passes (the crossing point's
-      // distance to the face's boundary): small for an edge grazing the face's rim.
+      // Depth of the crossing: the shorter of the two moves that undo it, sliding the edge out
+      // of the face (the crossing point's distance to the face's boundary: small for an edge
+      // grazing the face's rim) or pulling the edge's nearer end back to the face's plane
+      // (small for an edge barely poking through).
       const Vec3 &p = x[edges_[e][0]], &q = x[edges_[e][1]];
       const Vec3 n = (x[k[1]] - x[k[0]]).cross(x[k[2]] - x[k[0]]);
       const double dp = (p - x[k[0]]).dot(n), dq = (q - x[k[0]]).dot(n);
       const Vec3 at = p + (dp / (dp - dq)) * (q - p);
-      double inside = 1e300;
+      double inside = std::min(std::abs(dp), std::abs(dq)) / n.norm();
       for (int s = 0; s < 3; ++s) {
         const SegmentPoints sp = closest_points_on_segments(at, at, x[k[s]], x[k[(s + 1) % 3]]);
         inside = std::min(inside, (sp.on_a - sp.on_b).norm());

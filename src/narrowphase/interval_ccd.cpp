@@ -1,6 +1,7 @@
 #include "tetcontact/narrowphase/interval_ccd.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 namespace tc {
@@ -46,8 +47,65 @@ bool same(Iv a, Iv b) {
   return (positive(a) && positive(b)) || (negative(a) && negative(b));
 }
 
+double magnitude(Iv a) {
+  return std::max(std::abs(a.lo), std::abs(a.hi));
+}
+
+// A polynomial in t of degree ≤ 4 with interval coefficients, c[k] for t^k.
+struct IPoly {
+  std::array<Iv, 5> c{};
+  int n = 0;  // number of coefficients
+};
+IPoly operator+(const IPoly& a, const IPoly& b) {
+  IPoly r;
+  r.n = std::max(a.n, b.n);
+  for (int k = 0; k < r.n; ++k)
+    r.c[k] = k < a.n && k < b.n ? a.c[k] + b.c[k] : (k < a.n ? a.c[k] : b.c[k]);
+  return r;
+}
+IPoly operator-(const IPoly& a, const IPoly& b) {
+  IPoly r;
+  r.n = std::max(a.n, b.n);
+  for (int k = 0; k < r.n; ++k) {
+    const Iv x = k < a.n ? a.c[k] : Iv{0.0, 0.0}, y = k < b.n ? b.c[k] : Iv{0.0, 0.0};
+    r.c[k] = x - y;
+  }
+  return r;
+}
+IPoly operator*(const IPoly& a, const IPoly& b) {  // degrees must add up to ≤ 4
+  IPoly r;
+  r.n = a.n + b.n - 1;
+  for (int k = 0; k < r.n; ++k) r.c[k] = {0.0, 0.0};
+  for (int i = 0; i < a.n; ++i)
+    for (int j = 0; j < b.n; ++j) r.c[i + j] = r.c[i + j] + a.c[i] * b.c[j];
+  return r;
+}
+// Value at the double t (an interval holding the exact value).
+Iv at(const IPoly& p, double t) {
+  Iv r{0.0, 0.0};
+  for (int k = p.n; k-- > 0;) r = r * Iv{t, t} + p.c[k];
+  return r;
+}
+// An interval holding p(t) for every t in [t0, t1]: the centred form about m = (t0 + t1)/2,
+//   p(m + s) = Σ g_k s^k,  |s| ≤ r  ⇒  p ∈ g_0 ± Σ_{k≥1} |g_k| r^k,
+// with the Taylor coefficients g_k at m from repeated Horner steps. Its width shrinks like
+// r², so spans about a simple root are resolved in a few halvings.
+Iv over(const IPoly& p, double t0, double t1) {
+  const double m = 0.5 * (t0 + t1);
+  const double r = up(std::max(t1 - m, m - t0));
+  std::array<Iv, 5> g = p.c;
+  for (int i = 0; i + 1 < p.n; ++i)
+    for (int k = p.n - 2; k >= i; --k) g[k] = g[k] + Iv{m, m} * g[k + 1];
+  double spread = 0.0, rk = 1.0;
+  for (int k = 1; k < p.n; ++k) {
+    rk = up(rk * r);
+    spread = up(spread + up(magnitude(g[k]) * rk));
+  }
+  return p.n == 0 ? Iv{0.0, 0.0} : Iv{down(g[0].lo - spread), up(g[0].hi + spread)};
+}
+
 struct IVec {
-  Iv x, y, z;
+  IPoly x, y, z;
 };
 IVec operator-(const IVec& a, const IVec& b) {
   return {a.x - b.x, a.y - b.y, a.z - b.z};
@@ -55,71 +113,81 @@ IVec operator-(const IVec& a, const IVec& b) {
 IVec cross(const IVec& a, const IVec& b) {
   return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
 }
-Iv dot(const IVec& a, const IVec& b) {
+IPoly dot(const IVec& a, const IVec& b) {
   return a.x * b.x + a.y * b.y + a.z * b.z;
 }
 
 using Points = std::array<IVec, 4>;
+// The polynomials whose signs decide the inside test at a coplanar time, and the rule.
+struct Inside {
+  std::array<IPoly, 4> polys;
+  int count = 0;
+  Certain (*rule)(const std::array<Iv, 4>&) = nullptr;
+};
 
 // Edges [a, b] and [c, d], coplanar at the times asked about. With m = (b − a) × (d − c) ≠ 0
 // they meet iff c, d are not strictly on one side of line ab, nor a, b of line cd (the
 // orientations o = ((b − a) × (c − a))·m and so on): `no` when one pair is strictly on one
 // side over all of T, `yes` when both pairs are strictly on opposite sides over all of T.
-Certain edges_meet(const Points& p) {
+Certain edges_rule(const std::array<Iv, 4>& o) {
+  if (same(o[0], o[1]) || same(o[2], o[3])) return Certain::no;
+  return opposite(o[0], o[1]) && opposite(o[2], o[3]) ? Certain::yes : Certain::unknown;
+}
+Inside edges_meet(const Points& p) {
   const IVec u = p[1] - p[0], v = p[3] - p[2], m = cross(u, v);
-  const Iv o1 = dot(cross(u, p[2] - p[0]), m), o2 = dot(cross(u, p[3] - p[0]), m);
-  const Iv o3 = dot(cross(v, p[0] - p[2]), m), o4 = dot(cross(v, p[1] - p[2]), m);
-  if (same(o1, o2) || same(o3, o4)) return Certain::no;
-  return opposite(o1, o2) && opposite(o3, o4) ? Certain::yes : Certain::unknown;
+  return {{dot(cross(u, p[2] - p[0]), m), dot(cross(u, p[3] - p[0]), m),
+           dot(cross(v, p[0] - p[2]), m), dot(cross(v, p[1] - p[2]), m)},
+          4,
+          edges_rule};
 }
 
 // Vertex p[0] and triangle p[1..3], coplanar at the times asked about: inside iff on the inner
 // side of each edge, measured along the triangle's normal n.
-Certain vertex_in_face(const Points& p) {
+Certain face_rule(const std::array<Iv, 4>& s) {
+  if (negative(s[0]) || negative(s[1]) || negative(s[2])) return Certain::no;
+  return positive(s[0]) && positive(s[1]) && positive(s[2]) ? Certain::yes : Certain::unknown;
+}
+Inside vertex_in_face(const Points& p) {
   const IVec &v = p[0], &a = p[1], &b = p[2], &c = p[3];
   const IVec n = cross(b - a, c - a);
-  const Iv s1 = dot(cross(b - a, v - a), n), s2 = dot(cross(c - b, v - b), n),
-           s3 = dot(cross(a - c, v - c), n);
-  if (negative(s1) || negative(s2) || negative(s3)) return Certain::no;
-  return positive(s1) && positive(s2) && positive(s3) ? Certain::yes : Certain::unknown;
+  return {{dot(cross(b - a, v - a), n), dot(cross(c - b, v - b), n), dot(cross(a - c, v - c), n),
+           IPoly{}},
+          3,
+          face_rule};
 }
 
 // Subdivision of [0, 1] as described in the header. `o, i, j, k` pick the points of the
-// coplanarity determinant det[p_i − p_o, p_j − p_o, p_k − p_o].
-template <class Inside>
-Certain bisect_step(const std::array<Vec3, 8>& q, int o, int i, int j, int k, Inside inside) {
+// coplanarity determinant det[p_i − p_o, p_j − p_o, p_k − p_o]; `make_inside` builds the inside
+// test's polynomials (only when a span may hold a root).
+Certain subdivide(const std::array<Vec3, 8>& q, int o, int i, int j, int k,
+                  Inside (*make_inside)(const Points&)) {
   constexpr double kLimit = 0x1p100;
-  constexpr int kMaxDepth = 30, kMaxSpans = 160;
-  Points start, motion;
+  constexpr int kMaxDepth = 30, kMaxSpans = 48;
+  Points p;
   for (int n = 0; n < 4; ++n) {
-    IVec s, m;
-    Iv* sc[3] = {&s.x, &s.y, &s.z};
-    Iv* mc[3] = {&m.x, &m.y, &m.z};
+    IPoly* coord[3] = {&p[n].x, &p[n].y, &p[n].z};
     for (int d = 0; d < 3; ++d) {
       const double x0 = q[n][d], x1 = q[4 + n][d];
       if (!(std::abs(x0) < kLimit && std::abs(x1) < kLimit)) return Certain::unknown;
-      *sc[d] = {x0, x0};
-      *mc[d] = Iv{x1, x1} - Iv{x0, x0};
+      coord[d]->n = 2;  // x0 + t (x1 − x0)
+      coord[d]->c[0] = {x0, x0};
+      coord[d]->c[1] = Iv{x1, x1} - Iv{x0, x0};
     }
-    start[n] = s;
-    motion[n] = m;
   }
-  const auto at = [&](Iv t) {
-    Points p;
-    for (int n = 0; n < 4; ++n)
-      p[n] = {start[n].x + t * motion[n].x, start[n].y + t * motion[n].y,
-              start[n].z + t * motion[n].z};
-    return p;
-  };
-  const auto coplanarity = [&](const Points& p) {
-    return dot(p[i] - p[o], cross(p[j] - p[o], p[k] - p[o]));
+  const IPoly f = dot(p[i] - p[o], cross(p[j] - p[o], p[k] - p[o]));
+  Inside inside;
+  const auto inside_over = [&](double t0, double t1) {
+    if (inside.count == 0) inside = make_inside(p);
+    std::array<Iv, 4> v{};
+    for (int n = 0; n < inside.count; ++n)
+      v[n] = t0 == t1 ? at(inside.polys[n], t0) : over(inside.polys[n], t0, t1);
+    return inside.rule(v);
   };
   // Coplanar and possibly meeting at t = 0 or 1 (touching at the start, as resting contact
   // gives): no span ending there can ever be certified, so the exact path answers at once.
   for (const double t : {0.0, 1.0}) {
-    const Points p = at({t, t});
-    const Iv f = coplanarity(p);
-    if (!positive(f) && !negative(f) && inside(p) != Certain::no) return Certain::unknown;
+    const Iv ft = at(f, t);
+    if (!positive(ft) && !negative(ft) && inside_over(t, t) != Certain::no) return Certain::unknown;
   }
   struct Span {
     double t0, t1;
@@ -131,13 +199,11 @@ Certain bisect_step(const std::array<Vec3, 8>& q, int o, int i, int j, int k, In
   while (top > 0) {
     const Span s = stack[--top];
     if (++spans > kMaxSpans) return Certain::unknown;
-    const Points p = at({s.t0, s.t1});
-    const Iv f = coplanarity(p);
-    if (positive(f) || negative(f)) continue;  // never coplanar in T
-    const Certain in = inside(p);
+    const Iv fs = over(f, s.t0, s.t1);
+    if (positive(fs) || negative(fs)) continue;  // never coplanar in T
+    const Certain in = inside_over(s.t0, s.t1);
     if (in == Certain::no) continue;  // coplanar or not, never meeting in T
-    if (in == Certain::yes &&
-        opposite(coplanarity(at({s.t0, s.t0})), coplanarity(at({s.t1, s.t1}))))
+    if (in == Certain::yes && opposite(at(f, s.t0), at(f, s.t1)))
       return Certain::yes;  // a coplanar time in T, where they meet
     if (s.depth == kMaxDepth) return Certain::unknown;
     // Split off-centre: roots of structured input sit at 1/2, 1/4, … where a certified sign
@@ -152,11 +218,11 @@ Certain bisect_step(const std::array<Vec3, 8>& q, int o, int i, int j, int k, In
 }  // namespace
 
 Certain interval_vertex_face_ccd(const std::array<Vec3, 8>& q) {
-  return bisect_step(q, 1, 2, 3, 0, vertex_in_face);  // det[b − a, c − a, p − a]
+  return subdivide(q, 1, 2, 3, 0, vertex_in_face);  // det[b − a, c − a, p − a]
 }
 
 Certain interval_edge_edge_ccd(const std::array<Vec3, 8>& q) {
-  return bisect_step(q, 0, 1, 2, 3, edges_meet);  // det[b − a, c − a, d − a]
+  return subdivide(q, 0, 1, 2, 3, edges_meet);  // det[b − a, c − a, d − a]
 }
 
 }  // namespace tc

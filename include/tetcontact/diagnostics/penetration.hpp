@@ -16,8 +16,9 @@ struct Penetration {
   double max_depth = 0.0;           // m: distance of such a node to that body's surface
   double max_depth_over_h = 0.0;    // the same over that body's mean tet edge length
   long crossings = 0;               // boundary edges crossing another body's boundary faces
-  double max_crossing_depth = 0.0;  // m: how far inside the face such an edge passes (the
-                                    // crossing point's distance to the face's boundary)
+  double max_crossing_depth = 0.0;  // m: the shortest move that undoes a crossing: the
+                                    // crossing point's distance to the face's boundary, or
+                                    // the edge's nearer end's distance past the face's plane
   std::vector<double> node_depth;   // per node (0 unless inside another body), m
 };
 

@@ -1,9 +1,10 @@
 // Certified floating-point CCD: decides the non-degenerate majority of queries in interval
 // arithmetic, and says "unknown" for the rest, which the exact path answers.
 //
-// The step [0, 1] is cut into time intervals T. On each, the coplanarity determinant (seed 000
-// eq. 13) and the inside test are evaluated in interval arithmetic over all of T (every
-// rounding widened outward), so that
+// The coplanarity determinant (seed 000 eq. 13) and the inside test's orientation polynomials
+// are formed once as polynomials in t with interval coefficients (every rounding widened
+// outward). The step [0, 1] is cut into time intervals T, on which each polynomial is enclosed
+// by its centred form (Taylor coefficients at T's middle), so that
 //   - T is dropped when the determinant is nonzero on all of T, or the inside test fails at
 //     every time of T;
 //   - a collision is certain when the determinant has opposite strict signs at T's ends (a root
