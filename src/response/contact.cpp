@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
+#include <limits>
 
 #include "tetcontact/mesh/surface.hpp"
 #include "tetcontact/narrowphase/exact_ccd.hpp"
@@ -196,15 +198,46 @@ std::vector<ContactPoint> NodeFaceContact::detect(const State& st, ContactStepSt
       const double side = apart.dot(n);
       if (side < 0.0 || (side == 0.0 && rel.dot(n) > 0.0)) n = -n;
     }
+    double alpha = cp.alpha, beta = cp.beta;
+    double gap = apart.dot(n);  // < 0: already through by round-off: closed within the step
+    // Touching edges that stay in contact are measured at the step's end instead: the closest
+    // points and the normal at the predicted positions x*, and the gap there less what the
+    // predicted motion contributes, g = g(x*) − τ v*_rel·n*. The impulse's target −g/τ then
+    // gives g(x*) + τ Δv_rel·n* = 0 at the end of the step, where the gap at the start, carried
+    // by the start's normal and points, leaves the second-order drift of edges that slide and
+    // turn against each other (measured: 0.2 µm in the cubes case).
+    if (kept) {
+      const auto cp1 = closest_points_on_segments(x1[e1[0]], x1[e1[1]], x1[e2[0]], x1[e2[1]]);
+      Vec3 n1 = (x1[e1[1]] - x1[e1[0]]).cross(x1[e2[1]] - x1[e2[0]]);
+      if (cp1.alpha > 0.0 && cp1.alpha < 1.0 && cp1.beta > 0.0 && cp1.beta < 1.0 &&
+          n1.squaredNorm() > 0.0) {
+        n1.normalize();
+        if (n1.dot(n) < 0.0) n1 = -n1;
+        const Vec3 rel1 = (1 - cp1.alpha) * st.v_star[e1[0]] + cp1.alpha * st.v_star[e1[1]] -
+                          (1 - cp1.beta) * st.v_star[e2[0]] - cp1.beta * st.v_star[e2[1]];
+        alpha = cp1.alpha;
+        beta = cp1.beta;
+        n = n1;
+        // Aim a few units of rounding beyond touching: positions land on doubles, and a
+        // target of exactly 0 leaves touching edges through each other by an ulp half the
+        // time (crossings of 5e-18 m in the cubes case).
+        double size = 0.0;
+        for (const Index k : {e1[0], e1[1], e2[0], e2[1]})
+          size = std::max(size, x1[k].cwiseAbs().maxCoeff());
+        const double margin =
+            16.0 * std::ldexp(std::numeric_limits<double>::epsilon(), std::ilogb(size));
+        gap = (cp1.on_a - cp1.on_b).dot(n1) - st.dt * rel1.dot(n1) - margin;
+      }
+    }
     ContactPoint c;  // side A: edge e1 (a, b) at α; side B: edge e2 (e, f) at β
     c.a_nodes = {e1[0], e1[1], 0, 0};
-    c.a_w = {1.0 - cp.alpha, cp.alpha, 0, 0};
+    c.a_w = {1.0 - alpha, alpha, 0, 0};
     c.a_count = 2;
     c.b_nodes = {e2[0], e2[1], 0, 0};
-    c.b_w = {1.0 - cp.beta, cp.beta, 0, 0};
+    c.b_w = {1.0 - beta, beta, 0, 0};
     c.b_count = 2;
     c.normal = n;
-    c.gap = apart.dot(n);  // < 0: already through by round-off: closed within the step
+    c.gap = gap;
     c.restore = true;
     c.mode = settings_.mode;
     c.friction = settings_.coefficient;
