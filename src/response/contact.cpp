@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <map>
 
 #include "tetcontact/mesh/surface.hpp"
 #include "tetcontact/narrowphase/exact_ccd.hpp"
@@ -39,14 +40,28 @@ NodeFaceContact::NodeFaceContact(const Model& model, const ContactSettings& sett
   input_.node_body = node_body_;
   input_.face_body = face_body_;
   for (const Face& f : faces_) input_.face_nodes.push_back(f);
-  if (settings.edge_edge)
-    for (const Surface& surf : model.surfaces)
+  if (settings.edge_edge) {
+    Index face_base = 0;
+    for (const Surface& surf : model.surfaces) {
+      // The two faces at each edge (the surface is closed: every edge has two).
+      std::map<Edge, std::array<Index, 2>> at_edge;
+      for (std::size_t f = 0; f < surf.faces.size(); ++f)
+        for (int k = 0; k < 3; ++k) {
+          Edge e{surf.faces[f][k], surf.faces[f][(k + 1) % 3]};
+          if (e[0] > e[1]) std::swap(e[0], e[1]);
+          auto [it, fresh] = at_edge.try_emplace(e, std::array<Index, 2>{-1, -1});
+          it->second[fresh ? 0 : 1] = face_base + static_cast<Index>(f);
+        }
       for (const Edge& e : surf.edges) {
         edges_.push_back(e);
         edge_body_.push_back(surf.body);
+        edge_faces_.push_back(at_edge.at(e));
         input_.edge_nodes.push_back(e);
         input_.edge_body.push_back(surf.body);
       }
+      face_base += static_cast<Index>(surf.faces.size());
+    }
+  }
   input_.node_box.resize(nodes_.size());
   input_.face_box.resize(faces_.size());
   input_.edge_box.resize(edges_.size());
@@ -171,11 +186,7 @@ std::vector<ContactPoint> NodeFaceContact::detect(const State& st, ContactStepSt
   stats.edge_candidates = static_cast<long>(cand.edge_edge.size());
   stats.edge_contacts = 0;
   std::vector<std::pair<std::pair<Index, Index>, Vec3>> active;
-  const auto previous_normal = [&](Index ea, Index eb) -> const Vec3* {
-    for (const auto& [pair, n] : active_edges_)
-      if (pair.first == ea && pair.second == eb) return &n;
-    return nullptr;
-  };
+  const std::vector<std::pair<std::pair<Index, Index>, Vec3>> previous = std::move(active_edges_);
   const auto add_edge_contact = [&](Index ea, Index eb, const Vec3* kept) {
     const Edge& e1 = edges_[ea];
     const Edge& e2 = edges_[eb];
@@ -198,6 +209,17 @@ std::vector<ContactPoint> NodeFaceContact::detect(const State& st, ContactStepSt
       const double side = apart.dot(n);
       if (side < 0.0 || (side == 0.0 && rel.dot(n) > 0.0)) n = -n;
     }
+    // A normal that points into B's surface at its edge and out of A's at once (against the
+    // sums of the outward normals of the faces at each edge) would push each body into the
+    // other: not used. Edges touching side by side in a flattened patch get such normals,
+    // lying in the patch, whose pushes held two Hertz spheres together.
+    const auto outward = [&](Index e) {
+      Vec3 sum = Vec3::Zero();
+      for (const Index f : edge_faces_[e])
+        if (f >= 0) sum += face_normal(faces_[f], x0);
+      return sum;
+    };
+    if (n.dot(outward(ea)) >= 0.0 && n.dot(outward(eb)) <= 0.0) return;
     double alpha = cp.alpha, beta = cp.beta;
     double gap = apart.dot(n);  // < 0: already through by round-off: closed within the step
     // Touching edges that stay in contact are measured at the step's end instead: the closest
@@ -245,19 +267,26 @@ std::vector<ContactPoint> NodeFaceContact::detect(const State& st, ContactStepSt
     active.push_back({{ea, eb}, n});
     ++stats.edge_contacts;
   };
+  // The pairs in contact last step first, whether or not the broadphase lists them now (its
+  // boxes depend on the binding lists' reach): still in contact while their closest points
+  // stay interior to both edges and within the reach.
+  std::vector<std::pair<Index, Index>> kept_pairs;
+  for (const auto& [pair, n] : previous) {
+    const Edge& e1 = edges_[pair.first];
+    const Edge& e2 = edges_[pair.second];
+    const auto cp = closest_points_on_segments(x0[e1[0]], x0[e1[1]], x0[e2[0]], x0[e2[1]]);
+    if (cp.alpha > 0.0 && cp.alpha < 1.0 && cp.beta > 0.0 && cp.beta < 1.0 &&
+        (cp.on_a - cp.on_b).dot(n) < reach_) {
+      add_edge_contact(pair.first, pair.second, &n);
+      kept_pairs.push_back(pair);
+    }
+  }
+  std::sort(kept_pairs.begin(), kept_pairs.end());
+  // Then the candidates that cross during the step (exact CCD).
   for (const auto& [ea, eb] : cand.edge_edge) {
+    if (std::binary_search(kept_pairs.begin(), kept_pairs.end(), std::make_pair(ea, eb))) continue;
     const Edge& e1 = edges_[ea];
     const Edge& e2 = edges_[eb];
-    const Vec3* kept = previous_normal(ea, eb);
-    if (kept) {
-      // Still in contact: the closest points interior to both edges and within the reach.
-      const auto cp = closest_points_on_segments(x0[e1[0]], x0[e1[1]], x0[e2[0]], x0[e2[1]]);
-      if (cp.alpha > 0.0 && cp.alpha < 1.0 && cp.beta > 0.0 && cp.beta < 1.0 &&
-          (cp.on_a - cp.on_b).dot(*kept) < reach_) {
-        add_edge_contact(ea, eb, kept);
-        continue;
-      }
-    }
     if (exact_edge_edge_ccd({x0[e1[0]], x0[e1[1]], x0[e2[0]], x0[e2[1]], x1[e1[0]], x1[e1[1]],
                              x1[e2[0]], x1[e2[1]]}))
       add_edge_contact(ea, eb, nullptr);

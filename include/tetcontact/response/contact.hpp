@@ -2,6 +2,8 @@
 // candidates, and the contact points the impulse kernel corrects in sequential passes.
 #pragma once
 
+#include <array>
+
 #include <memory>
 #include <string>
 #include <vector>
@@ -81,6 +83,8 @@ class NodeFaceContact {
   std::vector<Index> face_body_, face_tet_;
   std::vector<Edge> edges_;
   std::vector<Index> edge_body_;
+  std::vector<std::array<Index, 2>>
+      edge_faces_;  // the two surface faces at each edge (into faces_)
   // Edge pairs in contact last step, with their oriented normal: seed 001 checks contacts
   // already made for staying in contact; an edge pair that has drifted through by round-off
   // would otherwise never be found crossing again.
