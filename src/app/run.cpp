@@ -181,6 +181,14 @@ Json summary_json(const Case& c, const Simulation& sim, const std::string& statu
   }
   Json& pen = j["penetration"];
   for (const char* k : {"max_depth", "max_depth_over_h", "max_crossings"}) pen[k] = nullptr;
+  // Fracture: cells damaged and destroyed at the end. Particles are not made yet (destroyed
+  // cells stay in the mesh without stress), so their counts are not claimed.
+  Json& fr = j["fracture"];
+  fr["enabled"] = c.fracture;
+  fr["damaged"] = c.fracture ? Json(last.damaged) : Json();
+  fr["destroyed"] = c.fracture ? Json(last.destroyed) : Json();
+  fr["particles"] = nullptr;
+  fr["mass_to_particles"] = nullptr;
   return j;
 }
 

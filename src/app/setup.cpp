@@ -159,6 +159,7 @@ Model build_model(const Case& c, std::vector<std::string>* notes) {
   }
   model.element.viscosity_linear = c.viscosity_linear;
   model.element.viscosity_quadratic = c.viscosity_quadratic;
+  model.element.fracture = c.fracture;
   for (const Material& m : model.materials)
     model.element.average_nodal_pressure.push_back(
         c.average_nodal_pressure == AnpMode::on ||

@@ -42,6 +42,10 @@ Sample sample_balance(const State& st, const Sample* previous) {
     s.plastic_work += st.w_plastic[t];
     s.viscous_work += st.w_viscous[t];
   }
+  for (const Damage d : st.damage) {
+    s.damaged += d == Damage::damaged;
+    s.destroyed += d == Damage::destroyed;
+  }
   account(st.bc_impulse, st, f, previous ? &previous->boundary : nullptr, s.boundary);
   account(st.wall_impulse, st, f, previous ? &previous->walls : nullptr, s.walls);
   account(st.contact_impulse, st, f, previous ? &previous->contact : nullptr, s.contact);

@@ -360,7 +360,7 @@ std::vector<TransformOp> parse_transform(const Reader& r, const YAML::Node& n,
 Material parse_material(const Reader& r, const YAML::Node& m, const std::string& p) {
   r.keys(m, p,
          {"from", "density", "youngs_modulus", "poisson_ratio", "shear_modulus", "bulk_modulus",
-          "yield_stress", "hardening_modulus", "eos"});
+          "yield_stress", "hardening_modulus", "eos", "spall_strength", "loosening_limit"});
   Material mat;
   mat.density = r.positive(r.require(m, p, "density"), join(p, "density"), "kg/m^3");
   const bool by_young = m["youngs_modulus"] || m["poisson_ratio"];
@@ -414,6 +414,14 @@ Material parse_material(const Reader& r, const YAML::Node& m, const std::string&
     r.fail(m, p,
            "no bulk modulus: give bulk_modulus, youngs_modulus and poisson_ratio, or a "
            "mie_gruneisen eos");
+  if (m["spall_strength"])
+    mat.spall_strength = r.non_negative(m["spall_strength"], join(p, "spall_strength"));
+  if (const YAML::Node l = m["loosening_limit"]) {
+    mat.loosening_limit = r.number(l, join(p, "loosening_limit"));
+    if (!(mat.loosening_limit > 0.0 && mat.loosening_limit < 1.0))
+      r.fail(l, join(p, "loosening_limit"),
+             "the loosening limit chi* = 1 - V0/V must be in (0, 1), got " + l.Scalar());
+  }
   return mat;
 }
 
@@ -456,8 +464,8 @@ std::vector<Material> load_material_library(const std::string& path) {
 
 const std::vector<std::string>& known_output_fields() {
   static const std::vector<std::string> f = {
-      "displacement", "velocity",       "stress",          "pressure", "body",
-      "von_mises",    "plastic_strain", "internal_energy", "viscosity"};
+      "displacement", "velocity",       "stress",          "pressure",  "body",
+      "von_mises",    "plastic_strain", "internal_energy", "viscosity", "damage"};
   return f;
 }
 
@@ -834,18 +842,15 @@ Case load_case(const std::string& path, const std::vector<std::string>& override
     }
   }
 
-  // Stages filled by later versions: accepted only switched off, so nothing is ignored silently.
-  for (const char* stage : {"fracture"}) {
-    if (const YAML::Node s = root[stage]) {
-      r.keys(s, stage, {"enabled"});
-      const bool on = s["enabled"] ? r.boolean(s["enabled"], join(stage, "enabled")) : false;
-      if (on)
-        r.fail(s["enabled"], join(stage, "enabled"),
-               std::string("the ") + stage +
-                   " stage is not available in this version of tetcontact; set it to false");
-      c.fracture = on;
-    }
+  // Fracture (seed 000): spall damage and loosening. Destroyed boundary cells are not yet
+  // turned into particles; they stay in the mesh without stress (said in the README).
+  if (const YAML::Node s = root["fracture"]) {
+    r.keys(s, "fracture", {"enabled"});
+    c.fracture = s["enabled"] ? r.boolean(s["enabled"], "fracture.enabled") : true;
   }
+  if (c.fracture &&
+      std::find(c.output.fields.begin(), c.output.fields.end(), "damage") == c.output.fields.end())
+    c.output.fields.push_back("damage");  // what fracture adds is always shown
   return c;
 }
 

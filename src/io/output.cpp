@@ -19,6 +19,7 @@ OutputWriter::OutputWriter(const Model& model, const OutputSpec& spec, std::stri
        "balance_error,momentum_x,momentum_y,momentum_z";
   for (const RigidWall& w : model_.walls) h << ",wall_force_" << w.name;
   if (model_.contact) h << ",contact_work,contact_force,contacts";
+  if (model_.element.fracture) h << ",damaged,destroyed";
   for (const auto& [name, seconds] : profile_->stages) {
     h << ",seconds_" << name;
     stage_seconds_.push_back(seconds);
@@ -39,6 +40,7 @@ void OutputWriter::observe(const State& st, const Sample& s) {
     if (model_.contact)
       h << ',' << format_double(s.contact.work) << ',' << format_double(s.contact_force) << ','
         << s.contacts;
+    if (model_.element.fracture) h << ',' << s.damaged << ',' << s.destroyed;
     for (std::size_t k = 0; k < profile_->stages.size(); ++k) {
       const double now = profile_->stages[k].second;
       h << ',' << format_double(now - stage_seconds_[k]);

@@ -93,6 +93,9 @@ std::string vtu_frame(const Model& model, const State& st, const std::vector<std
                [&](std::size_t t, int) { return st.e_int[t] / st.vol0[t]; });
   if (wants(fields, "viscosity"))
     data_array(out, "Float64", "viscosity", 1, m, [&](std::size_t t, int) { return st.q[t]; });
+  if (wants(fields, "damage") && st.damage.size() == m)  // 0 intact, 1 damaged, 2 destroyed
+    data_array(out, "Int32", "damage", 1, m,
+               [&](std::size_t t, int) { return static_cast<double>(st.damage[t]); });
   if (wants(fields, "body"))
     data_array(out, "Int32", "body", 1, m,
                [&](std::size_t t, int) { return static_cast<double>(mesh.tet_body[t]); });

@@ -1,5 +1,6 @@
 #include "tetcontact/solver/element.hpp"
 
+#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -13,6 +14,32 @@ namespace {
   std::ostringstream os;
   os << "inverted " << when << " (volume " << vol << " m^3, reference " << vol0 << " m^3)";
   throw InvertedElement(t, os.str());
+}
+
+// Seed 000's spall criterion: the largest principal stress σ1 = λmax(s) − p exceeds σ*. For a
+// deviator λmax(s) ≤ √(2/3) |s|, which clears most cells without an eigenvalue solve.
+bool spalls(const Material& m, const Sym6& s, double p) {
+  if (!(m.spall_strength > 0.0)) return false;
+  const double n2 =
+      s[0] * s[0] + s[1] * s[1] + s[2] * s[2] + 2.0 * (s[3] * s[3] + s[4] * s[4] + s[5] * s[5]);
+  if (std::sqrt(2.0 / 3.0 * n2) * (1.0 + 1e-9) - p <= m.spall_strength) return false;
+  Eigen::SelfAdjointEigenSolver<Mat3> es;
+  es.computeDirect(to_mat3(s), Eigen::EigenvaluesOnly);
+  return es.eigenvalues().maxCoeff() - p > m.spall_strength;
+}
+
+// Failure at the end of the step (seed 000): an intact cell that spalls is damaged, its
+// deviator dropped; a damaged cell loosened past χ = 1 − V0/V > χ* is destroyed. Returns the
+// pressure the cell may carry: none in tension once damaged, none at all once destroyed.
+double fail(const Material& m, Index t, double vol, double p, State& st) {
+  Damage& dmg = st.damage[t];
+  if (dmg == Damage::intact && spalls(m, st.s[t], p)) {
+    dmg = Damage::damaged;
+    st.s[t] = Sym6{0, 0, 0, 0, 0, 0};
+  }
+  if (dmg == Damage::damaged && 1.0 - st.vol0[t] / vol > m.loosening_limit) dmg = Damage::destroyed;
+  if (dmg == Damage::destroyed || (dmg == Damage::damaged && p < 0.0)) return 0.0;
+  return p;
 }
 
 // Squared dilatational sound speed of the current state: (ρ c_b² + 4G/3) / ρ.
@@ -213,7 +240,9 @@ ForceResult update_material(const std::vector<Tet>& tets, const std::vector<Mate
 
     // Deviator (Jaumann rate, radial return) and its trapezoidal work τ V ½(sⁿ + sⁿ⁺¹) : D.
     const Sym6 s_old = st.s[t];
-    const DeviatorIncrement inc = update_deviator6(mat, st.s[t], d, w, tau, st.eps_p[t]);
+    const bool failed = options.fracture && st.damage[t] != Damage::intact;  // no deviator
+    const DeviatorIncrement inc =
+        failed ? DeviatorIncrement{} : update_deviator6(mat, st.s[t], d, w, tau, st.eps_p[t]);
     const Sym6& s_new = st.s[t];
     double sd = 0.0;
     for (int c = 0; c < 6; ++c) sd += (c < 3 ? 1.0 : 2.0) * (s_old[c] + s_new[c]) * d[c];
@@ -254,10 +283,18 @@ ForceResult update_material(const std::vector<Tet>& tets, const std::vector<Mate
     //   E^{n+1} = E^n + W_dev − ½ (p^n + p^{n+1}) ΔV + W_q, solved for E^{n+1}.
     const double mu = st.vol0[t] / ge.vol - 1.0;
     const EosTerms eos = eos_terms(mat, mu);
-    const double e_new = (st.e_int[t] + w_dev - 0.5 * (st.p[t] + eos.a) * dvol + w_q) /
-                         (1.0 + 0.5 * eos.b * dvol / st.vol0[t]);
+    double e_new = (st.e_int[t] + w_dev - 0.5 * (st.p[t] + eos.a) * dvol + w_q) /
+                   (1.0 + 0.5 * eos.b * dvol / st.vol0[t]);
+    double p_new = eos.a + eos.b * e_new / st.vol0[t];
+    if (options.fracture) {
+      const double carried = fail(mat, ti, ge.vol, p_new, st);
+      if (carried != p_new) {  // the energy with the pressure the cell carries
+        p_new = carried;
+        e_new = st.e_int[t] + w_dev - 0.5 * (st.p[t] + p_new) * dvol + w_q;
+      }
+    }
     st.e_int[t] = e_new;
-    st.p[t] = eos.a + eos.b * e_new / st.vol0[t];
+    st.p[t] = p_new;
     st.sound2[t] = sound_speed2(mat, mu, st.p[t], eos);
     scatter_forces(ti, k, ge, options, st, forces);
   }
@@ -277,11 +314,12 @@ ForceResult update_material(const std::vector<Tet>& tets, const std::vector<Mate
     if (!anp(mi)) continue;
     const Index ti = static_cast<Index>(t);
     const Tet& k = tets[t];
-    const double p_new = 0.25 * (scratch.pressure[k[0]] + scratch.pressure[k[1]] +
-                                 scratch.pressure[k[2]] + scratch.pressure[k[3]]);
+    const Material& mat = materials[mi];
+    double p_new = 0.25 * (scratch.pressure[k[0]] + scratch.pressure[k[1]] +
+                           scratch.pressure[k[2]] + scratch.pressure[k[3]]);
+    if (options.fracture) p_new = fail(mat, ti, st.vol[t], p_new, st);
     st.e_int[t] -= 0.5 * (st.p[t] + p_new) * scratch.tet_dvol[t];
     st.p[t] = p_new;
-    const Material& mat = materials[mi];
     const double mu = st.vol0[t] / st.vol[t] - 1.0;
     st.sound2[t] = sound_speed2(mat, mu, p_new, eos_terms(mat, mu));
     TetGeometry g;

@@ -61,6 +61,7 @@ State initial_state(const Model& model) {
        {&st.p, &st.q, &st.e_int, &st.eps_p, &st.w_plastic, &st.w_viscous, &st.sound2, &st.trace_d})
     field->assign(m, 0.0);
   st.tet_material.resize(m);
+  st.damage.assign(m, Damage::intact);
   // Lumped masses: a quarter of each tet's mass on each of its nodes.
   for (std::size_t t = 0; t < m; ++t) {
     st.tet_material[t] = model.body_material[mesh.tet_body[t]];

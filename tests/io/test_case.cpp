@@ -241,12 +241,12 @@ TEST(CaseFile, EveryErrorClassNamesFileLineAndKey) {
        ":8:",
        "materials.al.density",
        "duplicate key"},
-      {"stage not available",
-       v + "fracture:\n  enabled: true\n",
+      {"loosening limit out of range",
+       replace(v, "    density: 2700", "    density: 2700\n    loosening_limit: 1.5"),
        {},
-       ":24:",
-       "fracture.enabled",
-       "not available in this version"},
+       ":8:",
+       "materials.al.loosening_limit",
+       "must be in (0, 1)"},
       {"override wrong type",
        v,
        {"solver.cfl=fast"},
@@ -311,7 +311,8 @@ TEST(CaseFile, ReadmeExampleIsValid) {
   EXPECT_TRUE(c.contact);
   EXPECT_EQ(c.contact_settings.pairs.size(), 1u);
   EXPECT_EQ(c.boundary_conditions.size(), 2u);
-  EXPECT_EQ(c.output.fields.size(), 9u);
+  EXPECT_EQ(c.output.fields.size(), 10u);  // the example's nine, and fracture's `damage`
+  EXPECT_TRUE(c.fracture);
   EXPECT_EQ(c.materials.size(), 4u);
   EXPECT_EQ(c.walls.size(), 1u);
   EXPECT_EQ(c.references.size(), 2u);

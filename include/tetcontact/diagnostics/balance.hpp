@@ -35,6 +35,8 @@ struct Sample {
   ImpulseLedger contact;       // contacts between bodies: work (≤ 0) and impulse (≈ 0) to t^n
   double contact_force = 0.0;  // total normal contact force this step (Σ λ / τ), N
   long contacts = 0;           // node–face contacts this step
+  long damaged = 0;            // cells spalled (damaged, not destroyed) at t^n
+  long destroyed = 0;          // cells destroyed (loosened) at t^n
   double total = 0.0;          // kinetic + internal
   double balance_error = 0.0;  // filled by the Simulation (see balance_error_max)
   double mass = 0.0;

@@ -29,6 +29,11 @@ struct Material {
   double c0 = 0.0;      // bulk sound speed, m/s (Mie–Grüneisen)
   double s = 0.0;       // Us = c0 + s up
   double gamma0 = 0.0;  // Grüneisen coefficient Γ0
+  // Failure (seed 000, used when the case's fracture stage is on): a cell whose largest
+  // tensile principal stress exceeds σ* is damaged (it then resists only volumetric
+  // compression); a damaged cell loosened past χ = 1 − V0/V > χ* is destroyed (no pressure).
+  double spall_strength = 0.0;    // σ*, Pa; 0: the material does not spall
+  double loosening_limit = 0.03;  // χ*
 
   bool plastic() const { return yield_stress > 0.0; }
   /// Young's modulus and Poisson's ratio from G and K.

@@ -40,6 +40,7 @@ struct ElementOptions {
   double viscosity_linear = 0.06;            // C1 of bulk_viscosity
   double viscosity_quadratic = 1.5;          // C2 of bulk_viscosity
   std::vector<char> average_nodal_pressure;  // per material: pressure averaged at nodes
+  bool fracture = false;                     // spall damage and loosening (seed 000)
 };
 
 /// Scratch arrays of the average-nodal-pressure passes, sized on first use.

@@ -1,12 +1,18 @@
 // The solver's state: hot per-node and per-tet arrays, indexed by integers.
 #pragma once
 
+#include <cstdint>
+
 #include <vector>
 
 #include "tetcontact/material/material.hpp"
 #include "tetcontact/mesh/mesh.hpp"
 
 namespace tc {
+
+/// A cell's failure state (seed 000): damaged cells resist only volumetric compression,
+/// destroyed ones carry no stress at all.
+enum class Damage : std::uint8_t { intact = 0, damaged = 1, destroyed = 2 };
 
 struct State {
   // Nodes (N).
@@ -33,6 +39,7 @@ struct State {
   std::vector<double> sound2;     // current dilatational sound speed squared, m²/s²
   std::vector<double> trace_d;    // tr D of the last step (volumetric strain rate), 1/s
   std::vector<Index> tet_material;
+  std::vector<Damage> damage;  // per tet
 
   double t = 0.0;        // t^n
   double dt = 0.0;       // τ for the step t^n → t^{n+1}
