@@ -1,6 +1,8 @@
 // Constant-strain tetrahedra: the patch test and the element kernel against exact results.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include <Eigen/Eigenvalues>
 
 #include "solver_fixture.hpp"
@@ -200,3 +202,59 @@ TEST(Element, InvertedElementIsReportedWithItsBody) {
     EXPECT_NE(msg.find("inverted"), std::string::npos) << msg;
   }
 }
+
+// Seed 000's failure, per-tet and nodal pressure alike: a uniform stretch whose tension stays
+// below σ* leaves cells intact; above it every cell is damaged (no deviator, no tension carried)
+// but still carries pressure when compressed; loosened past χ* = 0.03 it is destroyed and
+// carries no pressure at all, compressed or not.
+class Failure : public ::testing::TestWithParam<bool> {};
+TEST_P(Failure, SpallDamagesAndLooseningDestroys) {
+  Material mat = test::aluminium();  // K = 58.3 GPa: a volumetric strain of 3e-3 is 175 MPa
+  const auto model_with = [&](double spall) {
+    mat.spall_strength = spall;
+    Model m =
+        test::single_body_model(make_box(Vec3(0.01, 0.01, 0.01), {2, 2, 2}, HexSplit::six), mat);
+    m.element.average_nodal_pressure = {static_cast<char>(GetParam())};
+    m.element.fracture = true;
+    return m;
+  };
+  NodalScratch scratch;
+  const auto stretch = [&](const Model& m, State& st, double strain) {  // one step, uniform
+    const double tau = 1e-8;
+    for (std::size_t i = 0; i < st.x.size(); ++i) {
+      st.v[i] = (strain / tau) * st.x[i];
+      st.x[i] += tau * st.v[i];
+    }
+    update_material(m.mesh.tets, m.materials, m.element, tau, st, scratch);
+  };
+  const auto all = [](const State& st, Damage d) {
+    return std::all_of(st.damage.begin(), st.damage.end(), [&](Damage x) { return x == d; });
+  };
+  {
+    const Model m = model_with(1e9);
+    State st = initial_state(m);
+    stretch(m, st, 1e-3);
+    EXPECT_TRUE(all(st, Damage::intact));
+    EXPECT_LT(st.p[0], -1e8);  // the tension is carried
+  }
+  const Model m = model_with(1e8);
+  State st = initial_state(m);
+  stretch(m, st, 1e-3);  // χ = 1 − V0/V = 0.003: damaged, not destroyed
+  ASSERT_TRUE(all(st, Damage::damaged));
+  for (std::size_t t = 0; t < st.p.size(); ++t) {
+    EXPECT_EQ(st.p[t], 0.0);
+    EXPECT_EQ(to_mat3(st.s[t]).norm(), 0.0);
+  }
+  stretch(m, st, -3e-3);  // compressed again: pressure, still no deviator
+  EXPECT_TRUE(all(st, Damage::damaged));
+  for (std::size_t t = 0; t < st.p.size(); ++t) {
+    EXPECT_GT(st.p[t], 1e8);
+    EXPECT_EQ(to_mat3(st.s[t]).norm(), 0.0);
+  }
+  stretch(m, st, 0.03);  // χ ≈ 0.08 > 0.03: destroyed
+  ASSERT_TRUE(all(st, Damage::destroyed));
+  stretch(m, st, -0.02);  // compressed, but destroyed: nothing carried
+  for (std::size_t t = 0; t < st.p.size(); ++t) EXPECT_EQ(st.p[t], 0.0);
+}
+INSTANTIATE_TEST_SUITE_P(Pressure, Failure, ::testing::Values(false, true),
+                         [](const auto& info) { return info.param ? "nodal" : "per_tet"; });
