@@ -89,6 +89,7 @@ Simulation::Simulation(Model model, SolverSettings settings)
   if (anp) modules_.push_back("elements:average_nodal_pressure");
   if (model_.element.viscosity_linear > 0 || model_.element.viscosity_quadratic > 0)
     modules_.push_back("elements:bulk_viscosity");
+  if (model_.element.fracture) modules_.push_back("elements:fracture");
   if (!model_.constraints.empty()) modules_.push_back("boundary_conditions");
   if (!model_.walls.empty()) {
     modules_.push_back("response:rigid_walls");
@@ -100,6 +101,7 @@ Simulation::Simulation(Model model, SolverSettings settings)
     modules_.push_back("broadphase:" + model_.contact->broadphase);
     modules_.push_back("narrowphase:node_face");
     modules_.push_back("response:node_face");
+    if (model_.contact->edge_edge) modules_.push_back("narrowphase:edge_edge");
   }
   modules_.push_back("diagnostics:balance");
 
