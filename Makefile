@@ -11,7 +11,7 @@
 BUILD_DIR  ?= build
 BUILD_TYPE ?= Release
 JOBS       ?= $(shell nproc 2>/dev/null || echo 2)
-CASE       ?= data/cases/elastic-vibration.yaml
+CASE       ?= data/cases/cubes-edge.yaml
 OUT        ?= results/$(basename $(notdir $(CASE)))
 
 # Debian packages the build, the tests and the tools need.
