@@ -65,13 +65,14 @@ const char* k_stress_usage =
     "construction and placed by an exact transformation (offsets, axis permutations and\n"
     "signs, scales 2^-30 to 2^30, time reversal, primitive order). Compares the exact CCD\n"
     "with every answer and prints, per family, queries, true collisions, disagreements and\n"
-    "mean time (and, for vertex-face, the disagreements of the contact stage's floating-point\n"
-    "test). Then runs the micro-scenes, small cases that put bodies in degenerate contact\n"
-    "(coincident faces, an edge in a face, a vertex on an edge, one touching point), from\n"
-    "DIR (default: data/cases/micro of the source tree), and prints per scene the steps,\n"
-    "status, momentum error, energy balance and penetration; a scene passes with no NaN, no\n"
-    "inverted element and momentum conserved to 1e-12. --json: one object with `families`,\n"
-    "`disagreements`, `scenes` and `scenes_failed`.\n"
+    "mean time (and, for vertex-face, the disagreements of the floating-point swept test of\n"
+    "vertex_face.hpp, for comparison). Then runs the micro-scenes, small cases that put\n"
+    "bodies in degenerate contact (coincident faces, an edge in a face, a vertex on an\n"
+    "edge, one touching point), from DIR (default: data/cases/micro of the source tree),\n"
+    "and prints per scene the steps, status, momentum error, energy balance and\n"
+    "penetration; a scene passes with no NaN, no inverted element and momentum conserved\n"
+    "to 1e-12. --json: one object with `families`, `disagreements`, `scenes` and\n"
+    "`scenes_failed`.\n"
     "Exit codes: 0 no disagreement and every scene passed, 1 otherwise, 2 bad usage or input.\n";
 
 const char* k_profile_usage =

@@ -316,7 +316,7 @@ int stress_command(const StressOptions& o) {
   if (!o.json)
     std::printf(
         "%ld disagreements with the constructed answers (exact CCD); float disagreements: the\n"
-        "floating-point swept vertex-face test of the contact stage, for comparison\n",
+        "floating-point swept vertex-face test of vertex_face.hpp, for comparison\n",
         total);
   long failed = 0;
   if (!o.scenes_dir.empty()) {

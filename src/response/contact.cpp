@@ -149,8 +149,10 @@ std::vector<ContactPoint> NodeFaceContact::detect(const State& st, ContactStepSt
     const double area = 0.5 * (x1[f[1]] - x1[f[0]]).cross(x1[f[2]] - x1[f[0]]).norm();
     const double depth = area > 0.0 ? 3.0 * vol / area : 0.0;
     const bool inside = behind_face(x1[node], x1[f[0]], x1[f[1]], x1[f[2]], depth);
-    if (!inside && !vertex_face_ccd(x0[node], x0[f[0]], x0[f[1]], x0[f[2]], x1[node], x1[f[0]],
-                                    x1[f[1]], x1[f[2]]))
+    // The swept test is the exact one (issue 5): the floating-point test missed or invented
+    // contacts on coplanar and degenerate configurations (the `stress` table).
+    if (!inside && !exact_vertex_face_ccd({x0[node], x0[f[0]], x0[f[1]], x0[f[2]], x1[node],
+                                           x1[f[0]], x1[f[1]], x1[f[2]]}))
       continue;
     ContactPoint c;
     c.a_nodes[0] = node;
