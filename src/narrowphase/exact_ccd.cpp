@@ -528,7 +528,7 @@ double coplanar_motion(const std::function<bool(Point&)>& meet,
 
 // Exact filter: the boxes of the two primitives over the step (their points at both ends) are
 // disjoint. The coordinates are doubles and comparisons of doubles are exact.
-bool boxes_apart(const std::array<Vec3, 8>& q, std::array<int, 8> side) {
+bool boxes_apart(const std::array<Vec3, 8>& q, const std::array<int, 8>& side) {
   for (int d = 0; d < 3; ++d) {
     double lo[2] = {1e308, 1e308}, hi[2] = {-1e308, -1e308};
     for (int k = 0; k < 8; ++k) {
@@ -578,15 +578,34 @@ bool coplanarity_never_zero(const std::array<Vec3, 8>& q, int o, int i, int j, i
   return pos || neg;
 }
 
-double vertex_face_query(const std::array<Vec3, 8>& q, bool earliest) {
-  if (boxes_apart(q, {0, 1, 1, 1, 0, 1, 1, 1})) return -1.0;
-  if (coplanarity_never_zero(q, 1, 2, 3, 0)) return -1.0;  // det[b − a, c − a, p − a]
-  const Certain sure = interval_vertex_face_ccd(q);
+// The filters in front of the exact path: the exact box test (`side` tells the primitives'
+// points apart), the certified Bernstein test of the coplanarity determinant
+// det[p_i − p_o, p_j − p_o, p_k − p_o] and the interval subdivision. −1: no contact; 0:
+// contact (when no time is asked: a time is always exact); NaN: undecided.
+double filters(const std::array<Vec3, 8>& q, const std::array<int, 8>& side,
+               const std::array<int, 4>& det, Certain (*interval)(const std::array<Vec3, 8>&),
+               bool earliest) {
+  if (boxes_apart(q, side)) return -1.0;
+  if (coplanarity_never_zero(q, det[0], det[1], det[2], det[3])) return -1.0;
+  const Certain sure = interval(q);
   if (sure == Certain::no) return -1.0;
-  if (sure == Certain::yes && !earliest) return 0.0;  // the time, when asked, is exact
+  if (sure == Certain::yes && !earliest) return 0.0;
+  return std::nan("");
+}
+
+// The four moving points of a query, on the integer scale of its coordinates.
+std::array<PVec, 4> moving_points(const std::array<Vec3, 8>& q) {
   const long E = integer_exponent(q);
-  const PVec p = moving(q[0], q[4], E), a = moving(q[1], q[5], E), b = moving(q[2], q[6], E),
-             c = moving(q[3], q[7], E);
+  return {moving(q[0], q[4], E), moving(q[1], q[5], E), moving(q[2], q[6], E),
+          moving(q[3], q[7], E)};
+}
+
+double vertex_face_query(const std::array<Vec3, 8>& q, bool earliest) {
+  // det[b − a, c − a, p − a] for q = p, a, b, c.
+  const double f =
+      filters(q, {0, 1, 1, 1, 0, 1, 1, 1}, {1, 2, 3, 0}, interval_vertex_face_ccd, earliest);
+  if (!std::isnan(f)) return f;
+  const auto [p, a, b, c] = moving_points(q);
   const Poly coplanar = dot(cross(sub(b, a), sub(c, a)), sub(p, a));
   const auto meet = [&](Point& pt) { return point_in_triangle(p, a, b, c, pt); };
   if (coplanar.zero())
@@ -595,14 +614,11 @@ double vertex_face_query(const std::array<Vec3, 8>& q, bool earliest) {
 }
 
 double edge_edge_query(const std::array<Vec3, 8>& q, bool earliest) {
-  if (boxes_apart(q, {0, 0, 1, 1, 0, 0, 1, 1})) return -1.0;
-  if (coplanarity_never_zero(q, 0, 1, 2, 3)) return -1.0;  // det[b − a, c − a, d − a]
-  const Certain sure = interval_edge_edge_ccd(q);
-  if (sure == Certain::no) return -1.0;
-  if (sure == Certain::yes && !earliest) return 0.0;  // the time, when asked, is exact
-  const long E = integer_exponent(q);
-  const PVec a = moving(q[0], q[4], E), b = moving(q[1], q[5], E), c = moving(q[2], q[6], E),
-             d = moving(q[3], q[7], E);
+  // det[b − a, c − a, d − a] for q = a, b, c, d.
+  const double f =
+      filters(q, {0, 0, 1, 1, 0, 0, 1, 1}, {0, 1, 2, 3}, interval_edge_edge_ccd, earliest);
+  if (!std::isnan(f)) return f;
+  const auto [a, b, c, d] = moving_points(q);
   const Poly coplanar = dot(cross(sub(b, a), sub(c, a)), sub(d, a));
   const auto meet = [&](Point& pt) { return segments_meet(a, b, c, d, pt); };
   if (coplanar.zero())
