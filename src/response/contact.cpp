@@ -195,8 +195,11 @@ std::vector<ContactPoint> NodeFaceContact::detect(const State& st, ContactStepSt
     const auto cp = closest_points_on_segments(x0[e1[0]], x0[e1[1]], x0[e2[0]], x0[e2[1]]);
     const Vec3 u = x0[e1[1]] - x0[e1[0]], v = x0[e2[1]] - x0[e2[0]];
     const Vec3 apart = cp.on_a - cp.on_b;
-    const Vec3 rel = (1 - cp.alpha) * st.v_star[e1[0]] + cp.alpha * st.v_star[e1[1]] -
-                     (1 - cp.beta) * st.v_star[e2[0]] - cp.beta * st.v_star[e2[1]];
+    const auto relative_velocity = [&](double alpha, double beta) {  // A's point less B's
+      return Vec3((1 - alpha) * st.v_star[e1[0]] + alpha * st.v_star[e1[1]] -
+                  (1 - beta) * st.v_star[e2[0]] - beta * st.v_star[e2[1]]);
+    };
+    const Vec3 rel = relative_velocity(cp.alpha, cp.beta);
     // The normal along the common perpendicular, from B's point to A's: oriented as it was
     // when the contact began (kept), or by the side A's edge is on, or against the relative
     // velocity when they touch; for nearly parallel edges, along the points' difference.
@@ -229,7 +232,7 @@ std::vector<ContactPoint> NodeFaceContact::detect(const State& st, ContactStepSt
     // predicted motion contributes, g = g(x*) − τ v*_rel·n*. The impulse's target −g/τ then
     // gives g(x*) + τ Δv_rel·n* = 0 at the end of the step, where the gap at the start, carried
     // by the start's normal and points, leaves the second-order drift of edges that slide and
-    // turn against each other (measured: 0.2 µm in the cubes case).
+    // turn against each other (measured: 0.29 µm in the cubes case).
     if (kept) {
       const auto cp1 = closest_points_on_segments(x1[e1[0]], x1[e1[1]], x1[e2[0]], x1[e2[1]]);
       Vec3 n1 = (x1[e1[1]] - x1[e1[0]]).cross(x1[e2[1]] - x1[e2[0]]);
@@ -237,8 +240,7 @@ std::vector<ContactPoint> NodeFaceContact::detect(const State& st, ContactStepSt
           n1.squaredNorm() > 0.0) {
         n1.normalize();
         if (n1.dot(n) < 0.0) n1 = -n1;
-        const Vec3 rel1 = (1 - cp1.alpha) * st.v_star[e1[0]] + cp1.alpha * st.v_star[e1[1]] -
-                          (1 - cp1.beta) * st.v_star[e2[0]] - cp1.beta * st.v_star[e2[1]];
+        const Vec3 rel1 = relative_velocity(cp1.alpha, cp1.beta);
         alpha = cp1.alpha;
         beta = cp1.beta;
         n = n1;
