@@ -30,15 +30,20 @@ bool spalls(const Material& m, const Sym6& s, double p) {
 
 // Failure at the end of the step (seed 000): an intact cell that spalls is damaged, its
 // deviator dropped; a damaged cell loosened past χ = 1 − V0/V > χ* is destroyed. Returns the
-// pressure the cell may carry: none in tension once damaged, none at all once destroyed.
+// pressure the cell may carry: none in tension once damaged; a destroyed cell none while it
+// is loosened (χ > 0), and its EOS pressure again only once pressed back below its reference
+// volume (μ > 0): with no pressure at all, destroyed cells that neighbours compress again
+// collapse, and the spall plate's step fell to 3e-14 s.
 double fail(const Material& m, Index t, double vol, double p, State& st) {
   Damage& dmg = st.damage[t];
   if (dmg == Damage::intact && spalls(m, st.s[t], p)) {
     dmg = Damage::damaged;
     st.s[t] = Sym6{0, 0, 0, 0, 0, 0};
   }
-  if (dmg == Damage::damaged && 1.0 - st.vol0[t] / vol > m.loosening_limit) dmg = Damage::destroyed;
-  if (dmg == Damage::destroyed || (dmg == Damage::damaged && p < 0.0)) return 0.0;
+  const double chi = 1.0 - st.vol0[t] / vol;
+  if (dmg == Damage::damaged && chi > m.loosening_limit) dmg = Damage::destroyed;
+  if (dmg == Damage::intact) return p;
+  if (p < 0.0 || (dmg == Damage::destroyed && chi > 0.0)) return 0.0;
   return p;
 }
 
@@ -190,6 +195,7 @@ ForceResult update_material(const std::vector<Tet>& tets, const std::vector<Mate
     }
     scratch.vol.assign(n, 0.0);
     scratch.energy.assign(n, 0.0);
+    if (options.fracture) scratch.vol0.assign(n, 0.0);  // over the intact cells, each step
     scratch.pressure.assign(n, 0.0);
     scratch.tet_dvol.assign(tets.size(), 0.0);
   }
@@ -271,10 +277,15 @@ ForceResult update_material(const std::vector<Tet>& tets, const std::vector<Mate
     st.vol[t] = ge.vol;
 
     if (anp(mi)) {
-      for (Index n : k) {
-        scratch.vol[n] += 0.25 * ge.vol;
-        scratch.energy[n] += 0.25 * st.e_int[t];
-      }
+      // Failed cells are left out of the nodal averages: their neighbours' pressure must not
+      // depend on a loosened cell's volume (an intact cell beside spalled ones was crushed to
+      // V/V0 = 0.29 under an averaged pressure far below its own).
+      if (!options.fracture || st.damage[t] == Damage::intact)
+        for (Index n : k) {
+          scratch.vol[n] += 0.25 * ge.vol;
+          scratch.energy[n] += 0.25 * st.e_int[t];
+          if (options.fracture) scratch.vol0[n] += 0.25 * st.vol0[t];
+        }
       st.e_int[t] += w_dev + w_q;  // the pressure work follows in pass 3
       scratch.tet_dvol[t] = dvol;
       continue;
@@ -304,6 +315,7 @@ ForceResult update_material(const std::vector<Tet>& tets, const std::vector<Mate
   for (std::size_t n = 0; n < st.x.size(); ++n) {
     const Index nm = scratch.node_material[n];
     if (nm < 0) continue;
+    if (!(scratch.vol[n] > 0.0)) continue;  // every cell around it failed: not used
     const double mu = scratch.vol0[n] / scratch.vol[n] - 1.0;
     scratch.pressure[n] = eos_pressure(materials[nm], mu, scratch.energy[n] / scratch.vol0[n]);
   }
@@ -315,13 +327,22 @@ ForceResult update_material(const std::vector<Tet>& tets, const std::vector<Mate
     const Index ti = static_cast<Index>(t);
     const Tet& k = tets[t];
     const Material& mat = materials[mi];
+    const double mu = st.vol0[t] / st.vol[t] - 1.0, dvol = scratch.tet_dvol[t];
+    const EosTerms eos = eos_terms(mat, mu);
     double p_new = 0.25 * (scratch.pressure[k[0]] + scratch.pressure[k[1]] +
                            scratch.pressure[k[2]] + scratch.pressure[k[3]]);
+    if (options.fracture && st.damage[t] != Damage::intact) {
+      // A failed cell no longer averages its pressure with its neighbours' nodes (loosened
+      // neighbours in tension would leave it no resistance to compression): its own EOS,
+      // the energy solved implicitly as in the per-tet path.
+      const double e_new =
+          (st.e_int[t] - 0.5 * (st.p[t] + eos.a) * dvol) / (1.0 + 0.5 * eos.b * dvol / st.vol0[t]);
+      p_new = eos.a + eos.b * e_new / st.vol0[t];
+    }
     if (options.fracture) p_new = fail(mat, ti, st.vol[t], p_new, st);
-    st.e_int[t] -= 0.5 * (st.p[t] + p_new) * scratch.tet_dvol[t];
+    st.e_int[t] -= 0.5 * (st.p[t] + p_new) * dvol;
     st.p[t] = p_new;
-    const double mu = st.vol0[t] / st.vol[t] - 1.0;
-    st.sound2[t] = sound_speed2(mat, mu, p_new, eos_terms(mat, mu));
+    st.sound2[t] = sound_speed2(mat, mu, p_new, eos);
     TetGeometry g;
     end_geometry(ti, k, st, g, "at the end of the step");
     scatter_forces(ti, k, g, options, st, forces);

@@ -206,7 +206,7 @@ TEST(Element, InvertedElementIsReportedWithItsBody) {
 // Seed 000's failure, per-tet and nodal pressure alike: a uniform stretch whose tension stays
 // below σ* leaves cells intact; above it every cell is damaged (no deviator, no tension carried)
 // but still carries pressure when compressed; loosened past χ* = 0.03 it is destroyed and
-// carries no pressure at all, compressed or not.
+// carries no pressure while loosened, compressed or not, until pressed back below V0.
 class Failure : public ::testing::TestWithParam<bool> {};
 TEST_P(Failure, SpallDamagesAndLooseningDestroys) {
   Material mat = test::aluminium();  // K = 58.3 GPa: a volumetric strain of 3e-3 is 175 MPa
@@ -253,8 +253,14 @@ TEST_P(Failure, SpallDamagesAndLooseningDestroys) {
   }
   stretch(m, st, 0.03);  // χ ≈ 0.08 > 0.03: destroyed
   ASSERT_TRUE(all(st, Damage::destroyed));
-  stretch(m, st, -0.02);  // compressed, but destroyed: nothing carried
+  stretch(m, st, -0.02);  // compressed, but still loosened (V > V0): nothing carried
   for (std::size_t t = 0; t < st.p.size(); ++t) EXPECT_EQ(st.p[t], 0.0);
+  stretch(m, st, -0.05);  // pressed back below V0: it resists compression again
+  ASSERT_TRUE(all(st, Damage::destroyed));
+  for (std::size_t t = 0; t < st.p.size(); ++t) {
+    EXPECT_LT(st.vol[t], st.vol0[t]);
+    EXPECT_GT(st.p[t], 1e8);
+  }
 }
 INSTANTIATE_TEST_SUITE_P(Pressure, Failure, ::testing::Values(false, true),
                          [](const auto& info) { return info.param ? "nodal" : "per_tet"; });
