@@ -189,10 +189,14 @@ std::vector<ContactPoint> NodeFaceContact::detect(const State& st, ContactStepSt
   stats.edge_contacts = 0;
   std::vector<std::pair<std::pair<Index, Index>, Vec3>> active;
   const std::vector<std::pair<std::pair<Index, Index>, Vec3>> previous = std::move(active_edges_);
-  const auto add_edge_contact = [&](Index ea, Index eb, const Vec3* kept) {
+  const auto closest_at_start = [&](Index ea, Index eb) {
+    const Edge &e1 = edges_[ea], &e2 = edges_[eb];
+    return closest_points_on_segments(x0[e1[0]], x0[e1[1]], x0[e2[0]], x0[e2[1]]);
+  };
+  // `cp`: the edges' closest points at the start of the step.
+  const auto add_edge_contact = [&](Index ea, Index eb, const SegmentPoints& cp, const Vec3* kept) {
     const Edge& e1 = edges_[ea];
     const Edge& e2 = edges_[eb];
-    const auto cp = closest_points_on_segments(x0[e1[0]], x0[e1[1]], x0[e2[0]], x0[e2[1]]);
     const Vec3 u = x0[e1[1]] - x0[e1[0]], v = x0[e2[1]] - x0[e2[0]];
     const Vec3 apart = cp.on_a - cp.on_b;
     const auto relative_velocity = [&](double alpha, double beta) {  // A's point less B's
@@ -276,12 +280,10 @@ std::vector<ContactPoint> NodeFaceContact::detect(const State& st, ContactStepSt
   // stay interior to both edges and within the reach.
   std::vector<std::pair<Index, Index>> kept_pairs;
   for (const auto& [pair, n] : previous) {
-    const Edge& e1 = edges_[pair.first];
-    const Edge& e2 = edges_[pair.second];
-    const auto cp = closest_points_on_segments(x0[e1[0]], x0[e1[1]], x0[e2[0]], x0[e2[1]]);
+    const SegmentPoints cp = closest_at_start(pair.first, pair.second);
     if (cp.alpha > 0.0 && cp.alpha < 1.0 && cp.beta > 0.0 && cp.beta < 1.0 &&
         (cp.on_a - cp.on_b).dot(n) < reach_) {
-      add_edge_contact(pair.first, pair.second, &n);
+      add_edge_contact(pair.first, pair.second, cp, &n);
       kept_pairs.push_back(pair);
     }
   }
@@ -293,7 +295,7 @@ std::vector<ContactPoint> NodeFaceContact::detect(const State& st, ContactStepSt
     const Edge& e2 = edges_[eb];
     if (exact_edge_edge_ccd({x0[e1[0]], x0[e1[1]], x0[e2[0]], x0[e2[1]], x1[e1[0]], x1[e1[1]],
                              x1[e2[0]], x1[e2[1]]}))
-      add_edge_contact(ea, eb, nullptr);
+      add_edge_contact(ea, eb, closest_at_start(ea, eb), nullptr);
   }
   active_edges_ = std::move(active);
   if (settings_.order == ContactSettings::Order::lighter_first)

@@ -47,6 +47,14 @@ double fail(const Material& m, Index t, double vol, double p, State& st) {
   return p;
 }
 
+// The energy at the end of the step with the EOS pressure it implies:
+//   E^{n+1} = E + W − ½ (pⁿ + p^{n+1}) ΔV,  p^{n+1} = A(μ) + B E^{n+1}/V0,
+// solved for E^{n+1}; `e` holds Eⁿ and the work done before the pressure's, `w` the rest.
+inline double implicit_energy(double e, double w, double p_old, const EosTerms& eos, double dvol,
+                              double vol0) {
+  return (e - 0.5 * (p_old + eos.a) * dvol + w) / (1.0 + 0.5 * eos.b * dvol / vol0);
+}
+
 // Squared dilatational sound speed of the current state: (ρ c_b² + 4G/3) / ρ.
 inline double sound_speed2(const Material& m, double mu, double p, const EosTerms& t) {
   const double rho = m.density * (1.0 + mu);
@@ -294,8 +302,7 @@ ForceResult update_material(const std::vector<Tet>& tets, const std::vector<Mate
     //   E^{n+1} = E^n + W_dev − ½ (p^n + p^{n+1}) ΔV + W_q, solved for E^{n+1}.
     const double mu = st.vol0[t] / ge.vol - 1.0;
     const EosTerms eos = eos_terms(mat, mu);
-    double e_new = (st.e_int[t] + w_dev - 0.5 * (st.p[t] + eos.a) * dvol + w_q) /
-                   (1.0 + 0.5 * eos.b * dvol / st.vol0[t]);
+    double e_new = implicit_energy(st.e_int[t] + w_dev, w_q, st.p[t], eos, dvol, st.vol0[t]);
     double p_new = eos.a + eos.b * e_new / st.vol0[t];
     if (options.fracture) {
       const double carried = fail(mat, ti, ge.vol, p_new, st);
@@ -335,9 +342,8 @@ ForceResult update_material(const std::vector<Tet>& tets, const std::vector<Mate
       // A failed cell no longer averages its pressure with its neighbours' nodes (loosened
       // neighbours in tension would leave it no resistance to compression): its own EOS,
       // the energy solved implicitly as in the per-tet path.
-      const double e_new =
-          (st.e_int[t] - 0.5 * (st.p[t] + eos.a) * dvol) / (1.0 + 0.5 * eos.b * dvol / st.vol0[t]);
-      p_new = eos.a + eos.b * e_new / st.vol0[t];
+      p_new = eos.a + eos.b * implicit_energy(st.e_int[t], 0.0, st.p[t], eos, dvol, st.vol0[t]) /
+                          st.vol0[t];
     }
     if (options.fracture) p_new = fail(mat, ti, st.vol[t], p_new, st);
     st.e_int[t] -= 0.5 * (st.p[t] + p_new) * dvol;
