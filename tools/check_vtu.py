@@ -2,9 +2,12 @@
 """Opens a tetcontact ParaView series with VTK's own XML reader (the one ParaView uses) and
 checks it: every frame of case.pvd reads, has the mesh of summary.json, linear tetrahedra
 only, the requested arrays with their component counts, finite values, positive volumes.
+With fracture particles, particles.pvd too: each frame's particles plus its cells make the
+mesh's tets, with radius, mass, velocity, energy and body, finite, radius and mass positive.
 
-    check_vtu.py OUTDIR                        check an existing result folder
-    check_vtu.py --run BINARY CASE OUTDIR      run a short version of CASE first
+    check_vtu.py OUTDIR                               check an existing result folder
+    check_vtu.py --run BINARY CASE OUTDIR [END_TIME]  run a short version of CASE first
+                                                      (to END_TIME, default 2e-5 s)
 
 Needs Debian's python3-vtk9 (run with /usr/bin/python3). Exit code 0 when all checks pass."""
 import json
@@ -31,8 +34,9 @@ def check(cond, what):
 def main(argv):
     if argv[:1] == ["--run"]:
         binary, case, out = argv[1:4]
+        end = float(argv[4]) if len(argv) > 4 else 2.0e-5
         subprocess.run([binary, "run", case, "--out", out, "--force", "--quiet",
-                        "--set", "end_time=2.0e-5", "--set", "output.interval=1.0e-5",
+                        "--set", f"end_time={end!r}", "--set", f"output.interval={end / 2!r}",
                         "--set", "output.fields=[displacement,velocity,stress,pressure,body,von_mises]"],
                        check=True)
     else:
@@ -45,6 +49,31 @@ def main(argv):
     check(all(a[0] < b[0] for a, b in zip(frames, frames[1:])), "frame times increase")
     expected_point = {"displacement": 3, "velocity": 3, "body": 1}
     expected_cell = {"stress": 6, "pressure": 1, "von_mises": 1, "body": 1}
+    particles = {}  # time → particle count, from particles.pvd
+    if os.path.exists(os.path.join(out, "particles.pvd")):
+        pseries = ET.parse(os.path.join(out, "particles.pvd")).getroot().find("Collection")
+        pframes = [(float(d.get("timestep")), d.get("file")) for d in pseries.findall("DataSet")]
+        check([t for t, _ in pframes] == [t for t, _ in frames], "particle frames at the frame times")
+        for t, name in pframes:
+            reader = vtk.vtkXMLUnstructuredGridReader()
+            reader.SetFileName(os.path.join(out, name))
+            reader.Update()
+            grid = reader.GetOutput()
+            check(reader.GetErrorCode() == 0, f"{name}: VTK reads it")
+            n = grid.GetNumberOfPoints()
+            particles[t] = n
+            check(grid.GetNumberOfCells() == n, f"{name}: one vertex per particle")
+            for array, comps in {"radius": 1, "mass": 1, "velocity": 3, "energy": 1, "body": 1}.items():
+                a = grid.GetPointData().GetArray(array)
+                check(a is not None and a.GetNumberOfComponents() == comps,
+                      f"{name}: array {array} with {comps} components")
+                if a is not None and n:
+                    values = vtk_to_numpy(a)
+                    check(all(math.isfinite(v) for v in values.ravel()), f"{name}: {array} finite")
+                    if array in ("radius", "mass"):
+                        check(values.min() > 0, f"{name}: {array} positive")
+        check(particles.get(frames[-1][0], 0) == summary["fracture"]["particles"],
+              "the last particle frame holds summary.fracture.particles")
     for t, name in frames:
         reader = vtk.vtkXMLUnstructuredGridReader()
         reader.SetFileName(os.path.join(out, name))
@@ -52,7 +81,8 @@ def main(argv):
         grid = reader.GetOutput()
         check(reader.GetErrorCode() == 0, f"{name}: VTK reads it")
         check(grid.GetNumberOfPoints() == nodes, f"{name}: {nodes} points")
-        check(grid.GetNumberOfCells() == tets, f"{name}: {tets} cells")
+        cells = tets - particles.get(t, 0)  # cells turned into particles leave the mesh
+        check(grid.GetNumberOfCells() == cells, f"{name}: {cells} cells")
         types = vtk_to_numpy(grid.GetCellTypesArray())
         check((types == vtk.VTK_TETRA).all(), f"{name}: only linear tetrahedra")
         for data, expected in ((grid.GetPointData(), expected_point), (grid.GetCellData(), expected_cell)):

@@ -156,6 +156,13 @@ Json summary_json(const Case& c, const Simulation& sim, const std::string& statu
   ts["last"] = last.dt;
   ts["cfl"] = c.cfl;
   ts["critical_tet"] = static_cast<long>(sim.critical_tet());
+  if (const Index t = sim.critical_tet(); t >= 0) {  // what limits the step, for the user
+    const BodyRange& b = model.mesh.bodies[model.mesh.tet_body[t]];
+    ts["critical_body"] = b.name;
+    ts["critical_body_tet"] = static_cast<long>(t - b.tet_begin);
+    ts["critical_volume_ratio"] = st.vol[t] / st.vol0[t];
+    ts["critical_damage"] = static_cast<long>(st.damage[t]);
+  }
 
   // Stages a run does not have: null means "not measured", never zero.
   Json& contact = j["contact"];
@@ -181,14 +188,31 @@ Json summary_json(const Case& c, const Simulation& sim, const std::string& statu
   }
   Json& pen = j["penetration"];
   for (const char* k : {"max_depth", "max_depth_over_h", "max_crossings"}) pen[k] = nullptr;
-  // Fracture: cells damaged and destroyed at the end. Particles are not made yet (destroyed
-  // cells stay in the mesh without stress), so their counts are not claimed.
+  // Fracture: cells damaged and destroyed at the end, and the conversions into particles with
+  // their ledger (null when the case makes no particles).
   Json& fr = j["fracture"];
   fr["enabled"] = c.fracture;
   fr["damaged"] = c.fracture ? Json(last.damaged) : Json();
   fr["destroyed"] = c.fracture ? Json(last.destroyed) : Json();
   fr["particles"] = nullptr;
   fr["mass_to_particles"] = nullptr;
+  if (const ConversionLedger* l = sim.conversions()) {
+    fr["particles"] = l->particles;
+    fr["mass_to_particles"] = l->mass;
+    fr["internal_energy_to_particles"] = l->internal;
+    fr["kinetic_spread_to_particles"] = l->kinetic_spread;
+    fr["conversion_momentum_error"] = l->momentum_error;
+    fr["conversion_mass_error"] = l->mass_error;
+    fr["particle_contacts"] = sim.contact_totals().particle_contacts;
+    double kinetic = 0.0;
+    for (Index i = 0; i < st.particle_count(); ++i) {
+      const Index n = st.first_particle + i;
+      kinetic += 0.5 * st.m[n] * centred_velocity(st, n).squaredNorm();
+    }
+    fr["particle_kinetic_energy"] = kinetic;
+    e["contact_work"] = last.contact.work;  // particle contacts do work too
+  }
+  mass["relative_error"] = first.mass > 0 ? std::abs(last.mass - first.mass) / first.mass : 0.0;
   return j;
 }
 
@@ -298,9 +322,10 @@ int run_case(const RunOptions& o) {
   const auto t0 = Clock::now();
   OutputWriter writer(sim->model(), c.output, dir, c.end_time, &sim->profile());
   sim->add_observer(&writer, "output:vtu+history");
-  // Interpenetration at every frame, independent of the contact code (bodies ≥ 2).
+  // Interpenetration at every frame, independent of the contact code (bodies ≥ 2, or
+  // particles: a particle may not be inside any body).
   std::unique_ptr<PenetrationProbe> probe;
-  if (sim->model().mesh.bodies.size() >= 2) {
+  if (sim->model().mesh.bodies.size() >= 2 || sim->model().particles) {
     probe = std::make_unique<PenetrationProbe>(sim->model());
     writer.set_penetration_probe(probe.get());
     sim->add_module("diagnostics:penetration");
@@ -322,7 +347,8 @@ int run_case(const RunOptions& o) {
   writer.close();
   const double wall = seconds_since(t0);
   Json summary = summary_json(c, *sim, status, wall, warnings);
-  if (sim->model().mesh.bodies.size() < 2 || writer.measured_penetration()) {
+  if ((sim->model().mesh.bodies.size() < 2 && !sim->model().particles) ||
+      writer.measured_penetration()) {
     // One body cannot penetrate another: zero is a measurement then, not a default.
     const Penetration& pm = writer.penetration_max();
     Json& pen = summary["penetration"];
@@ -331,6 +357,11 @@ int run_case(const RunOptions& o) {
     pen["max_crossings"] = pm.crossings;
     pen["max_crossing_depth"] = pm.max_crossing_depth;
     pen["max_nodes_inside"] = pm.nodes_inside;
+    if (sim->model().particles) {
+      pen["max_particles_inside"] = pm.particles_inside;
+      pen["max_particle_depth"] = pm.max_particle_depth;
+      pen["particles_inside_at_end"] = writer.penetration_last().particles_inside;
+    }
     pen["measured_at"] = "output frames";
   }
   std::vector<ReferenceResult> refs;

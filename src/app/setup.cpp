@@ -160,6 +160,7 @@ Model build_model(const Case& c, std::vector<std::string>* notes) {
   model.element.viscosity_linear = c.viscosity_linear;
   model.element.viscosity_quadratic = c.viscosity_quadratic;
   model.element.fracture = c.fracture;
+  model.particles = c.fracture && c.particles;
   for (const Material& m : model.materials)
     model.element.average_nodal_pressure.push_back(
         c.average_nodal_pressure == AnpMode::on ||

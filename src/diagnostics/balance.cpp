@@ -46,6 +46,11 @@ Sample sample_balance(const State& st, const Sample* previous) {
     s.damaged += d == Damage::damaged;
     s.destroyed += d == Damage::destroyed;
   }
+  s.particles = st.particle_count();
+  for (Index i = 0; i < s.particles; ++i) {
+    s.internal += st.particle_energy[i];
+    s.particle_mass += st.m[st.first_particle + i];
+  }
   account(st.bc_impulse, st, f, previous ? &previous->boundary : nullptr, s.boundary);
   account(st.wall_impulse, st, f, previous ? &previous->walls : nullptr, s.walls);
   account(st.contact_impulse, st, f, previous ? &previous->contact : nullptr, s.contact);

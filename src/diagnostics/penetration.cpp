@@ -7,38 +7,56 @@
 namespace tc {
 
 PenetrationProbe::PenetrationProbe(const Model& model)
-    : model_(model), broadphase_(make_broadphase("sweep")) {
-  for (const Surface& s : model.surfaces) {
+    : model_(model), broadphase_(make_broadphase("sweep")) {}
+
+Penetration PenetrationProbe::measure(const State& st) {
+  return measure(st.x, st.damage, st.first_particle);
+}
+
+Penetration PenetrationProbe::measure(const std::vector<Vec3>& x) {
+  return measure(x, {}, static_cast<Index>(x.size()));
+}
+
+Penetration PenetrationProbe::measure(const std::vector<Vec3>& x, const std::vector<Damage>& damage,
+                                      Index first_particle) {
+  // The surfaces as they are now (fracture changes them).
+  nodes_.clear(), node_body_.clear(), edges_.clear(), edge_body_.clear();
+  faces_.clear(), face_body_.clear(), body_h_.clear();
+  for (const Surface& s : model_.surfaces) {
     for (Index n : s.nodes) nodes_.push_back(n), node_body_.push_back(s.body);
     for (const Edge& e : s.edges) edges_.push_back(e), edge_body_.push_back(s.body);
     for (const Face& f : s.faces) faces_.push_back(f), face_body_.push_back(s.body);
     body_h_.push_back(s.mean_edge_length);
   }
-}
+  // Particles are points of no body: inside any body counts.
+  for (Index p = first_particle; p < static_cast<Index>(x.size()); ++p)
+    nodes_.push_back(p), node_body_.push_back(-1);
 
-Penetration PenetrationProbe::measure(const std::vector<Vec3>& x) {
   Penetration r;
   r.node_depth.assign(x.size(), 0.0);
   const Mesh& mesh = model_.mesh;
-  if (mesh.bodies.size() < 2) return r;
+  if (mesh.bodies.size() < 2 && static_cast<Index>(x.size()) == first_particle) return r;
 
   // Boundary nodes against the tets of other bodies: the broadphase's "faces" are tets here.
   BroadphaseInput in;
+  std::vector<Index> in_tet;  // the tet of each of its "faces"
   for (std::size_t i = 0; i < nodes_.size(); ++i) {
     in.node_box.push_back(swept_box({&x[nodes_[i]]}, 0.0));
     in.node_id.push_back(nodes_[i]);
     in.node_body.push_back(node_body_[i]);
   }
   for (Index t = 0; t < mesh.tet_count(); ++t) {
+    if (!damage.empty() && damage[t] == Damage::particle) continue;  // no longer a cell
     const Tet& k = mesh.tets[t];
     in.face_box.push_back(swept_box({&x[k[0]], &x[k[1]], &x[k[2]], &x[k[3]]}, 0.0));
     in.face_nodes.push_back({k[0], k[1], k[2]});
     in.face_body.push_back(mesh.tet_body[t]);
+    in_tet.push_back(t);
   }
   const Candidates inside = broadphase_->find(in);
   std::vector<Index> inside_body(x.size(), -1);
-  for (const auto& [ni, t] : inside.node_face) {
-    const Index node = nodes_[ni];
+  for (const auto& [ni, ti] : inside.node_face) {
+    const Index node = nodes_[ni], t = in_tet[ti];
     if (inside_body[node] >= 0) continue;
     const Tet& k = mesh.tets[t];
     if (exact_point_in_tet(x[node], x[k[0]], x[k[1]], x[k[2]], x[k[3]]))
@@ -72,6 +90,11 @@ Penetration PenetrationProbe::measure(const std::vector<Vec3>& x) {
     }
     for (std::size_t i = 0; i < near.node_id.size(); ++i) {
       const Index node = near.node_id[i];
+      if (node >= first_particle) {
+        r.particles_inside += r.node_depth[node] > 0.0;
+        r.max_particle_depth = std::max(r.max_particle_depth, r.node_depth[node]);
+        continue;
+      }
       r.nodes_inside += r.node_depth[node] > 0.0;
       r.max_depth = std::max(r.max_depth, r.node_depth[node]);
       r.max_depth_over_h =

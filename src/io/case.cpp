@@ -842,11 +842,12 @@ Case load_case(const std::string& path, const std::vector<std::string>& override
     }
   }
 
-  // Fracture (seed 000): spall damage and loosening. Destroyed boundary cells are not yet
-  // turned into particles; they stay in the mesh without stress (said in the README).
+  // Fracture (seed 000): spall damage and loosening, and destroyed boundary cells turned into
+  // particles (on unless `particles: false`: then they stay in the mesh without stress).
   if (const YAML::Node s = root["fracture"]) {
-    r.keys(s, "fracture", {"enabled"});
+    r.keys(s, "fracture", {"enabled", "particles"});
     c.fracture = s["enabled"] ? r.boolean(s["enabled"], "fracture.enabled") : true;
+    c.particles = s["particles"] ? r.boolean(s["particles"], "fracture.particles") : true;
   }
   if (c.fracture &&
       std::find(c.output.fields.begin(), c.output.fields.end(), "damage") == c.output.fields.end())

@@ -20,6 +20,7 @@ OutputWriter::OutputWriter(const Model& model, const OutputSpec& spec, std::stri
   for (const RigidWall& w : model_.walls) h << ",wall_force_" << w.name;
   if (model_.contact) h << ",contact_work,contact_force,contacts";
   if (model_.element.fracture) h << ",damaged,destroyed";
+  if (model_.particles) h << ",particles,particle_mass";
   for (const auto& [name, seconds] : profile_->stages) {
     h << ",seconds_" << name;
     stage_seconds_.push_back(seconds);
@@ -41,6 +42,7 @@ void OutputWriter::observe(const State& st, const Sample& s) {
       h << ',' << format_double(s.contact.work) << ',' << format_double(s.contact_force) << ','
         << s.contacts;
     if (model_.element.fracture) h << ',' << s.damaged << ',' << s.destroyed;
+    if (model_.particles) h << ',' << s.particles << ',' << format_double(s.particle_mass);
     for (std::size_t k = 0; k < profile_->stages.size(); ++k) {
       const double now = profile_->stages[k].second;
       h << ',' << format_double(now - stage_seconds_[k]);
@@ -62,7 +64,7 @@ void OutputWriter::write_frame(const State& st, double t) {
   std::snprintf(name, sizeof name, "frame_%04zu.vtu", frames_.size());
   std::vector<double> depth;
   if (probe_) {
-    Penetration p = probe_->measure(st.x);
+    Penetration p = probe_->measure(st);
     penetration_max_.nodes_inside = std::max(penetration_max_.nodes_inside, p.nodes_inside);
     penetration_max_.max_depth = std::max(penetration_max_.max_depth, p.max_depth);
     penetration_max_.max_depth_over_h =
@@ -70,12 +72,23 @@ void OutputWriter::write_frame(const State& st, double t) {
     penetration_max_.crossings = std::max(penetration_max_.crossings, p.crossings);
     penetration_max_.max_crossing_depth =
         std::max(penetration_max_.max_crossing_depth, p.max_crossing_depth);
+    penetration_max_.particles_inside =
+        std::max(penetration_max_.particles_inside, p.particles_inside);
+    penetration_max_.max_particle_depth =
+        std::max(penetration_max_.max_particle_depth, p.max_particle_depth);
+    penetration_last_ = p;
     depth = std::move(p.node_depth);
   }
   write_file_atomic(dir_ + "/" + name, vtu_frame(model_, st, spec_.fields, depth));
   frames_.emplace_back(t, name);
   // Keep the series current so that a run stopped midway still opens in ParaView.
   write_file_atomic(dir_ + "/case.pvd", pvd_series(frames_));
+  if (model_.particles) {  // the particles: a point series of their own, frame for frame
+    std::snprintf(name, sizeof name, "particles_%04zu.vtu", frames_.size() - 1);
+    write_file_atomic(dir_ + "/" + name, vtu_particles(model_, st));
+    particle_frames_.emplace_back(t, name);
+    write_file_atomic(dir_ + "/particles.pvd", pvd_series(particle_frames_));
+  }
 }
 
 void OutputWriter::close() {

@@ -23,7 +23,48 @@ Face sorted_face(Face f) {
 
 }  // namespace
 
+TetNeighbours tet_neighbours(const Mesh& mesh) {
+  TetNeighbours nb(mesh.tets.size(), {-1, -1, -1, -1});
+  for (Index b = 0; b < static_cast<Index>(mesh.bodies.size()); ++b) {
+    const BodyRange& r = mesh.bodies[b];
+    // Faces shared by two tets appear twice among the faces of the body's tets.
+    std::vector<FaceKey> keys;
+    keys.reserve(4 * static_cast<std::size_t>(r.tet_count()));
+    for (Index t = r.tet_begin; t < r.tet_end; ++t) {
+      const Tet& k = mesh.tets[t];
+      for (int i = 0; i < 4; ++i) {
+        const auto& lf = k_tet_faces[i];
+        keys.push_back({sorted_face({k[lf[0]], k[lf[1]], k[lf[2]]}), {i, 0, 0}, t});
+      }
+    }
+    std::sort(keys.begin(), keys.end());
+    for (std::size_t i = 0; i < keys.size();) {
+      std::size_t j = i + 1;
+      while (j < keys.size() && keys[j].sorted == keys[i].sorted) ++j;
+      if (j - i == 2) {
+        nb[keys[i].tet][keys[i].oriented[0]] = keys[i + 1].tet;
+        nb[keys[i + 1].tet][keys[i + 1].oriented[0]] = keys[i].tet;
+      } else if (j - i > 2) {
+        std::ostringstream os;
+        os << "body '" << r.name << "': face (" << keys[i].sorted[0] - r.node_begin << ", "
+           << keys[i].sorted[1] - r.node_begin << ", " << keys[i].sorted[2] - r.node_begin
+           << ") is shared by " << (j - i) << " tets (first tet " << keys[i].tet - r.tet_begin
+           << "); a conforming mesh shares a face between at most two";
+        throw MeshError(os.str());
+      }
+      i = j;
+    }
+  }
+  return nb;
+}
+
 std::vector<Surface> build_surfaces(const Mesh& mesh) {
+  return build_surfaces(mesh, tet_neighbours(mesh), {});
+}
+
+std::vector<Surface> build_surfaces(const Mesh& mesh, const TetNeighbours& neighbours,
+                                    const std::vector<char>& removed) {
+  const auto gone = [&](Index t) { return !removed.empty() && removed[t]; };
   std::vector<Surface> surfaces;
   surfaces.reserve(mesh.bodies.size());
   for (Index b = 0; b < static_cast<Index>(mesh.bodies.size()); ++b) {
@@ -31,15 +72,19 @@ std::vector<Surface> build_surfaces(const Mesh& mesh) {
     Surface s;
     s.body = b;
 
-    // Boundary faces appear once among the faces of the body's tets.
+    // A boundary face is a face of a present tet with no present tet across it; faces are
+    // listed in the order of their sorted node triples.
     std::vector<FaceKey> keys;
-    keys.reserve(4 * static_cast<std::size_t>(r.tet_count()));
     double edge_sum = 0.0;
     std::size_t edge_count = 0;
     for (Index t = r.tet_begin; t < r.tet_end; ++t) {
+      if (gone(t)) continue;
       const Tet& k = mesh.tets[t];
-      for (const auto& lf : k_tet_faces) {
-        Face f{k[lf[0]], k[lf[1]], k[lf[2]]};
+      for (int i = 0; i < 4; ++i) {
+        const Index other = neighbours[t][i];
+        if (other >= 0 && !gone(other)) continue;
+        const auto& lf = k_tet_faces[i];
+        const Face f{k[lf[0]], k[lf[1]], k[lf[2]]};
         keys.push_back({sorted_face(f), f, t});
       }
       for (const auto& le : k_tet_edges) {
@@ -51,21 +96,9 @@ std::vector<Surface> build_surfaces(const Mesh& mesh) {
     }
     s.mean_edge_length = edge_count ? edge_sum / static_cast<double>(edge_count) : 0.0;
     std::sort(keys.begin(), keys.end());
-    for (std::size_t i = 0; i < keys.size();) {
-      std::size_t j = i + 1;
-      while (j < keys.size() && keys[j].sorted == keys[i].sorted) ++j;
-      if (j - i == 1) {
-        s.faces.push_back(keys[i].oriented);
-        s.face_tet.push_back(keys[i].tet);
-      } else if (j - i > 2) {
-        std::ostringstream os;
-        os << "body '" << r.name << "': face (" << keys[i].sorted[0] - r.node_begin << ", "
-           << keys[i].sorted[1] - r.node_begin << ", " << keys[i].sorted[2] - r.node_begin
-           << ") is shared by " << (j - i) << " tets (first tet " << keys[i].tet - r.tet_begin
-           << "); a conforming mesh shares a face between at most two";
-        throw MeshError(os.str());
-      }
-      i = j;
+    for (const FaceKey& key : keys) {
+      s.faces.push_back(key.oriented);
+      s.face_tet.push_back(key.tet);
     }
 
     // Boundary edges and nodes.

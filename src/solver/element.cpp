@@ -170,6 +170,7 @@ ForceResult compute_forces(const std::vector<Tet>& tets, const ElementOptions& o
   r.dt_stable = std::numeric_limits<double>::infinity();
   TetGeometry g;
   for (std::size_t t = 0; t < tets.size(); ++t) {
+    if (st.damage[t] == Damage::particle) continue;
     const Index ti = static_cast<Index>(t);
     end_geometry(ti, tets[t], st, g, "");
     scatter_forces(ti, tets[t], g, options, st, r);
@@ -213,6 +214,7 @@ ForceResult update_material(const std::vector<Tet>& tets, const std::vector<Mate
   const double h = 0.5 * tau;
   TetGeometry gm, ge;  // mid-step and end-of-step geometry
   for (std::size_t t = 0; t < tets.size(); ++t) {
+    if (st.damage[t] == Damage::particle) continue;  // now a particle: no longer a cell
     const Index ti = static_cast<Index>(t);
     const Tet& k = tets[t];
     const Index mi = st.tet_material[t];
@@ -330,7 +332,7 @@ ForceResult update_material(const std::vector<Tet>& tets, const std::vector<Mate
   // Pass 3: element pressure = mean of its nodes'; trapezoidal pressure work; forces.
   for (std::size_t t = 0; t < tets.size(); ++t) {
     const Index mi = st.tet_material[t];
-    if (!anp(mi)) continue;
+    if (!anp(mi) || st.damage[t] == Damage::particle) continue;
     const Index ti = static_cast<Index>(t);
     const Tet& k = tets[t];
     const Material& mat = materials[mi];

@@ -5,7 +5,9 @@ namespace tc {
 void predict(State& st, const std::vector<VelocityConstraint>& constraints) {
   const double tau_v = 0.5 * (st.dt_prev + st.dt);
   const std::size_t n = st.x.size();
-  for (std::size_t i = 0; i < n; ++i) st.v_star[i] = st.v[i] + (tau_v / st.m[i]) * st.f[i];
+  // A node left without cells (all turned into particles) has no mass and no force.
+  for (std::size_t i = 0; i < n; ++i)
+    st.v_star[i] = st.m[i] > 0.0 ? Vec3(st.v[i] + (tau_v / st.m[i]) * st.f[i]) : st.v[i];
   for (Vec3& j : st.bc_impulse) j.setZero();
   for (const VelocityConstraint& c : constraints)
     for (Index node : c.nodes)

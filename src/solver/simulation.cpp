@@ -48,6 +48,7 @@ State initial_state(const Model& model) {
   const std::size_t n = mesh.x.size(), m = mesh.tets.size();
   State st;
   st.x = mesh.x;
+  st.first_particle = static_cast<Index>(n);
   st.v = model.initial_velocity;
   st.v.resize(n, Vec3::Zero());
   for (auto* field :
@@ -90,6 +91,13 @@ Simulation::Simulation(Model model, SolverSettings settings)
   if (model_.element.viscosity_linear > 0 || model_.element.viscosity_quadratic > 0)
     modules_.push_back("elements:bulk_viscosity");
   if (model_.element.fracture) modules_.push_back("elements:fracture");
+  if (model_.element.fracture && model_.particles) {
+    fragmentation_ = std::make_unique<Fragmentation>(model_.mesh);
+    particle_contact_ =
+        std::make_unique<ParticleContact>(model_.contact ? model_.contact->broadphase : "sweep");
+    modules_.push_back("fracture:particles");
+    modules_.push_back("response:particles");
+  }
   if (!model_.constraints.empty()) modules_.push_back("boundary_conditions");
   if (!model_.walls.empty()) {
     modules_.push_back("response:rigid_walls");
@@ -106,11 +114,12 @@ Simulation::Simulation(Model model, SolverSettings settings)
   modules_.push_back("diagnostics:balance");
 
   for (const char* stage : {"predict", "broadphase", "narrowphase", "response", "balance", "output",
-                            "commit", "elements"}) {
+                            "commit", "fracture", "elements"}) {
     const std::string s = stage;
     const bool contact_stage = s == "broadphase" || s == "narrowphase";
     if (contact_stage && !contact_) continue;
-    if (s == "response" && !contact_ && model_.walls.empty()) continue;
+    if (s == "response" && !contact_ && model_.walls.empty() && !fragmentation_) continue;
+    if (s == "fracture" && !fragmentation_) continue;
     profile_[stage] = 0.0;
   }
   elements_stage();  // F^0 and τ^0; the first step then uses τ_v = τ/2
@@ -151,6 +160,10 @@ void Simulation::step() {
     StageTimer t(profile_["commit"]);
     commit_stage();
   }  // U^{n+1}, x^{n+1} (eq. 1)
+  if (fragmentation_) {
+    StageTimer t(profile_["fracture"]);
+    fracture_stage();
+  }  // destroyed boundary cells → particles
   {
     StageTimer t(profile_["elements"]);
     elements_stage();
@@ -177,7 +190,7 @@ void Simulation::finish() {
 // walls and node–face contacts, each correction seeing the velocities the ones before it
 // left, repeated in `passes` sequential passes.
 void Simulation::corrections() {
-  if (model_.walls.empty() && !contact_) return;
+  if (model_.walls.empty() && !contact_ && !fragmentation_) return;
   State& st = state_;
   std::vector<std::vector<ContactPoint>> walls(model_.walls.size());
   for (std::size_t w = 0; w < model_.walls.size(); ++w)
@@ -188,6 +201,11 @@ void Simulation::corrections() {
     profile_["broadphase"] += contact_stats_.broadphase_seconds;
     profile_["narrowphase"] += contact_stats_.narrowphase_seconds;
   }
+  particle_contacts_.clear();
+  if (fragmentation_ && st.particle_count() > 0) {
+    long candidates = 0;
+    particle_contacts_ = particle_contact_->detect(model_.surfaces, model_.mesh, st, candidates);
+  }
   StageTimer timer(profile_["response"]);
   for (Vec3& j : st.wall_impulse) j.setZero();
   for (Vec3& j : st.contact_impulse) j.setZero();
@@ -196,7 +214,10 @@ void Simulation::corrections() {
     for (auto& list : walls)
       for (ContactPoint& c : list) apply_contact(c, st, st.dt, st.wall_impulse);
     for (ContactPoint& c : contacts_) apply_contact(c, st, st.dt, st.contact_impulse);
+    for (ContactPoint& c : particle_contacts_) apply_contact(c, st, st.dt, st.contact_impulse);
   }
+  for (const ContactPoint& c : particle_contacts_)
+    contact_totals_.particle_contacts += c.lambda > 0.0;
   wall_results_.assign(model_.walls.size(), WallResult{});
   for (std::size_t w = 0; w < walls.size(); ++w)
     for (const ContactPoint& c : walls[w]) {
@@ -274,6 +295,15 @@ void Simulation::output_stage() {
 
 void Simulation::commit_stage() {
   commit(state_);
+}
+
+// Destroyed boundary cells of the last element pass become particles before this one, which
+// then no longer sees them; the surfaces they exposed join the contact search at once.
+void Simulation::fracture_stage() {
+  if (fragmentation_->convert(model_.mesh, model_.materials, state_) == 0) return;
+  model_.surfaces = fragmentation_->surfaces(model_.mesh);
+  if (!model_.walls.empty()) surface_nodes_ = all_surface_nodes(model_);
+  if (contact_) contact_ = std::make_unique<NodeFaceContact>(model_, *model_.contact);
 }
 
 void Simulation::elements_stage() {

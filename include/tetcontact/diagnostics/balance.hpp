@@ -27,7 +27,8 @@ struct Sample {
   double t = 0.0;
   double dt = 0.0;
   double kinetic = 0.0;        // ½ Σ m U^n·(U^n + τ^{n-1/2} a^n)  (see below)
-  double internal = 0.0;       // Σ e_int over tets: elastic + plastic work + viscous heat
+  double internal = 0.0;       // Σ e_int over tets (elastic + plastic work + viscous heat)
+                               // and the energy particles carry
   double plastic_work = 0.0;   // part of internal
   double viscous_work = 0.0;   // part of internal
   ImpulseLedger boundary;      // prescribed velocities: work and impulse to t^n
@@ -37,6 +38,8 @@ struct Sample {
   long contacts = 0;           // node–face contacts this step
   long damaged = 0;            // cells spalled (damaged, not destroyed) at t^n
   long destroyed = 0;          // cells destroyed (loosened) at t^n
+  long particles = 0;          // cells turned into particles so far
+  double particle_mass = 0.0;  // kg carried by particles (part of mass)
   double total = 0.0;          // kinetic + internal
   double balance_error = 0.0;  // filled by the Simulation (see balance_error_max)
   double mass = 0.0;

@@ -8,6 +8,7 @@
 
 #include "tetcontact/broadphase/broadphase.hpp"
 #include "tetcontact/solver/model.hpp"
+#include "tetcontact/solver/state.hpp"
 
 namespace tc {
 
@@ -19,6 +20,8 @@ struct Penetration {
   double max_crossing_depth = 0.0;  // m: the shortest move that undoes a crossing: the
                                     // crossing point's distance to the face's boundary, or
                                     // the edge's nearer end's distance past the face's plane
+  long particles_inside = 0;        // particles whose centre is inside a body
+  double max_particle_depth = 0.0;  // m: such a centre's distance to that body's surface
   std::vector<double> node_depth;   // per node (0 unless inside another body), m
 };
 
@@ -37,8 +40,13 @@ class PenetrationProbe {
   /// the body it is inside, searched within two mean edge lengths (a deeper node reports
   /// that bound).
   Penetration measure(const std::vector<Vec3>& x);
+  /// At a state: cells turned into particles are left out, and particle centres inside any
+  /// body are measured as nodes are (particles_inside, max_particle_depth).
+  Penetration measure(const State& st);
 
  private:
+  Penetration measure(const std::vector<Vec3>& x, const std::vector<Damage>& damage,
+                      Index first_particle);
   const Model& model_;
   std::unique_ptr<Broadphase> broadphase_;
   std::vector<Index> nodes_, node_body_;

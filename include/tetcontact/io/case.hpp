@@ -104,6 +104,7 @@ struct Case {
   ContactSettings contact_settings;  // pairs' body indices are resolved by the setup
   std::vector<std::array<std::string, 2>> contact_pair_bodies;  // parallel to its pairs
   bool fracture = false;
+  bool particles = true;  // fracture.particles: destroyed boundary cells become particles
 
   const Material& material(const std::string& name) const;
 };

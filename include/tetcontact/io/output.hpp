@@ -1,4 +1,5 @@
-// The run's files: the ParaView series (case.pvd + frame_NNNN.vtu), history.csv.
+// The run's files: the ParaView series (case.pvd + frame_NNNN.vtu; with fracture particles
+// also particles.pvd + particles_NNNN.vtu), history.csv.
 // summary.json is written by the app from the finished run.
 #pragma once
 
@@ -30,6 +31,8 @@ class OutputWriter : public Observer {
   void set_penetration_probe(PenetrationProbe* probe) { probe_ = probe; }
   /// Maxima over the frames: nodes_inside, max_depth, max_depth_over_h, crossings.
   const Penetration& penetration_max() const { return penetration_max_; }
+  /// The measure at the last frame (the run's end).
+  const Penetration& penetration_last() const { return penetration_last_; }
   bool measured_penetration() const { return probe_ != nullptr && !frames_.empty(); }
 
  private:
@@ -44,9 +47,9 @@ class OutputWriter : public Observer {
   std::vector<double> stage_seconds_;  // at the previous history row
   long rows_ = 0;
   double next_frame_ = 0.0;
-  std::vector<std::pair<double, std::string>> frames_;
+  std::vector<std::pair<double, std::string>> frames_, particle_frames_;
   PenetrationProbe* probe_ = nullptr;
-  Penetration penetration_max_;
+  Penetration penetration_max_, penetration_last_;
 };
 
 }  // namespace tc

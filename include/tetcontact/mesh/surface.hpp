@@ -40,9 +40,22 @@ struct Surface {
   }
 };
 
+/// The tet across each face of every tet (face i opposite node i, as in k_tet_faces), −1 on
+/// the boundary. Throws MeshError when a face is shared by more than two tets (non-conforming
+/// mesh).
+using TetNeighbours = std::vector<std::array<Index, 4>>;
+TetNeighbours tet_neighbours(const Mesh& mesh);
+
 /// Builds the surface of every body from the tet connectivity at reference positions.
 /// Throws MeshError when a face is shared by more than two tets (non-conforming mesh).
 std::vector<Surface> build_surfaces(const Mesh& mesh);
+
+/// The surfaces once the tets marked in `removed` (one flag per tet; empty: none) are gone:
+/// every face of a remaining tet with no remaining tet across it, from the adjacency alone
+/// (fracture exposes interior faces without anyone declaring them). Edge-length statistics
+/// are over the remaining tets.
+std::vector<Surface> build_surfaces(const Mesh& mesh, const TetNeighbours& neighbours,
+                                    const std::vector<char>& removed);
 
 /// Unit normal of a face at positions x (zero vector for a degenerate face).
 Vec3 face_normal(const Face& f, const std::vector<Vec3>& x);

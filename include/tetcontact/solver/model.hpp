@@ -34,6 +34,7 @@ struct Model {
   std::optional<ContactSettings> contact;  // the contact stage, when the case enables it
   std::vector<Vec3> initial_velocity;      // per node
   ElementOptions element;                  // viscosity, average nodal pressure per material
+  bool particles = false;  // destroyed boundary cells become particles (fracture.particles)
 };
 
 /// Surface nodes of every body, sorted (the nodes that can touch a wall or another body).

@@ -8,6 +8,7 @@
 
 #include "tetcontact/diagnostics/balance.hpp"
 #include "tetcontact/diagnostics/reference.hpp"
+#include "tetcontact/fracture/particles.hpp"
 #include "tetcontact/response/wall.hpp"
 #include "tetcontact/solver/element.hpp"
 #include "tetcontact/solver/model.hpp"
@@ -67,13 +68,18 @@ class Simulation {
     double first_time = -1.0, last_time = -1.0, max_force = 0.0;
     double normal_impulse = 0.0;                            // Σ λ over the run, N s
     double broadphase_build = 0.0, broadphase_query = 0.0;  // seconds over the run
-    long rebuilds = 0;  // times the broadphase ran (binding lists rebuilt)
+    long rebuilds = 0;           // times the broadphase ran (binding lists rebuilt)
+    long particle_contacts = 0;  // particle–face and particle–particle contacts that pushed
   };
   /// The figures of the run that references measure (diagnostics/reference).
   RunFigures run_figures() const;
   const ContactTotals& contact_totals() const { return contact_totals_; }
   bool has_contact() const { return contact_ != nullptr; }
   const std::vector<std::string>& modules() const { return modules_; }
+  /// The conversions of destroyed cells into particles (null when the case has none).
+  const ConversionLedger* conversions() const {
+    return fragmentation_ ? &fragmentation_->ledger() : nullptr;
+  }
   const StepProfile& profile() const { return profile_; }
   Index critical_tet() const { return critical_tet_; }
 
@@ -84,6 +90,7 @@ class Simulation {
   void output_stage();
   void commit_stage();
   void elements_stage();
+  void fracture_stage();
   void corrections();
   [[noreturn]] void rethrow_with_body(const InvertedElement& e) const;
 
@@ -95,6 +102,9 @@ class Simulation {
   std::vector<WallResult> wall_results_;
   std::unique_ptr<NodeFaceContact> contact_;
   std::vector<ContactPoint> contacts_;
+  std::unique_ptr<Fragmentation> fragmentation_;
+  std::unique_ptr<ParticleContact> particle_contact_;
+  std::vector<ContactPoint> particle_contacts_;
   ContactStepStats contact_stats_;
   ContactTotals contact_totals_;
   std::vector<double> wall_force_max_;

@@ -11,8 +11,9 @@
 namespace tc {
 
 /// A cell's failure state (seed 000): damaged cells resist only volumetric compression,
-/// destroyed ones carry no stress at all.
-enum class Damage : std::uint8_t { intact = 0, damaged = 1, destroyed = 2 };
+/// destroyed ones carry no stress at all, and a destroyed cell on the boundary is turned into a
+/// particle (it then leaves the element pass, the surfaces and the output mesh).
+enum class Damage : std::uint8_t { intact = 0, damaged = 1, destroyed = 2, particle = 3 };
 
 struct State {
   // Nodes (N).
@@ -40,6 +41,16 @@ struct State {
   std::vector<double> trace_d;    // tr D of the last step (volumetric strain rate), 1/s
   std::vector<Index> tet_material;
   std::vector<Damage> damage;  // per tet
+
+  // Particles (P): destroyed boundary cells turned into free points (seed 000), appended after
+  // the mesh's nodes, so that the node arrays above carry their mass, velocity and impulses
+  // and the one impulse kernel moves them. Particle i is node first_particle + i.
+  Index first_particle = 0;             // the mesh's node count
+  std::vector<double> particle_radius;  // m: radius of the sphere inscribed in the cell
+  std::vector<double> particle_energy;  // J: the cell's internal energy, plus the kinetic
+                                        // energy of its nodes' spread of velocity
+  std::vector<Index> particle_tet;      // the cell each came from
+  Index particle_count() const { return static_cast<Index>(particle_radius.size()); }
 
   double t = 0.0;        // t^n
   double dt = 0.0;       // τ for the step t^n → t^{n+1}

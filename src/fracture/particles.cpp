@@ -1,0 +1,210 @@
+#include "tetcontact/fracture/particles.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "tetcontact/narrowphase/vertex_face.hpp"
+
+namespace tc {
+
+Fragmentation::Fragmentation(const Mesh& mesh)
+    : neighbours_(tet_neighbours(mesh)), removed_(mesh.tets.size(), 0) {
+  cells_at_node_.assign(mesh.x.size(), 0);
+  for (const Tet& k : mesh.tets)
+    for (Index n : k) ++cells_at_node_[n];
+}
+
+std::vector<Surface> Fragmentation::surfaces(const Mesh& mesh) const {
+  return build_surfaces(mesh, neighbours_, removed_);
+}
+
+Index add_particle(State& st, const Vec3& x, const Vec3& v, double m, double radius, double energy,
+                   Index tet) {
+  st.x.push_back(x);
+  st.x_star.push_back(x);
+  st.v.push_back(v);
+  st.v_star.push_back(v);
+  st.m.push_back(m);
+  for (auto* field : {&st.f, &st.bc_impulse, &st.wall_impulse, &st.contact_impulse})
+    field->push_back(Vec3::Zero());
+  st.particle_radius.push_back(radius);
+  st.particle_energy.push_back(energy);
+  st.particle_tet.push_back(tet);
+  return static_cast<Index>(st.x.size() - 1);
+}
+
+long Fragmentation::convert(const Mesh& mesh, const std::vector<Material>& materials, State& st) {
+  if (total_mass_ == 0.0)
+    for (double m : st.m) total_mass_ += m;
+  // The destroyed cells on the boundary as the call finds it.
+  std::vector<Index> cells;
+  for (Index t = 0; t < mesh.tet_count(); ++t) {
+    if (st.damage[t] != Damage::destroyed) continue;
+    for (Index other : neighbours_[t])
+      if (other < 0 || removed_[other]) {
+        cells.push_back(t);
+        break;
+      }
+  }
+  for (Index t : cells) {
+    const Tet& k = mesh.tets[t];
+    const double quarter = 0.25 * materials[st.tet_material[t]].density * st.vol0[t];
+    double mass_before = 0.0, mass_after = 0.0;
+    Vec3 sum_u = Vec3::Zero(), momentum_before = Vec3::Zero();
+    double kinetic_before = 0.0, momentum_scale = 0.0;
+    for (Index n : k) {
+      mass_before += st.m[n];
+      sum_u += st.v[n];
+      momentum_before += quarter * st.v[n];
+      momentum_scale += quarter * st.v[n].norm();
+      kinetic_before += 0.5 * quarter * st.v[n].squaredNorm();
+    }
+    const double m = 4.0 * quarter;
+    const Vec3 u = 0.25 * sum_u;
+    const double kinetic_after = 0.5 * m * u.squaredNorm();
+
+    // The inscribed sphere: centre Σ A_i x_i / Σ A_i (A_i the face opposite node i), r = 3V/ΣA.
+    double area_sum = 0.0;
+    Vec3 centre = Vec3::Zero();
+    for (int i = 0; i < 4; ++i) {
+      const auto& lf = k_tet_faces[i];
+      const double area =
+          0.5 * (st.x[k[lf[1]]] - st.x[k[lf[0]]]).cross(st.x[k[lf[2]]] - st.x[k[lf[0]]]).norm();
+      area_sum += area;
+      centre += area * st.x[k[i]];
+    }
+    const double volume =
+        (st.x[k[1]] - st.x[k[0]]).dot((st.x[k[2]] - st.x[k[0]]).cross(st.x[k[3]] - st.x[k[0]])) /
+        6.0;
+    centre /= area_sum;
+
+    for (Index n : k) {
+      st.m[n] -= quarter;
+      if (--cells_at_node_[n] == 0) {  // no cell left: nothing to carry
+        st.m[n] = 0.0;
+        st.v[n] = Vec3::Zero();
+        st.v_star[n] = Vec3::Zero();
+      }
+      mass_after += st.m[n];
+    }
+    add_particle(st, centre, u, m, 3.0 * std::abs(volume) / area_sum,
+                 st.e_int[t] + kinetic_before - kinetic_after, t);
+    mass_after += m;
+
+    ConversionLedger& l = ledger_;
+    ++l.particles;
+    l.mass += m;
+    l.internal += st.e_int[t];
+    l.kinetic_spread += kinetic_before - kinetic_after;
+    if (momentum_scale > 0.0)
+      l.momentum_error =
+          std::max(l.momentum_error, (m * u - momentum_before).norm() / momentum_scale);
+    l.mass_error = std::max(l.mass_error, std::abs(mass_after - mass_before) / total_mass_);
+
+    // The cell leaves the element pass; its energy now is the particle's.
+    st.damage[t] = Damage::particle;
+    st.e_int[t] = 0.0;
+    st.p[t] = st.q[t] = 0.0;
+    st.s[t] = Sym6{0, 0, 0, 0, 0, 0};
+    removed_[t] = 1;
+  }
+  return static_cast<long>(cells.size());
+}
+
+ParticleContact::ParticleContact(const std::string& broadphase)
+    : broadphase_(make_broadphase(broadphase)) {}
+
+std::vector<ContactPoint> ParticleContact::detect(const std::vector<Surface>& surfaces,
+                                                  const Mesh& mesh, const State& st,
+                                                  long& candidates) {
+  std::vector<ContactPoint> out;
+  const Index first = st.first_particle, count = st.particle_count();
+  if (count == 0) return out;
+  // Particles are the broadphase's points (against faces) and its degenerate edges (against
+  // each other); self pairs on, so that particles meet their own body's faces.
+  BroadphaseInput in;
+  in.self_pairs = true;
+  for (Index i = 0; i < count; ++i) {
+    const Index p = first + i;
+    const Box b = swept_box({&st.x[p], &st.x_star[p]}, st.particle_radius[i]);
+    in.node_box.push_back(b);
+    in.node_id.push_back(p);
+    in.node_body.push_back(-1);
+    in.edge_box.push_back(b);
+    in.edge_nodes.push_back({p, p});
+    in.edge_body.push_back(-1);
+  }
+  std::vector<const Surface*> face_surface;
+  std::vector<Index> face_index;
+  for (const Surface& s : surfaces)
+    for (Index f = 0; f < static_cast<Index>(s.faces.size()); ++f) {
+      const Face& k = s.faces[f];
+      in.face_box.push_back(swept_box({&st.x[k[0]], &st.x[k[1]], &st.x[k[2]], &st.x_star[k[0]],
+                                       &st.x_star[k[1]], &st.x_star[k[2]]},
+                                      0.0));
+      in.face_nodes.push_back(k);
+      in.face_body.push_back(s.body);
+      face_surface.push_back(&s);
+      face_index.push_back(f);
+    }
+  const Candidates c = broadphase_->find(in);
+  candidates = static_cast<long>(c.node_face.size() + c.edge_edge.size());
+
+  for (const auto& [i, fi] : c.node_face) {
+    const Index p = first + i;
+    const Surface& s = *face_surface[fi];
+    const Face& k = s.faces[face_index[fi]];
+    const Vec3 &centre = st.x[p], &a = st.x[k[0]], &b = st.x[k[1]], &d = st.x[k[2]];
+    const TrianglePoint tp = closest_point_on_triangle(centre, a, b, d);
+    const Vec3 q = tp.w[0] * a + tp.w[1] * b + tp.w[2] * d;
+    const Vec3 nf = face_normal(k, st.x);
+    const double side = nf.dot(centre - a);
+    ContactPoint cp;
+    if (side > 0.0 && tp.distance > 0.0) {
+      cp.normal = (centre - q) / tp.distance;  // from the face's closest point to the centre
+      cp.gap = tp.distance - st.particle_radius[i];
+    } else {
+      // On or behind the face's plane: inside the body when it projects into the face within
+      // the altitude of the face's tet (node–face contact's layer); otherwise behind the face
+      // from elsewhere, and another face answers.
+      const bool inside_face = std::min({tp.w[0], tp.w[1], tp.w[2]}) > 0.0;
+      if (!inside_face || nf.squaredNorm() == 0.0) continue;
+      const Tet& t = mesh.tets[s.face_tet[face_index[fi]]];
+      const double area = 0.5 * (b - a).cross(d - a).norm();
+      const double volume =
+          (st.x[t[1]] - st.x[t[0]]).dot((st.x[t[2]] - st.x[t[0]]).cross(st.x[t[3]] - st.x[t[0]])) /
+          6.0;
+      if (-side > 3.0 * volume / area) continue;
+      cp.normal = nf;
+      cp.gap = side - st.particle_radius[i];  // held, not pushed back (seed 001)
+    }
+    cp.a_nodes[0] = p;
+    cp.a_w[0] = 1.0;
+    cp.a_count = 1;
+    for (int v = 0; v < 3; ++v) {
+      cp.b_nodes[v] = k[v];
+      cp.b_w[v] = tp.w[v];
+    }
+    cp.b_count = 3;
+    out.push_back(cp);
+  }
+  for (const auto& [i, j] : c.edge_edge) {
+    const Index p = first + i, o = first + j;
+    const Vec3 d = st.x[p] - st.x[o];
+    const double dist = d.norm();
+    if (!(dist > 0.0)) continue;
+    ContactPoint cp;
+    cp.normal = d / dist;
+    cp.gap = dist - st.particle_radius[i] - st.particle_radius[j];
+    cp.a_nodes[0] = p;
+    cp.a_w[0] = 1.0;
+    cp.a_count = 1;
+    cp.b_nodes[0] = o;
+    cp.b_w[0] = 1.0;
+    cp.b_count = 1;
+    out.push_back(cp);
+  }
+  return out;
+}
+
+}  // namespace tc
