@@ -4,10 +4,13 @@ cells cut by a plane, coloured by body, with pixels covered by two bodies (inter
 in red.
 
     section_png.py FRAME.vtu OUT.png [--normal x|y|z] [--at C] [--width PX]
+                   [--particles PARTICLES.vtu]
 
 --normal  the plane's normal axis (default y: the x-z plane, the axial section of a body
           along z or x); --at  the plane's coordinate on that axis in metres (default: the
-          middle of the frame's bounds); --width  image width in pixels (default 800).
+          middle of the frame's bounds); --width  image width in pixels (default 800);
+          --particles  also draw the particles of fracture whose spheres the plane cuts, as
+          discs in a darker shade of their body's colour (particles_NNNN.vtu of the same time).
 
 Prints one line: polygons cut, the pixel size, pixels covered per body, overlap pixels. An existing OUT.png is
 replaced only through a temporary file (no half-written image). Needs Debian's python3-vtk9
@@ -29,16 +32,21 @@ def fail(msg):
     sys.exit(2)
 
 
-def read_frame(path):
+def read_grid(path):
     import vtk
-    from vtk.util.numpy_support import vtk_to_numpy
 
     if not os.path.isfile(path):
         fail(path + ": no such file")
     r = vtk.vtkXMLUnstructuredGridReader()
     r.SetFileName(path)
     r.Update()
-    g = r.GetOutput()
+    return r.GetOutput()
+
+
+def read_frame(path):
+    from vtk.util.numpy_support import vtk_to_numpy
+
+    g = read_grid(path)
     if g is None or g.GetNumberOfCells() == 0:
         fail(path + ": not a tetrahedral .vtu frame (no cells read)")
     pts = vtk_to_numpy(g.GetPoints().GetData()).astype(float)
@@ -47,6 +55,44 @@ def read_frame(path):
     if body is None:
         fail(path + ": no cell array 'body' (write it with output.fields)")
     return pts, conn, vtk_to_numpy(body).astype(int)
+
+
+def read_particles(path):
+    """Centres, radii and bodies of the particles of a particles_NNNN.vtu."""
+    from vtk.util.numpy_support import vtk_to_numpy
+
+    g = read_grid(path)
+    n = g.GetNumberOfPoints()
+    if n == 0:
+        return np.zeros((0, 3)), np.zeros(0), np.zeros(0, dtype=int)
+    radius, body = g.GetPointData().GetArray("radius"), g.GetPointData().GetArray("body")
+    if radius is None or body is None:
+        fail(path + ": not a particles .vtu (no 'radius' or 'body' point array)")
+    return (vtk_to_numpy(g.GetPoints().GetData()).astype(float), vtk_to_numpy(radius),
+            vtk_to_numpy(body).astype(int))
+
+
+def draw_discs(rgb, centres, radii, bodies, axis, at, lo, px):
+    """Discs where the plane cuts each particle's sphere; returns how many were drawn."""
+    inplane = [a for a in range(3) if a != axis]
+    h, w, _ = rgb.shape
+    drawn = 0
+    for c, r, b in zip(centres, radii, bodies):
+        d = c[axis] - at
+        if abs(d) >= r:
+            continue
+        rc = np.sqrt(r * r - d * d)
+        x, y = c[inplane]
+        i0, i1 = max(0, int((x - rc - lo[0]) / px)), min(w, int((x + rc - lo[0]) / px) + 1)
+        j0, j1 = max(0, int((y - rc - lo[1]) / px)), min(h, int((y + rc - lo[1]) / px) + 1)
+        xs = lo[0] + (np.arange(i0, i1) + 0.5) * px
+        ys = lo[1] + (np.arange(j0, j1) + 0.5) * px
+        X, Y = np.meshgrid(xs, ys)
+        inside = (X - x) ** 2 + (Y - y) ** 2 <= max(rc, 0.5 * px) ** 2
+        colour = tuple(int(0.55 * v) for v in PALETTE[b % len(PALETTE)])
+        rgb[j0:j1, i0:i1][inside] = colour
+        drawn += 1
+    return drawn
 
 
 def section(pts, conn, axis, at):
@@ -72,7 +118,7 @@ def section(pts, conn, axis, at):
     return polys, cells
 
 
-def rasterize(polys, cells, body, width):
+def rasterize(polys, cells, body, width, extent):
     allp = np.vstack(polys)
     lo, hi = allp.min(axis=0), allp.max(axis=0)
     span = np.maximum(hi - lo, 1e-300)
@@ -83,6 +129,7 @@ def rasterize(polys, cells, body, width):
     height = max(1, int(round(span[1] / px)))
     nb = int(body.max()) + 1
     cover = np.zeros((nb, height, width), dtype=bool)
+    extent[:] = [lo]
     for q, c in zip(polys, cells):
         for k in range(1, len(q) - 1):  # fan triangulation of the convex polygon
             tri = np.array([q[0], q[k], q[k + 1]])
@@ -121,7 +168,7 @@ def write_png(path, rgb):
 
 
 def main(argv):
-    args, opts = [], {"--normal": "y", "--at": None, "--width": "800"}
+    args, opts = [], {"--normal": "y", "--at": None, "--width": "800", "--particles": None}
     i = 0
     while i < len(argv):
         if argv[i] in ("-h", "--help"):
@@ -153,16 +200,22 @@ def main(argv):
     polys, cells = section(pts, conn, axis, at)
     if not polys:
         fail("%s: the plane %s = %g m cuts no cell" % (args[0], opts["--normal"], at))
-    cover, pixel = rasterize(polys, cells, body, width)
+    extent = []
+    cover, pixel = rasterize(polys, cells, body, width, extent)
     count = cover.sum(axis=0)
     rgb = np.full(count.shape + (3,), 255, dtype=np.uint8)
     for b in range(cover.shape[0]):
         rgb[cover[b]] = PALETTE[b % len(PALETTE)]
     rgb[count >= 2] = OVERLAP
+    discs = ""
+    if opts["--particles"] is not None:
+        centres, radii, bodies = read_particles(opts["--particles"])
+        discs = "; %d particles cut" % draw_discs(rgb, centres, radii, bodies, axis, at,
+                                                  extent[0], pixel)
     write_png(args[1], rgb)
-    print("%d polygons cut at %s = %g m; pixel %g m; pixels per body %s; %d overlap pixels" %
+    print("%d polygons cut at %s = %g m; pixel %g m; pixels per body %s; %d overlap pixels%s" %
           (len(polys), opts["--normal"], at, pixel, ",".join(str(int(c.sum())) for c in cover),
-           int((count >= 2).sum())))
+           int((count >= 2).sum()), discs))
     return 0
 
 

@@ -210,6 +210,20 @@ Json summary_json(const Case& c, const Simulation& sim, const std::string& statu
       kinetic += 0.5 * st.m[n] * centred_velocity(st, n).squaredNorm();
     }
     fr["particle_kinetic_energy"] = kinetic;
+    Json by_body = Json::array();  // where the particles came from
+    for (std::size_t b = 0; b < model.mesh.bodies.size(); ++b) {
+      long n = 0;
+      double m = 0.0;
+      for (Index i = 0; i < st.particle_count(); ++i)
+        if (model.mesh.tet_body[st.particle_tet[i]] == static_cast<Index>(b))
+          ++n, m += st.m[st.first_particle + i];
+      Json o = Json::object();
+      o["name"] = model.mesh.bodies[b].name;
+      o["particles"] = n;
+      o["mass"] = m;
+      by_body.push_back(o);
+    }
+    fr["from_bodies"] = by_body;
     e["contact_work"] = last.contact.work;  // particle contacts do work too
   }
   mass["relative_error"] = first.mass > 0 ? std::abs(last.mass - first.mass) / first.mass : 0.0;

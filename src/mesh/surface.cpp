@@ -78,20 +78,20 @@ std::vector<Surface> build_surfaces(const Mesh& mesh, const TetNeighbours& neigh
     double edge_sum = 0.0;
     std::size_t edge_count = 0;
     for (Index t = r.tet_begin; t < r.tet_end; ++t) {
-      if (gone(t)) continue;
       const Tet& k = mesh.tets[t];
+      for (const auto& le : k_tet_edges) {  // of the whole body, removed tets included
+        const double len = (mesh.x[k[le[0]]] - mesh.x[k[le[1]]]).norm();
+        edge_sum += len;  // interior edges are counted once per tet that holds them
+        s.max_edge_length = std::max(s.max_edge_length, len);
+        ++edge_count;
+      }
+      if (gone(t)) continue;
       for (int i = 0; i < 4; ++i) {
         const Index other = neighbours[t][i];
         if (other >= 0 && !gone(other)) continue;
         const auto& lf = k_tet_faces[i];
         const Face f{k[lf[0]], k[lf[1]], k[lf[2]]};
         keys.push_back({sorted_face(f), f, t});
-      }
-      for (const auto& le : k_tet_edges) {
-        const double len = (mesh.x[k[le[0]]] - mesh.x[k[le[1]]]).norm();
-        edge_sum += len;  // interior edges are counted once per tet that holds them
-        s.max_edge_length = std::max(s.max_edge_length, len);
-        ++edge_count;
       }
     }
     s.mean_edge_length = edge_count ? edge_sum / static_cast<double>(edge_count) : 0.0;

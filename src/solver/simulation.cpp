@@ -113,13 +113,13 @@ Simulation::Simulation(Model model, SolverSettings settings)
   }
   modules_.push_back("diagnostics:balance");
 
-  for (const char* stage : {"predict", "broadphase", "narrowphase", "response", "balance", "output",
-                            "commit", "fracture", "elements"}) {
+  for (const char* stage : {"predict", "broadphase", "narrowphase", "particles", "response",
+                            "balance", "output", "commit", "fracture", "elements"}) {
     const std::string s = stage;
     const bool contact_stage = s == "broadphase" || s == "narrowphase";
     if (contact_stage && !contact_) continue;
     if (s == "response" && !contact_ && model_.walls.empty() && !fragmentation_) continue;
-    if (s == "fracture" && !fragmentation_) continue;
+    if ((s == "fracture" || s == "particles") && !fragmentation_) continue;
     profile_[stage] = 0.0;
   }
   elements_stage();  // F^0 and τ^0; the first step then uses τ_v = τ/2
@@ -203,6 +203,7 @@ void Simulation::corrections() {
   }
   particle_contacts_.clear();
   if (fragmentation_ && st.particle_count() > 0) {
+    StageTimer t(profile_["particles"]);
     long candidates = 0;
     particle_contacts_ = particle_contact_->detect(model_.surfaces, model_.mesh, st, candidates);
   }

@@ -53,7 +53,7 @@ std::vector<Surface> build_surfaces(const Mesh& mesh);
 /// The surfaces once the tets marked in `removed` (one flag per tet; empty: none) are gone:
 /// every face of a remaining tet with no remaining tet across it, from the adjacency alone
 /// (fracture exposes interior faces without anyone declaring them). Edge-length statistics
-/// are over the remaining tets.
+/// stay those of the whole body.
 std::vector<Surface> build_surfaces(const Mesh& mesh, const TetNeighbours& neighbours,
                                     const std::vector<char>& removed);
 
