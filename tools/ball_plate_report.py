@@ -4,7 +4,11 @@ velocity (summary.json), the hole in the plate (the last frame: plate cells cent
 original layer, −h ≤ z ≤ 0, the nearest one to the impact axis x = y = 0 gives the hole's
 radius), and the particles from each body with their mass.
 
-    ball_plate_report.py OUTDIR [--thickness H]      (H: the plate's thickness, default 2e-3 m)
+    ball_plate_report.py OUTDIR [--thickness H] [--pictures DIR]
+
+--thickness  the plate's thickness (default 2e-3 m); --pictures  also render the y = 0 section
+at the paper's times (0, 0.25, 0.4, 0.6, 0.95 and 4.0 µs: the frame nearest each) with the
+particles, as DIR/ball-plate-<t>us.png (tools/section_png.py).
 
 Needs Debian's python3-vtk9 and python3-numpy (run with /usr/bin/python3). Exit code 0, or 2 on
 bad input."""
@@ -25,11 +29,14 @@ def main(argv):
     if not argv or argv[0] in ("-h", "--help"):
         print(__doc__)
         return 0 if argv else 2
-    out, thickness = argv[0], 2e-3
-    if len(argv) == 3 and argv[1] == "--thickness":
-        thickness = float(argv[2])
-    elif len(argv) != 1:
-        fail("usage: ball_plate_report.py OUTDIR [--thickness H]")
+    out, opts = argv[0], {"--thickness": "2e-3", "--pictures": None}
+    rest = argv[1:]
+    while rest:
+        if rest[0] not in opts or len(rest) < 2:
+            fail("usage: ball_plate_report.py OUTDIR [--thickness H] [--pictures DIR]")
+        opts[rest[0]] = rest[1]
+        rest = rest[2:]
+    thickness = float(opts["--thickness"])
     for f in ("summary.json", "case.pvd"):
         if not os.path.isfile(os.path.join(out, f)):
             fail(os.path.join(out, f) + ": no such file (run the case first)")
@@ -68,7 +75,27 @@ def main(argv):
           (summary["mass"]["relative_error"], summary["momentum"]["relative_error"],
            summary["energy"]["balance_error_max"],
            summary["penetration"].get("particles_inside_at_end")))
+    if opts["--pictures"] is not None:
+        pictures(out, frames, opts["--pictures"])
     return 0
+
+
+def pictures(out, frames, folder):
+    import subprocess
+
+    os.makedirs(folder, exist_ok=True)
+    tool = os.path.join(os.path.dirname(os.path.abspath(__file__)), "section_png.py")
+    times = [float(d.get("timestep")) for d in frames]
+    for t in (0.0, 0.25e-6, 0.4e-6, 0.6e-6, 0.95e-6, 4.0e-6):
+        k = min(range(len(times)), key=lambda i: abs(times[i] - t))
+        frame = frames[k].get("file")
+        particles = os.path.join(out, frame.replace("frame_", "particles_"))
+        png = os.path.join(folder, "ball-plate-%.2fus.png" % (t * 1e6))
+        cmd = [sys.executable, tool, os.path.join(out, frame), png, "--at", "0", "--width", "600"]
+        if os.path.isfile(particles):
+            cmd += ["--particles", particles]
+        line = subprocess.run(cmd, check=True, capture_output=True, text=True).stdout.strip()
+        print("%s (t = %.3g s): %s" % (png, times[k], line))
 
 
 if __name__ == "__main__":

@@ -10,6 +10,7 @@
 #include "tetcontact/app/profile.hpp"
 #include "tetcontact/app/run.hpp"
 #include "tetcontact/app/stress.hpp"
+#include "tetcontact/app/sweep.hpp"
 
 namespace {
 
@@ -23,6 +24,8 @@ const char* k_usage =
     "  profile CASE.yaml | --frames A.ply B.ply\n"
     "                    broadphase pruning and cost per method\n"
     "  stress            exact CCD against degenerate query families with known answers\n"
+    "  sweep CASE.yaml --vary KEY=V1,V2,...\n"
+    "                    error against run time over combinations of case keys\n"
     "\n"
     "options:\n"
     "  --help            help for a command (tetcontact run --help)\n"
@@ -49,6 +52,29 @@ const char* k_run_usage =
     "\n"
     "Progress goes to stderr (a bar on a terminal, periodic lines otherwise), the final\n"
     "table to stdout. Exit codes: 0 success, 1 run failure, 2 bad input (nothing written).\n";
+
+const char* k_sweep_usage =
+    "usage: tetcontact sweep CASE.yaml --vary KEY=V1,V2,... [--vary KEY2=...]\n"
+    "                        [--reference analytic|finest|SUMMARY.json] [--out DIR] [--force]\n"
+    "                        [--set KEY=VALUE]... [--quiet]\n"
+    "\n"
+    "Runs the case once per combination of the varied keys (the last varying fastest; a\n"
+    "value may be a YAML list, e.g. --vary bodies.0.mesh.box.cells=[20,2,2],[40,4,4]; keys\n"
+    "joined by + take the same values, e.g. --vary bodies.0.mesh.box.cells+bodies.1.mesh.box.\n"
+    "cells=[20,2,2],[40,4,4]) and\n"
+    "writes DIR/sweep.csv (default DIR results/<case name>-sweep): per run the varied values,\n"
+    "status, wall_seconds, steps, tets, error, the error of each declared reference (analytic),\n"
+    "momentum_error, energy_balance_max, penetration_depth_over_h and crossings (largest of 21\n"
+    "measures over the run; empty for one body). `error` is against --reference:\n"
+    "  analytic       the largest relative error of the case's declared references (default)\n"
+    "  finest         the largest relative difference of the bodies' velocities and extents\n"
+    "                 and the contact's duration and peak force from the run with the most\n"
+    "                 tets (then smallest cfl, then most passes, then the later), each\n"
+    "                 relative to the largest value of its kind\n"
+    "  SUMMARY.json   the same figures from an earlier run's summary\n"
+    "A table goes to stdout, one progress line per run to stderr. Plot with\n"
+    "tools/plot_sweep.py DIR/sweep.csv. Exit codes: 0, 1 a run failed (its row says so), 2 bad\n"
+    "input (nothing run).\n";
 
 const char* k_check_usage =
     "usage: tetcontact check CASE.yaml [--set KEY=VALUE]...\n"
@@ -179,6 +205,48 @@ int main(int argc, char** argv) {
     } catch (const std::exception& e) {  // a missing or bad micro-scene case
       std::cerr << "tetcontact: error: " << e.what() << "\n";
       return 2;
+    }
+  }
+  if (cmd == "sweep") {
+    tc::SweepOptions w;
+    for (std::size_t i = 1; i < args.size(); ++i) {
+      const std::string& a = args[i];
+      const std::string* v = i + 1 < args.size() ? &args[i + 1] : nullptr;
+      if (a == "--help" || a == "-h") {
+        std::cout << k_sweep_usage;
+        return 0;
+      } else if (a == "--vary") {
+        if (!v || v->find('=') == std::string::npos || v->find('=') == 0 ||
+            v->find('=') + 1 == v->size())
+          return usage_error("--vary needs KEY=V1,V2,...", k_sweep_usage);
+        const std::size_t eq = v->find('=');
+        w.vary.emplace_back(v->substr(0, eq), tc::split_values(v->substr(eq + 1)));
+        ++i;
+      } else if (a == "--reference" || a == "--out" || a == "--set") {
+        if (!v) return usage_error(a + " needs a value", k_sweep_usage);
+        (a == "--reference" ? w.reference
+         : a == "--out"     ? w.out_dir
+                            : w.overrides.emplace_back()) = *v;
+        ++i;
+      } else if (a == "--force") {
+        w.force = true;
+      } else if (a == "--quiet") {
+        w.quiet = true;
+      } else if (!a.empty() && a[0] == '-') {
+        return usage_error("unknown option '" + a + "'", k_sweep_usage);
+      } else if (w.case_path.empty()) {
+        w.case_path = a;
+      } else {
+        return usage_error("more than one case file given", k_sweep_usage);
+      }
+    }
+    if (w.case_path.empty()) return usage_error("no case file given", k_sweep_usage);
+    if (w.vary.empty()) return usage_error("give at least one --vary KEY=V1,V2,...", k_sweep_usage);
+    try {
+      return tc::sweep_command(w);
+    } catch (const std::exception& e) {
+      std::cerr << "tetcontact: internal error: " << e.what() << "\n";
+      return 1;
     }
   }
   if (cmd == "profile") {

@@ -149,6 +149,8 @@ std::vector<ContactPoint> ParticleContact::detect(const std::vector<Surface>& su
     }
   const Candidates c = broadphase_->find(in);
   candidates = static_cast<long>(c.node_face.size() + c.edge_edge.size());
+  std::vector<double> deepest(count, 0.0);
+  std::vector<Vec3> move(count, Vec3::Zero());
 
   for (const auto& [i, fi] : c.node_face) {
     const Index p = first + i;
@@ -164,19 +166,21 @@ std::vector<ContactPoint> ParticleContact::detect(const std::vector<Surface>& su
       cp.normal = (centre - q) / tp.distance;  // from the face's closest point to the centre
       cp.gap = tp.distance - st.particle_radius[i];
     } else {
-      // On or behind the face's plane: inside the body when it projects into the face within
-      // the altitude of the face's tet (node–face contact's layer); otherwise behind the face
-      // from elsewhere, and another face answers.
-      const bool inside_face = std::min({tp.w[0], tp.w[1], tp.w[2]}) > 0.0;
-      if (!inside_face || nf.squaredNorm() == 0.0) continue;
+      // On or behind the face's plane: inside the body when it is inside the face's own cell
+      // (a point behind the face but outside that cell is outside the body beyond a thin part
+      // of it, or inside elsewhere, where another face answers).
       const Tet& t = mesh.tets[s.face_tet[face_index[fi]]];
-      const double area = 0.5 * (b - a).cross(d - a).norm();
-      const double volume =
-          (st.x[t[1]] - st.x[t[0]]).dot((st.x[t[2]] - st.x[t[0]]).cross(st.x[t[3]] - st.x[t[0]])) /
-          6.0;
-      if (-side > 3.0 * volume / area) continue;
+      if (nf.squaredNorm() == 0.0 ||
+          !point_in_tet(centre, st.x[t[0]], st.x[t[1]], st.x[t[2]], st.x[t[3]]))
+        continue;
+      // Inside: the centre is moved back onto the face's plane (a point mass has no energy of
+      // position, so momentum and energy are untouched), and held there.
       cp.normal = nf;
-      cp.gap = side - st.particle_radius[i];  // held, not pushed back (seed 001)
+      cp.gap = -st.particle_radius[i];
+      if (-side > deepest[i]) {
+        deepest[i] = -side;
+        move[i] = -side * nf;
+      }
     }
     cp.a_nodes[0] = p;
     cp.a_w[0] = 1.0;
@@ -188,6 +192,9 @@ std::vector<ContactPoint> ParticleContact::detect(const std::vector<Surface>& su
     cp.b_count = 3;
     out.push_back(cp);
   }
+  moves_.clear();
+  for (Index i = 0; i < count; ++i)
+    if (deepest[i] > 0.0) moves_.emplace_back(first + i, move[i]);
   for (const auto& [i, j] : c.edge_edge) {
     const Index p = first + i, o = first + j;
     const Vec3 d = st.x[p] - st.x[o];

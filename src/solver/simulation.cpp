@@ -206,6 +206,12 @@ void Simulation::corrections() {
     StageTimer t(profile_["particles"]);
     long candidates = 0;
     particle_contacts_ = particle_contact_->detect(model_.surfaces, model_.mesh, st, candidates);
+    for (const auto& [p, d] : particle_contact_->moves()) {
+      st.x[p] += d;
+      st.x_star[p] += d;
+      ++contact_totals_.particles_moved_out;
+      contact_totals_.particle_move_max = std::max(contact_totals_.particle_move_max, d.norm());
+    }
   }
   StageTimer timer(profile_["response"]);
   for (Vec3& j : st.wall_impulse) j.setZero();

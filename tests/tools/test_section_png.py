@@ -15,14 +15,8 @@ import zlib
 binary, src, out = sys.argv[1:4]
 case = os.path.join(src, "data/cases/cubes-edge.yaml")
 tool = os.path.join(src, "tools/section_png.py")
-failed = 0
-
-
-def check(cond, what):
-    global failed
-    if not cond:
-        failed += 1
-        print("FAIL:", what)
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from checks import check, finish  # noqa: E402
 
 
 def render(frame, png):
@@ -78,5 +72,4 @@ check(red_pixels(os.path.join(out, "off.png")) == off, "red pixels = reported ov
 r = subprocess.run([sys.executable, tool, os.path.join(out, "missing.vtu"), os.path.join(out, "x.png")],
                    capture_output=True, text=True)
 check(r.returncode == 2 and "missing.vtu: no such file" in r.stderr, "missing frame: " + r.stderr)
-print("section_png: %s (overlap on %d, off %d pixels)" % ("FAILED" if failed else "passed", on, off))
-sys.exit(1 if failed else 0)
+finish("section_png", " (overlap on %d, off %d pixels)" % (on, off))

@@ -64,20 +64,24 @@ class Fragmentation {
 
 /// Contacts of particles with the faces of every body and with each other, at tⁿ, for the
 /// impulse kernel. A particle–face contact is the centre against the face's closest point:
-/// normal from that point to the centre, gap = distance − r (a centre behind a face, within
-/// the altitude of the face's tet, is inside: the face normal and a negative gap, held there
-/// as node–face contact holds penetration); particle–particle, gap = |x_i − x_j| − r_i −
-/// r_j. Every pair whose swept boxes (inflated by the radius) overlap is a contact with its
-/// gap: the kernel lets the particle close at most the gap within the step, so no particle
+/// normal from that point to the centre, gap = distance − r (a centre behind a face and
+/// inside the face's cell is inside the body: moves() puts it back on the face's plane, and
+/// the contact, along the face normal with gap −r, holds it there); particle–particle, gap = |x_i −
+/// x_j| − r_i − r_j. Every pair whose swept boxes (inflated by the radius) overlap is a contact
+/// with its gap: the kernel lets the particle close at most the gap within the step, so no particle
 /// passes through a face whatever its speed (speculative contact).
 class ParticleContact {
  public:
   explicit ParticleContact(const std::string& broadphase);
   std::vector<ContactPoint> detect(const std::vector<Surface>& surfaces, const Mesh& mesh,
                                    const State& st, long& candidates);
+  /// Of the last detect(): particles found inside a body, with the move (to add to x and x*)
+  /// that puts each centre on the plane of the face it is deepest behind.
+  const std::vector<std::pair<Index, Vec3>>& moves() const { return moves_; }
 
  private:
   std::unique_ptr<Broadphase> broadphase_;
+  std::vector<std::pair<Index, Vec3>> moves_;
 };
 
 }  // namespace tc

@@ -68,8 +68,10 @@ class Simulation {
     double first_time = -1.0, last_time = -1.0, max_force = 0.0;
     double normal_impulse = 0.0;                            // Σ λ over the run, N s
     double broadphase_build = 0.0, broadphase_query = 0.0;  // seconds over the run
-    long rebuilds = 0;           // times the broadphase ran (binding lists rebuilt)
-    long particle_contacts = 0;  // particle–face and particle–particle contacts that pushed
+    long rebuilds = 0;               // times the broadphase ran (binding lists rebuilt)
+    long particle_contacts = 0;      // particle–face and particle–particle contacts that pushed
+    long particles_moved_out = 0;    // particle centres found inside a body and moved out
+    double particle_move_max = 0.0;  // the largest such move, m
   };
   /// The figures of the run that references measure (diagnostics/reference).
   RunFigures run_figures() const;

@@ -1,0 +1,296 @@
+#include "tetcontact/app/sweep.hpp"
+
+#include <yaml-cpp/yaml.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+#include <map>
+#include <sstream>
+
+#include "tetcontact/app/setup.hpp"
+#include "tetcontact/diagnostics/balance.hpp"
+#include "tetcontact/diagnostics/penetration.hpp"
+#include "tetcontact/io/case.hpp"
+#include "tetcontact/io/files.hpp"
+#include "tetcontact/io/json.hpp"
+#include "tetcontact/solver/simulation.hpp"
+
+namespace tc {
+
+std::vector<std::string> split_values(const std::string& list) {
+  std::vector<std::string> out(1);
+  int depth = 0;
+  for (char ch : list) {
+    if (ch == '[' || ch == '{') ++depth;
+    if (ch == ']' || ch == '}') --depth;
+    if (ch == ',' && depth == 0)
+      out.emplace_back();
+    else
+      out.back() += ch;
+  }
+  return out;
+}
+
+namespace {
+
+// "a+b+c": keys that take the same value in every run (e.g. both bodies' meshes).
+std::vector<std::string> tied_keys(const std::string& keys) {
+  std::vector<std::string> out(1);
+  for (char ch : keys)
+    if (ch == '+')
+      out.emplace_back();
+    else
+      out.back() += ch;
+  return out;
+}
+
+// Figures of a run that a reference run can be compared with: each body's velocity and
+// bounding-box extent per axis, the contact's duration and largest force.
+using Figures = std::map<std::string, double>;
+
+Figures run_figures(const Simulation& sim) {
+  Figures f;
+  for (const BodyStats& b : body_stats(sim.model(), sim.state()))
+    for (int d = 0; d < 3; ++d) {
+      f["velocity:" + b.name + ":" + "xyz"[d]] = b.velocity[d];
+      f["extent:" + b.name + ":" + "xyz"[d]] = b.bbox_max[d] - b.bbox_min[d];
+    }
+  if (sim.has_contact() && sim.contact_totals().first_time >= 0) {
+    f["contact_duration"] = sim.contact_totals().last_time - sim.contact_totals().first_time;
+    f["contact_max_force"] = sim.contact_totals().max_force;
+  }
+  return f;
+}
+
+// The same figures from a run's summary.json (YAML reads JSON).
+Figures summary_figures(const std::string& path) {
+  YAML::Node s;
+  try {
+    s = YAML::LoadFile(path);
+  } catch (const std::exception& e) {
+    throw CaseError(path + ": cannot read the reference summary (" + e.what() + ")");
+  }
+  Figures f;
+  if (!s["bodies"]) throw CaseError(path + ": not a tetcontact summary.json (no 'bodies')");
+  for (const YAML::Node& b : s["bodies"]) {
+    const std::string name = b["name"].as<std::string>();
+    for (int d = 0; d < 3; ++d) {
+      f["velocity:" + name + ":" + "xyz"[d]] = b["velocity"][d].as<double>();
+      f["extent:" + name + ":" + "xyz"[d]] =
+          b["bbox_max"][d].as<double>() - b["bbox_min"][d].as<double>();
+    }
+  }
+  const YAML::Node c = s["contact"];
+  if (c && c["duration"] && !c["duration"].IsNull()) {
+    f["contact_duration"] = c["duration"].as<double>();
+    f["contact_max_force"] = c["max_force"].as<double>();
+  }
+  return f;
+}
+
+// Largest relative difference of the figures both have; each kind relative to the largest
+// reference value of that kind (a body at rest has no velocity of its own to compare with).
+double figures_error(const Figures& run, const Figures& ref) {
+  std::map<std::string, double> scale;
+  const auto kind = [](const std::string& k) { return k.substr(0, k.find(':')); };
+  for (const auto& [k, v] : ref) scale[kind(k)] = std::max(scale[kind(k)], std::abs(v));
+  double err = 0.0;
+  for (const auto& [k, v] : ref) {
+    const auto it = run.find(k);
+    if (it == run.end() || scale[kind(k)] == 0.0) continue;
+    err = std::max(err, std::abs(it->second - v) / scale[kind(k)]);
+  }
+  return err;
+}
+
+struct Row {
+  std::vector<std::string> values;  // the varied values
+  std::string status = "ok";
+  double wall = 0.0;
+  long steps = 0, tets = 0;
+  double cfl = 0.0;
+  int passes = 0;
+  double momentum = 0.0, balance = 0.0, depth_over_h = NAN;
+  long crossings = -1;
+  std::vector<double> ref_error;  // per declared reference (analytic)
+  Figures figures;
+  double error = NAN;  // against the sweep's reference
+};
+
+std::string csv_field(const std::string& s) {
+  if (s.find_first_of(",\"") == std::string::npos) return s;
+  std::string q = "\"";
+  for (char ch : s) q += ch == '"' ? std::string("\"\"") : std::string(1, ch);
+  return q + "\"";
+}
+
+std::string num(double v) {
+  if (std::isnan(v)) return "";
+  char b[32];
+  std::snprintf(b, sizeof b, "%.6g", v);
+  return b;
+}
+
+}  // namespace
+
+int sweep_command(const SweepOptions& o) {
+  // Every combination, the last key varying fastest.
+  std::vector<std::vector<std::string>> combos{{}};
+  for (const auto& [key, values] : o.vary) {
+    std::vector<std::vector<std::string>> next;
+    for (const auto& c : combos)
+      for (const std::string& v : values) {
+        next.push_back(c);
+        next.back().push_back(v);
+      }
+    combos = std::move(next);
+  }
+  // All cases are read (and so checked) before anything runs or is written.
+  std::vector<Case> cases;
+  Figures file_reference;
+  try {
+    for (const auto& c : combos) {
+      std::vector<std::string> overrides = o.overrides;
+      for (std::size_t k = 0; k < c.size(); ++k)
+        for (const std::string& key : tied_keys(o.vary[k].first))
+          overrides.push_back(key + "=" + c[k]);
+      cases.push_back(load_case(o.case_path, overrides));
+    }
+    if (o.reference != "analytic" && o.reference != "finest")
+      file_reference = summary_figures(o.reference);
+    if (o.reference == "analytic" && cases.front().references.empty())
+      throw CaseError(o.case_path +
+                      ": the case declares no reference values; use --reference finest or FILE");
+  } catch (const CaseError& e) {
+    std::cerr << "tetcontact: error: " << e.what() << "\n";
+    return 2;
+  }
+  const std::string dir =
+      o.out_dir.empty() ? "results/" + cases.front().name + "-sweep" : o.out_dir;
+  try {
+    prepare_output_dir(dir, o.force);
+  } catch (const OutputError& e) {
+    std::cerr << "tetcontact: error: " << e.what() << "\n";
+    return 2;
+  }
+
+  std::vector<Row> rows;
+  int code = 0;
+  for (std::size_t r = 0; r < cases.size(); ++r) {
+    const Case& c = cases[r];
+    Row row;
+    row.values = combos[r];
+    row.cfl = c.cfl;
+    row.passes = c.contact ? c.contact_settings.passes : 0;
+    const auto t0 = std::chrono::steady_clock::now();
+    try {
+      Simulation sim(build_model(c), solver_settings(c));
+      row.tets = sim.model().mesh.tet_count();
+      std::unique_ptr<PenetrationProbe> probe;
+      if (sim.model().mesh.bodies.size() >= 2)
+        probe = std::make_unique<PenetrationProbe>(sim.model());
+      double next = 0.0;  // penetration measured at 20 times over the run, and at the end
+      const auto measure = [&] {
+        const Penetration p = probe->measure(sim.state());
+        row.depth_over_h =
+            std::max(std::isnan(row.depth_over_h) ? 0.0 : row.depth_over_h, p.max_depth_over_h);
+        row.crossings = std::max(row.crossings, p.crossings);
+      };
+      try {
+        while (!sim.done()) {
+          sim.step();
+          if (probe && sim.state().t >= next) {
+            measure();
+            next += c.end_time / 20.0;
+          }
+        }
+        sim.finish();
+        if (probe) measure();
+      } catch (const RunFailure& e) {
+        row.status = std::string("failed: ") + e.what();
+        code = 1;
+      }
+      row.wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      row.steps = sim.state().step;
+      row.momentum = momentum_error(sim.first_sample(), sim.last_sample());
+      row.balance = sim.balance_error_max();
+      row.figures = run_figures(sim);
+      if (row.status == "ok")
+        for (const ReferenceResult& ref :
+             evaluate_references(c.references, sim.model(), sim.state(), sim.run_figures()))
+          row.ref_error.push_back(ref.relative_error);
+    } catch (const SetupError& e) {
+      row.status = std::string("bad input: ") + e.what();
+      code = 1;
+    }
+    if (!o.quiet) {
+      std::cerr << "sweep: run " << r + 1 << "/" << cases.size() << ":";
+      for (std::size_t k = 0; k < row.values.size(); ++k)
+        std::cerr << " " << o.vary[k].first << "=" << row.values[k];
+      std::cerr << " — " << row.status << ", " << row.steps << " steps, " << num(row.wall)
+                << " s\n";
+    }
+    rows.push_back(std::move(row));
+  }
+
+  // The error of each run against the sweep's reference; the finest run is the one with the
+  // most tets, then the smallest cfl, then the most passes, then the later in the sweep.
+  const Case& c0 = cases.front();
+  std::size_t finest = 0;
+  for (std::size_t r = 1; r < rows.size(); ++r) {
+    const Row &a = rows[r], &b = rows[finest];
+    if (std::tie(a.tets, b.cfl, a.passes) >= std::tie(b.tets, a.cfl, b.passes)) finest = r;
+  }
+  for (Row& row : rows) {
+    if (row.status != "ok") continue;
+    if (o.reference == "analytic") {
+      row.error = 0.0;
+      for (double e : row.ref_error) row.error = std::max(row.error, std::abs(e));
+    } else {
+      row.error = figures_error(row.figures,
+                                o.reference == "finest" ? rows[finest].figures : file_reference);
+    }
+  }
+
+  std::ostringstream csv;
+  for (const auto& [key, values] : o.vary) csv << csv_field(key) << ',';
+  csv << "status,wall_seconds,steps,tets,error";
+  if (o.reference == "analytic")
+    for (const ReferenceSpec& ref : c0.references) csv << ',' << csv_field("error:" + ref.name);
+  csv << ",momentum_error,energy_balance_max,penetration_depth_over_h,crossings\n";
+  for (const Row& row : rows) {
+    for (const std::string& v : row.values) csv << csv_field(v) << ',';
+    csv << csv_field(row.status) << ',' << num(row.wall) << ',' << row.steps << ',' << row.tets
+        << ',' << num(row.error);
+    if (o.reference == "analytic")
+      for (std::size_t k = 0; k < c0.references.size(); ++k)
+        csv << ',' << (k < row.ref_error.size() ? num(row.ref_error[k]) : "");
+    csv << ',' << num(row.momentum) << ',' << num(row.balance) << ',' << num(row.depth_over_h)
+        << ',' << (row.crossings >= 0 ? std::to_string(row.crossings) : "") << '\n';
+  }
+  write_file_atomic(dir + "/sweep.csv", csv.str());
+
+  // The table.
+  std::ostringstream os;
+  os << "sweep of " << c0.name << " (" << rows.size() << " runs; error against "
+     << (o.reference == "analytic" ? "the case's references"
+         : o.reference == "finest" ? "the finest run"
+                                   : o.reference)
+     << ")\n";
+  for (const auto& [key, values] : o.vary) os << "  " << key;
+  os << "  | wall s | steps | error | momentum | energy | depth/h | crossings | status\n";
+  for (const Row& row : rows) {
+    for (const std::string& v : row.values) os << "  " << v;
+    os << "  | " << num(row.wall) << " | " << row.steps << " | " << num(row.error) << " | "
+       << num(row.momentum) << " | " << num(row.balance) << " | " << num(row.depth_over_h) << " | "
+       << (row.crossings >= 0 ? std::to_string(row.crossings) : "-") << " | " << row.status << "\n";
+  }
+  os << "written: " << dir << "/sweep.csv\n";
+  std::cout << os.str();
+  return code;
+}
+
+}  // namespace tc
