@@ -204,6 +204,7 @@ Json summary_json(const Case& c, const Simulation& sim, const std::string& statu
     fr["conversion_momentum_error"] = l->momentum_error;
     fr["conversion_mass_error"] = l->mass_error;
     fr["particle_contacts"] = sim.contact_totals().particle_contacts;
+    fr["eroded"] = l->eroded;  // a safeguard: cells whose step fell below the erosion limit
     fr["particles_moved_out"] = sim.contact_totals().particles_moved_out;  // a safeguard
     fr["particle_move_max"] = sim.contact_totals().particle_move_max;
     double kinetic = 0.0;

@@ -14,6 +14,10 @@ Fragmentation::Fragmentation(const Mesh& mesh)
     for (Index n : k) ++cells_at_node_[n];
 }
 
+void Fragmentation::erode(const std::vector<Index>& tets) {
+  eroding_.insert(eroding_.end(), tets.begin(), tets.end());
+}
+
 std::vector<Surface> Fragmentation::surfaces(const Mesh& mesh) const {
   return build_surfaces(mesh, neighbours_, removed_);
 }
@@ -36,7 +40,7 @@ Index add_particle(State& st, const Vec3& x, const Vec3& v, double m, double rad
 long Fragmentation::convert(const Mesh& mesh, const std::vector<Material>& materials, State& st) {
   if (total_mass_ == 0.0)
     for (double m : st.m) total_mass_ += m;
-  // The destroyed cells on the boundary as the call finds it.
+  // The destroyed cells on the boundary as the call finds it, and the eroded ones.
   std::vector<Index> cells;
   for (Index t = 0; t < mesh.tet_count(); ++t) {
     if (st.damage[t] != Damage::destroyed) continue;
@@ -46,6 +50,13 @@ long Fragmentation::convert(const Mesh& mesh, const std::vector<Material>& mater
         break;
       }
   }
+  std::sort(eroding_.begin(), eroding_.end());
+  eroding_.erase(std::unique(eroding_.begin(), eroding_.end()), eroding_.end());
+  for (Index t : eroding_)
+    if (!removed_[t]) cells.push_back(t), ++ledger_.eroded;
+  eroding_.clear();
+  std::sort(cells.begin(), cells.end());
+  cells.erase(std::unique(cells.begin(), cells.end()), cells.end());
   for (Index t : cells) {
     const Tet& k = mesh.tets[t];
     const double quarter = 0.25 * materials[st.tet_material[t]].density * st.vol0[t];

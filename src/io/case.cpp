@@ -845,9 +845,18 @@ Case load_case(const std::string& path, const std::vector<std::string>& override
   // Fracture (seed 000): spall damage and loosening, and destroyed boundary cells turned into
   // particles (on unless `particles: false`: then they stay in the mesh without stress).
   if (const YAML::Node s = root["fracture"]) {
-    r.keys(s, "fracture", {"enabled", "particles"});
+    r.keys(s, "fracture", {"enabled", "particles", "erosion_step_ratio"});
     c.fracture = s["enabled"] ? r.boolean(s["enabled"], "fracture.enabled") : true;
     c.particles = s["particles"] ? r.boolean(s["particles"], "fracture.particles") : true;
+    if (const YAML::Node e = s["erosion_step_ratio"]) {
+      c.erosion_step_ratio = r.number(e, "fracture.erosion_step_ratio");
+      if (!(c.erosion_step_ratio >= 0.0 && c.erosion_step_ratio < 1.0))
+        r.fail(e, "fracture.erosion_step_ratio", "must be in [0, 1) (0: no erosion)");
+      if (c.erosion_step_ratio > 0.0 && !c.particles)
+        r.fail(e, "fracture.erosion_step_ratio",
+               "erosion turns cells into particles: needs "
+               "fracture.particles true");
+    }
   }
   if (c.fracture &&
       std::find(c.output.fields.begin(), c.output.fields.end(), "damage") == c.output.fields.end())

@@ -146,6 +146,7 @@ struct TetGeometry {
     r.dt_stable = dt2;
     r.critical_tet = t;
   }
+  if (dt2 < options.erode_dt2) r.eroding.push_back(t);
 }
 
 // The squared minimum of scatter_forces back to a time step.

@@ -320,6 +320,11 @@ void Simulation::elements_stage() {
                                                         model_.element, st.dt_prev, st, scratch_)
                                       : compute_forces(model_.mesh.tets, model_.element, st);
     critical_tet_ = r.critical_tet;
+    if (fragmentation_ && model_.erosion_step_ratio > 0.0) {
+      if (st.step == 0)  // the limit: a fraction of the first stable step
+        model_.element.erode_dt2 = std::pow(model_.erosion_step_ratio * r.dt_stable, 2);
+      fragmentation_->erode(r.eroding);
+    }
     // No step is shortened to land on end_time: an abrupt change of τ costs the leapfrog
     // its exact energy balance (see sample_balance), so the run ends at the first step at or
     // after end_time and reports the time reached.

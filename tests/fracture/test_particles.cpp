@@ -220,3 +220,28 @@ TEST(ParticleContact, HeadOnParticlesMoveTogetherAfterwards) {
   commit(st);
   EXPECT_NEAR(st.x[1].x() - st.x[0].x(), 2e-4, 1e-15);  // touching
 }
+
+TEST(Fragmentation, ErodedInteriorCellLeavesAVoidInTheSurfaces) {
+  Model model =
+      test::single_body_model(make_box(Vec3(1, 1, 1), {3, 3, 3}, HexSplit::six), test::aluminium());
+  State st = initial_state(model);
+  const TetNeighbours nb = tet_neighbours(model.mesh);
+  Index interior = -1;
+  for (Index t = 0; t < model.mesh.tet_count() && interior < 0; ++t)
+    if (std::count(nb[t].begin(), nb[t].end(), -1) == 0) interior = t;
+  ASSERT_GE(interior, 0);
+  const Totals before = totals(st);
+  Fragmentation frag(model.mesh);
+  frag.erode({interior, interior});  // listed twice: converted once
+  EXPECT_EQ(frag.convert(model.mesh, model.materials, st), 1);
+  EXPECT_EQ(frag.ledger().eroded, 1);
+  EXPECT_EQ(st.damage[interior], Damage::particle);
+  std::vector<char> removed(model.mesh.tets.size(), 0);
+  removed[interior] = 1;
+  const std::vector<Surface> got = frag.surfaces(model.mesh),
+                             want = surfaces_without(model.mesh, removed);
+  EXPECT_EQ(got[0].faces, want[0].faces);
+  EXPECT_EQ(got[0].faces.size(), model.surfaces[0].faces.size() + 4);  // the void's four faces
+  EXPECT_NEAR(totals(st).mass, before.mass, 1e-14 * before.mass);
+  EXPECT_EQ(frag.convert(model.mesh, model.materials, st), 0);  // nothing more to do
+}

@@ -432,3 +432,20 @@ TEST(Json, MemberReferencesSurviveNewKeys) {
       << out.substr(0, 200);
   EXPECT_NE(out.find("\"key99\": 99"), std::string::npos);
 }
+
+TEST(Case, ErosionRatioOutOfRangeOrWithoutParticlesIsRefused) {
+  const std::string file = test::source_path("data/cases/ball-plate.yaml");
+  EXPECT_EQ(load_case(file).erosion_step_ratio, 0.01);
+  for (const std::vector<std::string>& bad :
+       {std::vector<std::string>{"fracture.erosion_step_ratio=1.5"},
+        std::vector<std::string>{"fracture.erosion_step_ratio=-0.1"},
+        std::vector<std::string>{"fracture.particles=false"}}) {
+    try {
+      load_case(file, bad);
+      ADD_FAILURE() << bad[0] << " was accepted";
+    } catch (const CaseError& e) {
+      EXPECT_NE(std::string(e.what()).find("fracture.erosion_step_ratio"), std::string::npos)
+          << e.what();
+    }
+  }
+}

@@ -28,6 +28,7 @@ struct ConversionLedger {
                                 // cells' spread of nodal velocity, kept as particle energy
   double momentum_error = 0.0;  // largest |Σ_k ¼m U_k − m Ū| / Σ_k ¼m|U_k| of one conversion
   double mass_error = 0.0;      // |Σ nodal mass before − after| / total mass, largest
+  long eroded = 0;              // of the particles, cells eroded (their step fell too low)
 };
 
 /// Appends a particle (a free node with that radius, internal energy and cell of origin) to
@@ -49,6 +50,9 @@ class Fragmentation {
   /// cells keeps no mass and no velocity. Returns the number converted; when it is not zero
   /// the caller takes the new surfaces().
   long convert(const Mesh& mesh, const std::vector<Material>& materials, State& st);
+  /// Erosion: these cells are turned into particles at the next convert() wherever they are
+  /// (an interior one leaves a void whose faces join the surfaces).
+  void erode(const std::vector<Index>& tets);
 
   /// The bodies' surfaces without the converted cells: the faces they exposed are included.
   std::vector<Surface> surfaces(const Mesh& mesh) const;
@@ -57,6 +61,7 @@ class Fragmentation {
  private:
   TetNeighbours neighbours_;
   std::vector<char> removed_;       // per tet: turned into a particle
+  std::vector<Index> eroding_;      // cells to convert at the next call, wherever they are
   std::vector<int> cells_at_node_;  // remaining cells around each mesh node
   double total_mass_ = 0.0;
   ConversionLedger ledger_;

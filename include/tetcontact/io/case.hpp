@@ -104,7 +104,8 @@ struct Case {
   ContactSettings contact_settings;  // pairs' body indices are resolved by the setup
   std::vector<std::array<std::string, 2>> contact_pair_bodies;  // parallel to its pairs
   bool fracture = false;
-  bool particles = true;  // fracture.particles: destroyed boundary cells become particles
+  bool particles = true;            // fracture.particles: destroyed boundary cells become particles
+  double erosion_step_ratio = 0.0;  // fracture.erosion_step_ratio (0: off)
 
   const Material& material(const std::string& name) const;
 };

@@ -41,6 +41,9 @@ struct ElementOptions {
   double viscosity_quadratic = 1.5;          // C2 of bulk_viscosity
   std::vector<char> average_nodal_pressure;  // per material: pressure averaged at nodes
   bool fracture = false;                     // spall damage and loosening (seed 000)
+  /// Erosion (a safeguard, fracture.erosion_step_ratio): tets whose stable step squared falls
+  /// below this are listed in ForceResult::eroding (0: off).
+  double erode_dt2 = 0.0;
 };
 
 /// Scratch arrays of the average-nodal-pressure passes, sized on first use.
@@ -51,8 +54,9 @@ struct NodalScratch {
 };
 
 struct ForceResult {
-  double dt_stable = 0.0;   // min over tets of the viscous CFL limit
-  Index critical_tet = -1;  // the tet that sets it
+  double dt_stable = 0.0;      // min over tets of the viscous CFL limit
+  Index critical_tet = -1;     // the tet that sets it
+  std::vector<Index> eroding;  // tets whose stable step fell below the erosion limit
 };
 
 /// Internal nodal forces F at the current positions from σ = s − (p + q) I, and the stable

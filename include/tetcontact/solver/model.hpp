@@ -35,6 +35,9 @@ struct Model {
   std::vector<Vec3> initial_velocity;      // per node
   ElementOptions element;                  // viscosity, average nodal pressure per material
   bool particles = false;  // destroyed boundary cells become particles (fracture.particles)
+  /// Erosion (with particles): a cell whose stable step falls below this fraction of the
+  /// first step's becomes a particle wherever it is (fracture.erosion_step_ratio; 0: off).
+  double erosion_step_ratio = 0.0;
 };
 
 /// Surface nodes of every body, sorted (the nodes that can touch a wall or another body).
