@@ -31,6 +31,28 @@ def check(cond, what):
         print("FAIL:", what)
 
 
+def read(path, name):
+    """The grid of one .vtu, checked to be readable by VTK."""
+    reader = vtk.vtkXMLUnstructuredGridReader()
+    reader.SetFileName(path)
+    reader.Update()
+    check(reader.GetErrorCode() == 0, f"{name}: VTK reads it")
+    return reader.GetOutput()
+
+
+def check_arrays(data, expected, name):
+    """Each expected array present with its component count, values finite; returns them."""
+    found = {}
+    for array, comps in expected.items():
+        a = data.GetArray(array)
+        check(a is not None and a.GetNumberOfComponents() == comps,
+              f"{name}: array {array} with {comps} components")
+        if a is not None:
+            found[array] = vtk_to_numpy(a)
+            check(all(math.isfinite(v) for v in found[array].ravel()), f"{name}: {array} finite")
+    return found
+
+
 def main(argv):
     if argv[:1] == ["--run"]:
         binary, case, out = argv[1:4]
@@ -55,44 +77,26 @@ def main(argv):
         pframes = [(float(d.get("timestep")), d.get("file")) for d in pseries.findall("DataSet")]
         check([t for t, _ in pframes] == [t for t, _ in frames], "particle frames at the frame times")
         for t, name in pframes:
-            reader = vtk.vtkXMLUnstructuredGridReader()
-            reader.SetFileName(os.path.join(out, name))
-            reader.Update()
-            grid = reader.GetOutput()
-            check(reader.GetErrorCode() == 0, f"{name}: VTK reads it")
+            grid = read(os.path.join(out, name), name)
             n = grid.GetNumberOfPoints()
             particles[t] = n
             check(grid.GetNumberOfCells() == n, f"{name}: one vertex per particle")
-            for array, comps in {"radius": 1, "mass": 1, "velocity": 3, "energy": 1, "body": 1}.items():
-                a = grid.GetPointData().GetArray(array)
-                check(a is not None and a.GetNumberOfComponents() == comps,
-                      f"{name}: array {array} with {comps} components")
-                if a is not None and n:
-                    values = vtk_to_numpy(a)
-                    check(all(math.isfinite(v) for v in values.ravel()), f"{name}: {array} finite")
-                    if array in ("radius", "mass"):
-                        check(values.min() > 0, f"{name}: {array} positive")
+            found = check_arrays(grid.GetPointData(),
+                                 {"radius": 1, "mass": 1, "velocity": 3, "energy": 1, "body": 1}, name)
+            for array in ("radius", "mass"):
+                if n and array in found:
+                    check(found[array].min() > 0, f"{name}: {array} positive")
         check(particles.get(frames[-1][0], 0) == summary["fracture"]["particles"],
               "the last particle frame holds summary.fracture.particles")
     for t, name in frames:
-        reader = vtk.vtkXMLUnstructuredGridReader()
-        reader.SetFileName(os.path.join(out, name))
-        reader.Update()
-        grid = reader.GetOutput()
-        check(reader.GetErrorCode() == 0, f"{name}: VTK reads it")
+        grid = read(os.path.join(out, name), name)
         check(grid.GetNumberOfPoints() == nodes, f"{name}: {nodes} points")
         cells = tets - particles.get(t, 0)  # cells turned into particles leave the mesh
         check(grid.GetNumberOfCells() == cells, f"{name}: {cells} cells")
         types = vtk_to_numpy(grid.GetCellTypesArray())
         check((types == vtk.VTK_TETRA).all(), f"{name}: only linear tetrahedra")
-        for data, expected in ((grid.GetPointData(), expected_point), (grid.GetCellData(), expected_cell)):
-            for array, comps in expected.items():
-                a = data.GetArray(array)
-                check(a is not None and a.GetNumberOfComponents() == comps,
-                      f"{name}: array {array} with {comps} components")
-                if a is not None:
-                    values = vtk_to_numpy(a)
-                    check(all(math.isfinite(v) for v in values.ravel()), f"{name}: {array} finite")
+        check_arrays(grid.GetPointData(), expected_point, name)
+        check_arrays(grid.GetCellData(), expected_cell, name)
         quality = vtk.vtkMeshQuality()
         quality.SetInputData(grid)
         quality.SetTetQualityMeasureToVolume()
