@@ -390,10 +390,10 @@ int run_case(const RunOptions& o) {
       Json o = Json::object();
       o["name"] = r.spec->name;
       o["measured"] = r.measured;
-      o["reference"] = r.spec->value;
-      o["relative_error"] = r.relative_error;
-      o["tolerance"] = r.spec->tolerance;
-      o["pass"] = r.pass;
+      o["reference"] = r.judged ? Json(r.spec->value) : Json();  // null: measured only
+      o["relative_error"] = r.judged ? Json(r.relative_error) : Json();
+      o["tolerance"] = r.judged ? Json(r.spec->tolerance) : Json();
+      o["pass"] = r.judged ? Json(r.pass) : Json();
       o["source"] = r.spec->source;
       if (!r.error.empty()) o["error"] = r.error;
       list.push_back(o);
@@ -409,6 +409,8 @@ int run_case(const RunOptions& o) {
     for (const ReferenceResult& r : refs)
       if (!r.error.empty())
         std::printf("  reference  %-28s not measured: %s\n", r.spec->name.c_str(), r.error.c_str());
+      else if (!r.judged)
+        std::printf("  measure    %-28s %.5g\n", r.spec->name.c_str(), r.measured);
       else
         std::printf(
             "  reference  %-28s measured %-11.5g reference %-11.5g error %+7.2f%% (tolerance "

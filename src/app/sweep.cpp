@@ -248,7 +248,8 @@ int sweep_command(const SweepOptions& o) {
     if (row.status != "ok") continue;
     if (o.reference == "analytic") {
       row.error = 0.0;
-      for (double e : row.ref_error) row.error = std::max(row.error, std::abs(e));
+      for (double e : row.ref_error)
+        if (!std::isnan(e)) row.error = std::max(row.error, std::abs(e));  // NaN: not judged
     } else {
       row.error = figures_error(row.figures,
                                 o.reference == "finest" ? rows[finest].figures : file_reference);

@@ -6,6 +6,7 @@
 #include <charconv>
 #include <cmath>
 #include <filesystem>
+#include <limits>
 #include <set>
 #include <sstream>
 
@@ -686,16 +687,18 @@ Case load_case(const std::string& path, const std::vector<std::string>& override
         ref.measure = M::contact_max_force;
       else if (measure == "contact_mean_pressure")
         ref.measure = M::contact_mean_pressure;
+      else if (measure == "hole_diameter")
+        ref.measure = M::hole_diameter;
       else
         r.fail(m, join(p, "measure"),
                "measure must be length, radius, mean_stress, mean_pressure, velocity, "
-               "contact_duration, contact_max_force or contact_mean_pressure");
+               "contact_duration, contact_max_force, contact_mean_pressure or hole_diameter");
       if (ref.measure == M::contact_duration || ref.measure == M::contact_max_force) {
         // whole-run figures: nothing more to say
       } else if (ref.measure == M::contact_mean_pressure) {
         ref.area = r.positive(r.require(n, p, "area"), join(p, "area"), "m^2");
       } else if (ref.measure == M::length || ref.measure == M::radius ||
-                 ref.measure == M::velocity) {
+                 ref.measure == M::velocity || ref.measure == M::hole_diameter) {
         const YAML::Node b = r.require(n, p, "body");
         ref.body = r.string(b, join(p, "body"));
         if (std::none_of(c.bodies.begin(), c.bodies.end(),
@@ -706,6 +709,11 @@ Case load_case(const std::string& path, const std::vector<std::string>& override
         if (axis != "x" && axis != "y" && axis != "z")
           r.fail(a, join(p, "axis"), "axis must be x, y or z");
         ref.axis = axis[0] - 'x';
+        if (ref.measure == M::hole_diameter) {
+          const Region reg = parse_region(r, r.require(n, p, "region"), join(p, "region"));
+          ref.region_min = reg.min;
+          ref.region_max = reg.max;
+        }
       } else {
         const Region reg = parse_region(r, r.require(n, p, "region"), join(p, "region"));
         ref.region_min = reg.min;
@@ -720,11 +728,16 @@ Case load_case(const std::string& path, const std::vector<std::string>& override
           ref.component = static_cast<int>(it - names.begin());
         }
       }
-      ref.value = r.number(r.require(n, p, "value"), join(p, "value"));
-      if (ref.value == 0.0)
-        r.fail(n["value"], join(p, "value"),
-               "a reference value must be non-zero (errors are relative)");
-      ref.tolerance = r.positive(r.require(n, p, "tolerance"), join(p, "tolerance"), "relative");
+      // Without value and tolerance a measure is reported, not judged.
+      if (n["value"] || n["tolerance"]) {
+        ref.value = r.number(r.require(n, p, "value"), join(p, "value"));
+        if (ref.value == 0.0)
+          r.fail(n["value"], join(p, "value"),
+                 "a reference value must be non-zero (errors are relative)");
+        ref.tolerance = r.positive(r.require(n, p, "tolerance"), join(p, "tolerance"), "relative");
+      } else {
+        ref.value = ref.tolerance = std::numeric_limits<double>::quiet_NaN();
+      }
       if (n["source"]) ref.source = r.string(n["source"], join(p, "source"));
       c.references.push_back(ref);
     });

@@ -21,25 +21,28 @@ struct ReferenceSpec {
     contact_duration,       // last − first time with a contact force between bodies
     contact_max_force,      // largest total normal contact force of a step
     contact_mean_pressure,  // total normal contact impulse / (duration · `area`)
+    hole_diameter,          // twice the distance from the line along `axis` through the centre of
+                            // `region` to the nearest centre of a cell of `body` in `region`
   };
   std::string name;  // shown in tables
   Measure measure = Measure::length;
-  std::string body;   // length, radius
+  std::string body;   // length, radius, velocity, hole_diameter
   int axis = 2;       // 0, 1, 2 for x, y, z
   int component = 2;  // mean_stress: 0..5 in the order xx yy zz xy yz xz
   Vec3 region_min = Vec3::Zero(), region_max = Vec3::Zero();  // mean_stress, mean_pressure
   double area = 0.0;                                          // contact_mean_pressure
-  double value = 0.0;                                         // the reference
-  double tolerance = 0.0;                                     // allowed relative error
-  std::string source;                                         // where the reference comes from
+  double value = 0.0;      // the reference; NaN: measured and reported, not judged
+  double tolerance = 0.0;  // allowed relative error
+  std::string source;      // where the reference comes from
 };
 
 struct ReferenceResult {
   const ReferenceSpec* spec = nullptr;
   double measured = 0.0;
   double relative_error = 0.0;  // (measured − value) / |value|
-  bool pass = false;
-  std::string error;  // why it could not be measured (then measured is NaN, pass false)
+  bool pass = false;            // true for a measure without a reference value once measured
+  bool judged = true;           // false: the spec has no reference value (relative_error is NaN)
+  std::string error;            // why it could not be measured (then measured is NaN, pass false)
 };
 
 /// Figures of the whole run that some references measure.
