@@ -14,7 +14,7 @@
 
 using namespace tc;
 
-// Ball 8 cells across, plate 24 × 24 × 2 cells (the case has 16 and 60 × 60 × 3), to 10 µs.
+// Ball 8 cells across, plate 24 × 24 × 2 cells (the case has 16 and 60 × 60 × 3), to 12.5 µs.
 TEST(Validation, BallPerforatesPlateAndConversionsConserve) {
   const Case c =
       load_case(test::source_path("data/cases/ball-plate.yaml"),
