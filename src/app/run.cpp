@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
+#include <limits>
 #include <sstream>
 
 #include "tetcontact/app/setup.hpp"
@@ -156,6 +157,7 @@ Json summary_json(const Case& c, const Simulation& sim, const std::string& statu
   ts["last"] = last.dt;
   ts["cfl"] = c.cfl;
   ts["critical_tet"] = static_cast<long>(sim.critical_tet());
+  ts["min"] = sim.min_dt();
   if (const Index t = sim.critical_tet(); t >= 0) {  // what limits the step, for the user
     const BodyRange& b = model.mesh.bodies[model.mesh.tet_body[t]];
     ts["critical_body"] = b.name;
@@ -229,6 +231,11 @@ Json summary_json(const Case& c, const Simulation& sim, const std::string& statu
     fr["from_bodies"] = by_body;
     e["contact_work"] = last.contact.work;  // particle contacts do work too
   }
+  // The safeguards that acted (null: the run has no such safeguard).
+  Json& safe = j["safeguards"];
+  const ConversionLedger* conv = sim.conversions();
+  safe["eroded"] = conv && model.erosion_step_ratio > 0 ? Json(conv->eroded) : Json();
+  safe["particles_moved_out"] = conv ? Json(sim.contact_totals().particles_moved_out) : Json();
   mass["relative_error"] = first.mass > 0 ? std::abs(last.mass - first.mass) / first.mass : 0.0;
   return j;
 }
@@ -381,6 +388,37 @@ int run_case(const RunOptions& o) {
     }
     pen["measured_at"] = "output frames";
   }
+  // The case's stated bounds (`expect`), each against its summary figure.
+  std::string expect_lines;
+  if (!c.expect.empty()) {
+    Json list = Json::array();
+    bool all = true;
+    const Penetration& pm = writer.penetration_max();
+    const bool measured = writer.measured_penetration();
+    for (const auto& [name, bound] : c.expect) {
+      double value = std::numeric_limits<double>::quiet_NaN();
+      if (name == "momentum_error") value = momentum_error(sim->first_sample(), sim->last_sample());
+      if (name == "energy_balance") value = sim->balance_error_max();
+      if (name == "max_depth_over_h" && measured) value = pm.max_depth_over_h;
+      if (name == "particles_inside" && measured)
+        value = static_cast<double>(writer.penetration_last().particles_inside);
+      const bool pass = code == 0 && value <= bound;  // NaN (not measured) fails
+      Json item = Json::object();
+      item["name"] = name;
+      item["bound"] = bound;
+      item["measured"] = std::isnan(value) ? Json() : Json(value);
+      item["pass"] = pass;
+      list.push_back(item);
+      all = all && pass;
+      char line[160];
+      std::snprintf(line, sizeof line, "  expect     %-28s %-11.4g bound %-11.4g %s\n",
+                    name.c_str(), value, bound, pass ? "pass" : "FAIL");
+      expect_lines += line;
+    }
+    summary["expect"] = list;
+    summary["expect_pass"] = all;
+    if (o.check && !all && code == 0) code = 1;
+  }
   std::vector<ReferenceResult> refs;
   if (code == 0 && !c.references.empty()) {
     refs = evaluate_references(c.references, sim->model(), sim->state(), sim->run_figures());
@@ -419,8 +457,9 @@ int run_case(const RunOptions& o) {
             r.spec->name.c_str(), r.measured, r.spec->value, 100 * r.relative_error,
             100 * r.spec->tolerance, r.pass ? "pass" : "FAIL");
   }
+  if (!o.quiet || code != 0) std::cout << expect_lines;
   if (o.check && code != 0 && status == "ok")
-    std::cerr << "tetcontact: check failed: a reference value is missed\n";
+    std::cerr << "tetcontact: check failed: a reference value or an expected bound is missed\n";
   if (status != "ok") std::cerr << "tetcontact: run failed: " << status.substr(8) << "\n";
   return code;
 }

@@ -114,7 +114,12 @@ Model build_model(const Case& c, std::vector<std::string>* notes) {
   for (std::size_t i = 0; i < c.bodies.size(); ++i) {
     const BodySpec& b = c.bodies[i];
     const BodyRange& r = model.mesh.bodies[i];
-    for (Index n = r.node_begin; n < r.node_end; ++n) model.initial_velocity[n] = b.velocity;
+    Vec3 lo = model.mesh.x[r.node_begin], hi = lo;  // the rotation's centre: the box's
+    for (Index n = r.node_begin; n < r.node_end; ++n)
+      lo = lo.cwiseMin(model.mesh.x[n]), hi = hi.cwiseMax(model.mesh.x[n]);
+    const Vec3 centre = 0.5 * (lo + hi);
+    for (Index n = r.node_begin; n < r.node_end; ++n)
+      model.initial_velocity[n] = b.velocity + b.angular_velocity.cross(model.mesh.x[n] - centre);
     for (std::size_t k = 0; k < b.velocity_regions.size(); ++k) {
       const auto nodes =
           nodes_in_region(model.mesh, static_cast<Index>(i), b.velocity_regions[k].region);

@@ -490,7 +490,7 @@ Case load_case(const std::string& path, const std::vector<std::string>& override
   c.file = path;
   r.keys(root, "",
          {"name", "description", "end_time", "solver", "material_library", "materials", "bodies",
-          "boundary_conditions", "walls", "output", "reference", "contact", "fracture"});
+          "boundary_conditions", "walls", "output", "reference", "contact", "fracture", "expect"});
   c.name = root["name"] ? r.string(root["name"], "name") : fs::path(path).stem().string();
   if (root["description"]) c.description = r.string(root["description"], "description");
   c.end_time = r.positive(r.require(root, "", "end_time"), "end_time", "s");
@@ -580,7 +580,9 @@ Case load_case(const std::string& path, const std::vector<std::string>& override
   for (std::size_t i = 0; i < bodies.size(); ++i) {
     const std::string p = join("bodies", std::to_string(i));
     const YAML::Node b = bodies[i];
-    r.keys(b, p, {"name", "material", "mesh", "transform", "velocity", "velocity_regions"});
+    r.keys(b, p,
+           {"name", "material", "mesh", "transform", "velocity", "angular_velocity",
+            "velocity_regions"});
     BodySpec body;
     body.name = r.string(r.require(b, p, "name"), join(p, "name"));
     for (const BodySpec& other : c.bodies)
@@ -593,6 +595,8 @@ Case load_case(const std::string& path, const std::vector<std::string>& override
     body.mesh = parse_mesh(r, r.require(b, p, "mesh"), join(p, "mesh"), case_dir);
     if (b["transform"]) body.transform = parse_transform(r, b["transform"], join(p, "transform"));
     if (b["velocity"]) body.velocity = r.vec3(b["velocity"], join(p, "velocity"));
+    if (b["angular_velocity"])
+      body.angular_velocity = r.vec3(b["angular_velocity"], join(p, "angular_velocity"));
     if (const YAML::Node vr = b["velocity_regions"]) {
       const std::string vp = join(p, "velocity_regions");
       if (!vr.IsSequence()) r.fail(vr, vp, "expected a list of {min, max, velocity}");
@@ -870,6 +874,18 @@ Case load_case(const std::string& path, const std::vector<std::string>& override
                "erosion turns cells into particles: needs "
                "fracture.particles true");
     }
+  }
+  // Bounds the run must hold (the stability cases state theirs).
+  if (const YAML::Node e = root["expect"]) {
+    static const std::vector<std::string> known{"momentum_error", "energy_balance",
+                                                "max_depth_over_h", "particles_inside"};
+    r.keys(e, "expect", known);
+    for (const std::string& k : known)
+      if (e[k]) {
+        const double v = r.number(e[k], "expect." + k);
+        if (!(v >= 0.0)) r.fail(e[k], "expect." + k, "a bound must be >= 0");
+        c.expect.emplace_back(k, v);
+      }
   }
   if (c.fracture &&
       std::find(c.output.fields.begin(), c.output.fields.end(), "damage") == c.output.fields.end())

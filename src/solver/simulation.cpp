@@ -329,6 +329,7 @@ void Simulation::elements_stage() {
     // its exact energy balance (see sample_balance), so the run ends at the first step at or
     // after end_time and reports the time reached.
     st.dt = settings_.cfl * r.dt_stable;
+    min_dt_ = std::min(min_dt_, st.dt);
     if (!(st.dt > 0.0) || !std::isfinite(st.dt)) {
       std::ostringstream os;
       os << "time step " << st.dt << " s is not positive and finite";

@@ -198,3 +198,23 @@ TEST(Cli, HelpVersionAndUsageErrors) {
   EXPECT_EQ(r.code, 0) << r.err;
   EXPECT_NE(r.out.find(": ok"), std::string::npos);
 }
+
+TEST(Cli, CheckFailsWhenAnExpectedBoundIsMissed) {
+  test::TempDir dir("cli-expect");
+  const std::string c = quote(test::source_path("data/cases/stability/touching-gap0.yaml"));
+  auto r = test::run_cli("run " + c + " --check --quiet --out " + quote(dir / "ok"), dir.str());
+  EXPECT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(json_value(test::read_text(dir / "ok/summary.json"), "expect_pass"), "true");
+  // A bound no run can hold: the run completes, the summary says so, --check exits 1.
+  r = test::run_cli("run " + c + " --check --quiet --set expect.energy_balance=1e-30 --out " +
+                        quote(dir / "tight"),
+                    dir.str());
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.err.find("expected bound"), std::string::npos) << r.err;
+  EXPECT_EQ(json_value(test::read_text(dir / "tight/summary.json"), "expect_pass"), "false");
+  // An unknown figure is bad input.
+  r = test::run_cli("run " + c + " --quiet --set expect.speed=1 --out " + quote(dir / "bad"),
+                    dir.str());
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("expect"), std::string::npos) << r.err;
+}

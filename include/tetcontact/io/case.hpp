@@ -62,6 +62,9 @@ struct BodySpec {
   MeshSpec mesh;
   std::vector<TransformOp> transform;
   Vec3 velocity = Vec3::Zero();
+  /// Rigid rotation added to `velocity`: ω × (x − c), c the centre of the body's bounding box
+  /// after its transform (rad/s).
+  Vec3 angular_velocity = Vec3::Zero();
   std::vector<VelocityRegion> velocity_regions;
 };
 
@@ -106,6 +109,10 @@ struct Case {
   bool fracture = false;
   bool particles = true;            // fracture.particles: destroyed boundary cells become particles
   double erosion_step_ratio = 0.0;  // fracture.erosion_step_ratio (0: off)
+  /// `expect`: bounds the run must hold (run --check exits 1 otherwise), by summary figure:
+  /// momentum_error, energy_balance (balance_error_max), max_depth_over_h, particles_inside
+  /// (at the end), in the order given.
+  std::vector<std::pair<std::string, double>> expect;
 
   const Material& material(const std::string& name) const;
 };

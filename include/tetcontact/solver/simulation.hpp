@@ -2,6 +2,7 @@
 #pragma once
 
 #include <chrono>
+#include <limits>
 #include <string>
 #include <utility>
 #include <vector>
@@ -84,6 +85,8 @@ class Simulation {
   }
   const StepProfile& profile() const { return profile_; }
   Index critical_tet() const { return critical_tet_; }
+  /// The smallest time step of the run, s.
+  double min_dt() const { return min_dt_; }
 
  private:
   void predict_stage();
@@ -115,6 +118,7 @@ class Simulation {
   double energy_scale_ = 0.0;
   double balance_error_max_ = 0.0;
   Index critical_tet_ = -1;
+  double min_dt_ = std::numeric_limits<double>::infinity();
   std::vector<std::string> modules_;
   std::vector<Observer*> observers_;
   StepProfile profile_;
