@@ -869,7 +869,7 @@ Case load_case(const std::string& path, const std::vector<std::string>& override
       c.erosion_step_ratio = r.number(e, "fracture.erosion_step_ratio");
       if (!(c.erosion_step_ratio >= 0.0 && c.erosion_step_ratio < 1.0))
         r.fail(e, "fracture.erosion_step_ratio", "must be in [0, 1) (0: no erosion)");
-      if (c.erosion_step_ratio > 0.0 && !c.particles)
+      if (c.erosion_step_ratio > 0.0 && s["particles"] && !c.particles)
         r.fail(e, "fracture.erosion_step_ratio",
                "erosion turns cells into particles: needs "
                "fracture.particles true");

@@ -107,8 +107,8 @@ struct Case {
   ContactSettings contact_settings;  // pairs' body indices are resolved by the setup
   std::vector<std::array<std::string, 2>> contact_pair_bodies;  // parallel to its pairs
   bool fracture = false;
-  bool particles = true;            // fracture.particles: destroyed boundary cells become particles
-  double erosion_step_ratio = 0.0;  // fracture.erosion_step_ratio (0: off)
+  bool particles = true;  // fracture.particles: destroyed boundary cells become particles
+  double erosion_step_ratio = 0.01;  // fracture.erosion_step_ratio (0: off)
   /// `expect`: bounds the run must hold (run --check exits 1 otherwise), by summary figure:
   /// momentum_error, energy_balance (balance_error_max), max_depth_over_h, particles_inside
   /// (at the end), in the order given.
