@@ -43,8 +43,10 @@ const std::string k_mesh =
     " --vary 'bodies.0.mesh.box.cells+bodies.1.mesh.box.cells=[10,1,1],[20,2,2]'";
 
 // Runs a sweep of the bars with `options`; returns its sweep.csv (fails the test otherwise).
-std::vector<std::vector<std::string>> sweep_bars(const std::string& options) {
-  test::TempDir dir("sweep");
+// `folder` names its own scratch folder: ctest runs tests in parallel.
+std::vector<std::vector<std::string>> sweep_bars(const std::string& folder,
+                                                 const std::string& options) {
+  test::TempDir dir(folder);
   const auto r = test::run_cli(
       "sweep " + k_bars + k_mesh + " " + options + " --quiet --out " + dir.str() + "/out",
       dir.str());
@@ -61,7 +63,7 @@ TEST(Sweep, SplitsValuesOutsideBrackets) {
 }
 
 TEST(Sweep, OneRowPerCombinationWithTheLargestReferenceError) {
-  const auto rows = sweep_bars("--vary contact.passes=1,3");
+  const auto rows = sweep_bars("sweep-rows", "--vary contact.passes=1,3");
   ASSERT_EQ(rows.size(), 5u);  // header and 2 × 2 runs
   const auto& h = rows[0];
   EXPECT_EQ(rows[1][column(h, "contact.passes")], "1");  // the last key varies fastest
@@ -85,7 +87,7 @@ TEST(Sweep, OneRowPerCombinationWithTheLargestReferenceError) {
 }
 
 TEST(Sweep, AgainstTheFinestRunItsOwnErrorIsZero) {
-  const auto rows = sweep_bars("--reference finest");
+  const auto rows = sweep_bars("sweep-finest", "--reference finest");
   ASSERT_EQ(rows.size(), 3u);
   EXPECT_EQ(std::stod(rows[2][column(rows[0], "error")]), 0.0);  // the finest
   EXPECT_GT(std::stod(rows[1][column(rows[0], "error")]), 0.0);
