@@ -147,12 +147,18 @@ std::vector<ContactPoint> ParticleContact::detect(const std::vector<Surface>& su
   }
   std::vector<const Surface*> face_surface;
   std::vector<Index> face_index;
+  // Faces outside the box of all particles' boxes cannot pair with any: they stay out of the
+  // broadphase (the pairs, and their order, are those of all faces).
+  Box all = in.node_box.front();
+  for (const Box& b : in.node_box) all.lo = all.lo.cwiseMin(b.lo), all.hi = all.hi.cwiseMax(b.hi);
   for (const Surface& s : surfaces)
     for (Index f = 0; f < static_cast<Index>(s.faces.size()); ++f) {
       const Face& k = s.faces[f];
-      in.face_box.push_back(swept_box({&st.x[k[0]], &st.x[k[1]], &st.x[k[2]], &st.x_star[k[0]],
-                                       &st.x_star[k[1]], &st.x_star[k[2]]},
-                                      0.0));
+      const Box box = swept_box({&st.x[k[0]], &st.x[k[1]], &st.x[k[2]], &st.x_star[k[0]],
+                                 &st.x_star[k[1]], &st.x_star[k[2]]},
+                                0.0);
+      if (!boxes_overlap(box, all)) continue;
+      in.face_box.push_back(box);
       in.face_nodes.push_back(k);
       in.face_body.push_back(s.body);
       face_surface.push_back(&s);
