@@ -51,7 +51,7 @@ std::vector<std::string> tied_keys(const std::string& keys) {
 // bounding-box extent per axis, the contact's duration and largest force.
 using Figures = std::map<std::string, double>;
 
-Figures run_figures(const Simulation& sim) {
+Figures comparable_figures(const Simulation& sim) {
   Figures f;
   for (const BodyStats& b : body_stats(sim.model(), sim.state()))
     for (int d = 0; d < 3; ++d) {
@@ -217,7 +217,7 @@ int sweep_command(const SweepOptions& o) {
       row.steps = sim.state().step;
       row.momentum = momentum_error(sim.first_sample(), sim.last_sample());
       row.balance = sim.balance_error_max();
-      row.figures = run_figures(sim);
+      row.figures = comparable_figures(sim);
       if (row.status == "ok")
         for (const ReferenceResult& ref :
              evaluate_references(c.references, sim.model(), sim.state(), sim.run_figures()))

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "tetcontact/narrowphase/vertex_face.hpp"
+#include "tetcontact/solver/element.hpp"
 
 namespace tc {
 
@@ -75,18 +76,15 @@ long Fragmentation::convert(const Mesh& mesh, const std::vector<Material>& mater
     const double kinetic_after = 0.5 * m * u.squaredNorm();
 
     // The inscribed sphere: centre Σ A_i x_i / Σ A_i (A_i the face opposite node i), r = 3V/ΣA.
+    const Vec3 &x0 = st.x[k[0]], &x1 = st.x[k[1]], &x2 = st.x[k[2]], &x3 = st.x[k[3]];
+    const std::array<Vec3, 4> a = face_area_vectors(x0, x1, x2, x3);
     double area_sum = 0.0;
     Vec3 centre = Vec3::Zero();
     for (int i = 0; i < 4; ++i) {
-      const auto& lf = k_tet_faces[i];
-      const double area =
-          0.5 * (st.x[k[lf[1]]] - st.x[k[lf[0]]]).cross(st.x[k[lf[2]]] - st.x[k[lf[0]]]).norm();
-      area_sum += area;
-      centre += area * st.x[k[i]];
+      area_sum += a[i].norm();
+      centre += a[i].norm() * st.x[k[i]];
     }
-    const double volume =
-        (st.x[k[1]] - st.x[k[0]]).dot((st.x[k[2]] - st.x[k[0]]).cross(st.x[k[3]] - st.x[k[0]])) /
-        6.0;
+    const double volume = tet_signed_volume(x0, x1, x2, x3);
     centre /= area_sum;
 
     for (Index n : k) {
@@ -126,9 +124,9 @@ ParticleContact::ParticleContact(const std::string& broadphase)
     : broadphase_(make_broadphase(broadphase)) {}
 
 std::vector<ContactPoint> ParticleContact::detect(const std::vector<Surface>& surfaces,
-                                                  const Mesh& mesh, const State& st,
-                                                  long& candidates) {
+                                                  const Mesh& mesh, const State& st) {
   std::vector<ContactPoint> out;
+  moves_.clear();
   const Index first = st.first_particle, count = st.particle_count();
   if (count == 0) return out;
   // Particles are the broadphase's points (against faces) and its degenerate edges (against
@@ -165,7 +163,6 @@ std::vector<ContactPoint> ParticleContact::detect(const std::vector<Surface>& su
       face_index.push_back(f);
     }
   const Candidates c = broadphase_->find(in);
-  candidates = static_cast<long>(c.node_face.size() + c.edge_edge.size());
   std::vector<double> deepest(count, 0.0);
   std::vector<Vec3> move(count, Vec3::Zero());
 
@@ -209,7 +206,6 @@ std::vector<ContactPoint> ParticleContact::detect(const std::vector<Surface>& su
     cp.b_count = 3;
     out.push_back(cp);
   }
-  moves_.clear();
   for (Index i = 0; i < count; ++i)
     if (deepest[i] > 0.0) moves_.emplace_back(first + i, move[i]);
   for (const auto& [i, j] : c.edge_edge) {

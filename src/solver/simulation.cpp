@@ -204,8 +204,7 @@ void Simulation::corrections() {
   particle_contacts_.clear();
   if (fragmentation_ && st.particle_count() > 0) {
     StageTimer t(profile_["particles"]);
-    long candidates = 0;
-    particle_contacts_ = particle_contact_->detect(model_.surfaces, model_.mesh, st, candidates);
+    particle_contacts_ = particle_contact_->detect(model_.surfaces, model_.mesh, st);
     for (const auto& [p, d] : particle_contact_->moves()) {
       st.x[p] += d;
       st.x_star[p] += d;

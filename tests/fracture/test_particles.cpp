@@ -167,8 +167,7 @@ struct PlateAndParticle {
     st.dt = tau;
     predict(st, {});
     ParticleContact contact("brute_force");
-    long candidates = 0;
-    std::vector<ContactPoint> cs = contact.detect(model.surfaces, model.mesh, st, candidates);
+    std::vector<ContactPoint> cs = contact.detect(model.surfaces, model.mesh, st);
     for (int p = 0; p < passes; ++p)
       for (ContactPoint& c : cs) apply_contact(c, st, tau, st.contact_impulse);
   }
@@ -208,8 +207,7 @@ TEST(ParticleContact, HeadOnParticlesMoveTogetherAfterwards) {
   st.dt = 1e-5;
   predict(st, {});
   ParticleContact contact("sweep");
-  long candidates = 0;
-  std::vector<ContactPoint> cs = contact.detect({}, Mesh{}, st, candidates);
+  std::vector<ContactPoint> cs = contact.detect({}, Mesh{}, st);
   ASSERT_EQ(cs.size(), 1u);
   EXPECT_NEAR(cs[0].gap, 1e-6, 1e-18);
   apply_contact(cs[0], st, st.dt, st.contact_impulse);

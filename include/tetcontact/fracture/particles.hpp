@@ -79,7 +79,7 @@ class ParticleContact {
  public:
   explicit ParticleContact(const std::string& broadphase);
   std::vector<ContactPoint> detect(const std::vector<Surface>& surfaces, const Mesh& mesh,
-                                   const State& st, long& candidates);
+                                   const State& st);
   /// Of the last detect(): particles found inside a body, with the move (to add to x and x*)
   /// that puts each centre on the plane of the face it is deepest behind.
   const std::vector<std::pair<Index, Vec3>>& moves() const { return moves_; }
