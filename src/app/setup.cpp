@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "tetcontact/mesh/delaunay.hpp"
 #include "tetcontact/mesh/generators.hpp"
 #include "tetcontact/mesh/gmsh.hpp"
 
@@ -20,6 +21,9 @@ TetMesh make_body_mesh(const BodySpec& b, std::vector<std::string>* notes) {
     case MeshSpec::Kind::cylinder:
       return make_cylinder(m.radius, m.height, m.cells_across, m.cells_axial, split);
     case MeshSpec::Kind::sphere:
+      if (m.cell_size > 0.0)
+        return mesh_ball(m.radius,
+                         BallSizing{m.cell_size, m.refine_toward, m.refine_size, m.growth});
       return make_sphere(m.radius, m.cells_across, split,
                          Grading{m.refine_toward, m.refine_factor});
     case MeshSpec::Kind::file: {

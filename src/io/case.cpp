@@ -282,8 +282,42 @@ MeshSpec parse_mesh(const Reader& r, const YAML::Node& n, const std::string& pat
     if (cyl)
       r.keys(g, gp, {"radius", "height", "cells_across", "cells_axial", "split"});
     else
-      r.keys(g, gp, {"radius", "cells_across", "split", "refine_toward", "refine_factor"});
+      r.keys(g, gp,
+             {"radius", "cells_across", "split", "refine_toward", "refine_factor", "cell_size",
+              "refine_size", "growth"});
     m.radius = r.positive(r.require(g, gp, "radius"), join(gp, "radius"), "m");
+    if (!cyl && g["cell_size"]) {
+      // Unstructured (Delaunay refinement): sizes instead of a cell count.
+      for (const char* k : {"cells_across", "split", "refine_factor"})
+        if (g[k])
+          r.fail(g[k], join(gp, k),
+                 "belongs to the lattice sphere (cells_across); a sphere with cell_size is "
+                 "meshed by Delaunay refinement and is graded by refine_size and growth");
+      m.cell_size = r.positive(g["cell_size"], join(gp, "cell_size"), "m");
+      if (m.cell_size > m.radius)
+        r.fail(g["cell_size"], join(gp, "cell_size"), "must not exceed the radius");
+      if (g["refine_toward"] || g["refine_size"] || g["growth"]) {
+        const YAML::Node t = r.require(g, gp, "refine_toward");
+        m.refine_toward = r.vec3(t, join(gp, "refine_toward"));
+        if (m.refine_toward.norm() == 0.0)
+          r.fail(t, join(gp, "refine_toward"), "must be a non-zero direction, e.g. [1, 0, 0]");
+        const YAML::Node z = r.require(g, gp, "refine_size");
+        m.refine_size = r.positive(z, join(gp, "refine_size"), "m");
+        if (m.refine_size > m.cell_size)
+          r.fail(z, join(gp, "refine_size"), "must not exceed cell_size");
+        if (m.radius / m.refine_size > 1e4)
+          r.fail(z, join(gp, "refine_size"), "must be at least radius / 10^4");
+        if (g["growth"]) {
+          m.growth = r.number(g["growth"], join(gp, "growth"));
+          if (!(m.growth > 0.0 && m.growth <= 1.0))
+            r.fail(g["growth"], join(gp, "growth"), "must be in (0, 1]");
+        }
+      }
+      return m;
+    }
+    for (const char* k : {"refine_size", "growth"})
+      if (g[k])
+        r.fail(g[k], join(gp, k), "belongs to a sphere with cell_size (Delaunay refinement)");
     m.cells_across = r.count(r.require(g, gp, "cells_across"), join(gp, "cells_across"), 1, 4096);
     if (cyl) {
       m.height = r.positive(r.require(g, gp, "height"), join(gp, "height"), "m");

@@ -39,8 +39,9 @@ TEST(Penetration, OverlappingCubesHaveTheirDepthAndCrossings) {
   for (Index i = m.mesh.bodies[1].node_begin; i < m.mesh.bodies[1].node_end; ++i) {
     const Vec3& x = m.mesh.x[i];
     if (std::abs(x.x() - 0.4) < 1e-12 && std::abs(x.y() - 0.1) < 0.3 &&
-        std::abs(x.z() - 0.07) < 0.3)
+        std::abs(x.z() - 0.07) < 0.3) {
       EXPECT_NEAR(p.node_depth[i], 0.1, 1e-12);
+    }
   }
 }
 

@@ -115,7 +115,9 @@ TEST(Fragmentation, ConversionConservesMassMomentumEnergyAndExposesFaces) {
     for (Index t = 0; t < model.mesh.tet_count(); ++t)
       removed[t] = st.damage[t] == Damage::particle;
     expect_same(frag.surfaces(model.mesh));
-    if (calls == 1) EXPECT_EQ(st.damage[interior], Damage::destroyed);
+    if (calls == 1) {
+      EXPECT_EQ(st.damage[interior], Damage::destroyed);
+    }
   }
   EXPECT_GE(calls, 2);
   EXPECT_EQ(st.particle_count(), model.mesh.tet_count());

@@ -35,6 +35,9 @@ struct MeshSpec {
   int split = 6;                      // 5, 6 or 12
   Vec3 refine_toward = Vec3::Zero();  // sphere: grading toward a pole (±x, ±y, ±z)
   double refine_factor = 1.0;
+  double cell_size = 0.0;  // sphere by Delaunay refinement (> 0) instead of the lattice
+  double refine_size = 0.0;
+  double growth = 0.15;
   std::string file;      // file: path resolved against the case file's folder
   std::string physical;  // file: physical volume name ("" = all tets)
 };

@@ -95,6 +95,9 @@ class NodeFaceContact {
   std::vector<Vec3> anchor_;
   double reach_ = 0.0;
   bool have_lists_ = false;
+  // This step's layer boxes of the faces the lists name, made when first needed.
+  std::vector<Box> step_face_box_;
+  std::vector<char> have_step_box_;
 };
 
 }  // namespace tc
