@@ -120,8 +120,97 @@ long Fragmentation::convert(const Mesh& mesh, const std::vector<Material>& mater
   return static_cast<long>(cells.size());
 }
 
-ParticleContact::ParticleContact(const std::string& broadphase)
-    : broadphase_(make_broadphase(broadphase)) {}
+ParticleContact::ParticleContact(const std::string& broadphase, bool binding_lists)
+    : broadphase_(make_broadphase(broadphase)), binding_lists_(binding_lists) {}
+
+namespace {
+
+Box particle_box(const State& st, Index i, double margin) {
+  const Index p = st.first_particle + i;
+  return swept_box({&st.x[p], &st.x_star[p]}, st.particle_radius[i] + margin);
+}
+
+Box face_box(const Face& k, const State& st, double margin) {
+  return swept_box(
+      {&st.x[k[0]], &st.x[k[1]], &st.x[k[2]], &st.x_star[k[0]], &st.x_star[k[1]], &st.x_star[k[2]]},
+      margin);
+}
+
+}  // namespace
+
+// Valid while every particle and every surface node, at xⁿ and x*, is within the reach of
+// where it was at the build: then the boxes of this step lie inside those of the build, and
+// a pair whose boxes overlap now is in the lists.
+bool ParticleContact::lists_valid(const std::vector<Surface>& surfaces, const State& st) const {
+  if (!have_lists_ || particle_anchor_.size() != static_cast<std::size_t>(st.particle_count()))
+    return false;
+  std::size_t n = 0;
+  for (const Surface& s : surfaces) n += s.nodes.size();
+  if (n != anchor_nodes_.size()) return false;
+  const double r2 = reach_ * reach_;
+  const auto near = [&](Index node, const Vec3& anchor) {
+    return (st.x[node] - anchor).squaredNorm() <= r2 &&
+           (st.x_star[node] - anchor).squaredNorm() <= r2;
+  };
+  for (std::size_t i = 0; i < particle_anchor_.size(); ++i)
+    if (!near(st.first_particle + static_cast<Index>(i), particle_anchor_[i])) return false;
+  for (std::size_t k = 0; k < anchor_nodes_.size(); ++k)
+    if (!near(anchor_nodes_[k], node_anchor_[k])) return false;
+  return true;
+}
+
+// Particles are the broadphase's points (against faces) and its degenerate edges (against
+// each other); self pairs on, so that particles meet their own body's faces. Faces outside
+// the box of all particles' boxes cannot pair with any: they stay out of the broadphase.
+void ParticleContact::build_lists(const std::vector<Surface>& surfaces, const State& st) {
+  const Index count = st.particle_count();
+  reach_ = 0.0;
+  if (binding_lists_) {
+    for (Index i = 0; i < count; ++i) reach_ += st.particle_radius[i];
+    reach_ /= static_cast<double>(count);
+  }
+  BroadphaseInput in;
+  in.self_pairs = true;
+  for (Index i = 0; i < count; ++i) {
+    const Box b = particle_box(st, i, reach_);
+    in.node_box.push_back(b);
+    in.node_id.push_back(st.first_particle + i);
+    in.node_body.push_back(-1);
+    in.edge_box.push_back(b);
+    in.edge_nodes.push_back({st.first_particle + i, st.first_particle + i});
+    in.edge_body.push_back(-1);
+  }
+  Box all = in.node_box.front();
+  for (const Box& b : in.node_box) all.lo = all.lo.cwiseMin(b.lo), all.hi = all.hi.cwiseMax(b.hi);
+  face_at_.clear();
+  std::vector<Index> number;  // face number of each broadphase face
+  for (Index si = 0; si < static_cast<Index>(surfaces.size()); ++si) {
+    const Surface& s = surfaces[si];
+    for (Index f = 0; f < static_cast<Index>(s.faces.size()); ++f) {
+      const Box box = face_box(s.faces[f], st, reach_);
+      face_at_.push_back({si, f});
+      if (!boxes_overlap(box, all)) continue;
+      in.face_box.push_back(box);
+      in.face_nodes.push_back(s.faces[f]);
+      in.face_body.push_back(s.body);
+      number.push_back(static_cast<Index>(face_at_.size()) - 1);
+    }
+  }
+  Candidates c = broadphase_->find(in);
+  ++runs_;
+  // Sorted by (particle, broadphase face), hence by (particle, face number).
+  particle_face_ = std::move(c.node_face);
+  for (auto& [i, f] : particle_face_) f = number[f];
+  particle_pairs_ = std::move(c.edge_edge);
+  particle_anchor_.resize(count);
+  for (Index i = 0; i < count; ++i) particle_anchor_[i] = st.x[st.first_particle + i];
+  anchor_nodes_.clear();
+  for (const Surface& s : surfaces)
+    anchor_nodes_.insert(anchor_nodes_.end(), s.nodes.begin(), s.nodes.end());
+  node_anchor_.resize(anchor_nodes_.size());
+  for (std::size_t k = 0; k < anchor_nodes_.size(); ++k) node_anchor_[k] = st.x[anchor_nodes_[k]];
+  have_lists_ = binding_lists_;
+}
 
 std::vector<ContactPoint> ParticleContact::detect(const std::vector<Surface>& surfaces,
                                                   const Mesh& mesh, const State& st) {
@@ -129,47 +218,25 @@ std::vector<ContactPoint> ParticleContact::detect(const std::vector<Surface>& su
   moves_.clear();
   const Index first = st.first_particle, count = st.particle_count();
   if (count == 0) return out;
-  // Particles are the broadphase's points (against faces) and its degenerate edges (against
-  // each other); self pairs on, so that particles meet their own body's faces.
-  BroadphaseInput in;
-  in.self_pairs = true;
-  for (Index i = 0; i < count; ++i) {
-    const Index p = first + i;
-    const Box b = swept_box({&st.x[p], &st.x_star[p]}, st.particle_radius[i]);
-    in.node_box.push_back(b);
-    in.node_id.push_back(p);
-    in.node_body.push_back(-1);
-    in.edge_box.push_back(b);
-    in.edge_nodes.push_back({p, p});
-    in.edge_body.push_back(-1);
-  }
-  std::vector<const Surface*> face_surface;
-  std::vector<Index> face_index;
-  // Faces outside the box of all particles' boxes cannot pair with any: they stay out of the
-  // broadphase (the pairs, and their order, are those of all faces).
-  Box all = in.node_box.front();
-  for (const Box& b : in.node_box) all.lo = all.lo.cwiseMin(b.lo), all.hi = all.hi.cwiseMax(b.hi);
-  for (const Surface& s : surfaces)
-    for (Index f = 0; f < static_cast<Index>(s.faces.size()); ++f) {
-      const Face& k = s.faces[f];
-      const Box box = swept_box({&st.x[k[0]], &st.x[k[1]], &st.x[k[2]], &st.x_star[k[0]],
-                                 &st.x_star[k[1]], &st.x_star[k[2]]},
-                                0.0);
-      if (!boxes_overlap(box, all)) continue;
-      in.face_box.push_back(box);
-      in.face_nodes.push_back(k);
-      in.face_body.push_back(s.body);
-      face_surface.push_back(&s);
-      face_index.push_back(f);
-    }
-  const Candidates c = broadphase_->find(in);
+  if (!lists_valid(surfaces, st)) build_lists(surfaces, st);
+  // The boxes of this step: a kept pair goes on when they overlap.
+  std::vector<Box> pbox(count);
+  for (Index i = 0; i < count; ++i) pbox[i] = particle_box(st, i, 0.0);
+  std::vector<Box> fbox(face_at_.size());
+  std::vector<char> have_fbox(face_at_.size(), 0);
   std::vector<double> deepest(count, 0.0);
   std::vector<Vec3> move(count, Vec3::Zero());
 
-  for (const auto& [i, fi] : c.node_face) {
+  for (const auto& [i, fi] : particle_face_) {
     const Index p = first + i;
-    const Surface& s = *face_surface[fi];
-    const Face& k = s.faces[face_index[fi]];
+    const Surface& s = surfaces[face_at_[fi].first];
+    const Index f = face_at_[fi].second;
+    const Face& k = s.faces[f];
+    if (!have_fbox[fi]) {
+      fbox[fi] = face_box(k, st, 0.0);
+      have_fbox[fi] = 1;
+    }
+    if (!boxes_overlap(pbox[i], fbox[fi])) continue;
     const Vec3 &centre = st.x[p], &a = st.x[k[0]], &b = st.x[k[1]], &d = st.x[k[2]];
     const TrianglePoint tp = closest_point_on_triangle(centre, a, b, d);
     const Vec3 q = tp.w[0] * a + tp.w[1] * b + tp.w[2] * d;
@@ -183,7 +250,7 @@ std::vector<ContactPoint> ParticleContact::detect(const std::vector<Surface>& su
       // On or behind the face's plane: inside the body when it is inside the face's own cell
       // (a point behind the face but outside that cell is outside the body beyond a thin part
       // of it, or inside elsewhere, where another face answers).
-      const Tet& t = mesh.tets[s.face_tet[face_index[fi]]];
+      const Tet& t = mesh.tets[s.face_tet[f]];
       if (nf.squaredNorm() == 0.0 ||
           !point_in_tet(centre, st.x[t[0]], st.x[t[1]], st.x[t[2]], st.x[t[3]]))
         continue;
@@ -208,7 +275,8 @@ std::vector<ContactPoint> ParticleContact::detect(const std::vector<Surface>& su
   }
   for (Index i = 0; i < count; ++i)
     if (deepest[i] > 0.0) moves_.emplace_back(first + i, move[i]);
-  for (const auto& [i, j] : c.edge_edge) {
+  for (const auto& [i, j] : particle_pairs_) {
+    if (!boxes_overlap(pbox[i], pbox[j])) continue;
     const Index p = first + i, o = first + j;
     const Vec3 d = st.x[p] - st.x[o];
     const double dist = d.norm();

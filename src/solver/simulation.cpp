@@ -94,7 +94,8 @@ Simulation::Simulation(Model model, SolverSettings settings)
   if (model_.element.fracture && model_.particles) {
     fragmentation_ = std::make_unique<Fragmentation>(model_.mesh);
     particle_contact_ =
-        std::make_unique<ParticleContact>(model_.contact ? model_.contact->broadphase : "sweep");
+        std::make_unique<ParticleContact>(model_.contact ? model_.contact->broadphase : "sweep",
+                                          model_.contact ? model_.contact->binding_lists : true);
     modules_.push_back("fracture:particles");
     modules_.push_back("response:particles");
   }
@@ -308,6 +309,7 @@ void Simulation::commit_stage() {
 void Simulation::fracture_stage() {
   if (fragmentation_->convert(model_.mesh, model_.materials, state_) == 0) return;
   model_.surfaces = fragmentation_->surfaces(model_.mesh);
+  particle_contact_->reset();
   if (!model_.walls.empty()) surface_nodes_ = all_surface_nodes(model_);
   if (contact_) contact_ = std::make_unique<NodeFaceContact>(model_, *model_.contact);
 }

@@ -245,3 +245,57 @@ TEST(Fragmentation, ErodedInteriorCellLeavesAVoidInTheSurfaces) {
   EXPECT_NEAR(totals(st).mass, before.mass, 1e-14 * before.mass);
   EXPECT_EQ(frag.convert(model.mesh, model.materials, st), 0);  // nothing more to do
 }
+
+// Binding lists for particle contact: over 300 steps of a cloud of 200 particles falling onto a
+// plate at about 50 m/s (5 µm a step against a reach of about 55 µm), the lists (built with
+// boxes enlarged by the mean radius, kept while nothing has moved that far) give exactly the
+// contacts, in the same order, and the same moves as a fresh broadphase every step, with far
+// fewer broadphase runs. (Checked sensitive: lists kept until things moved 3 reaches fail at
+// step 26.)
+TEST(ParticleContact, BindingListsGiveTheContactsOfAFreshSearch) {
+  TetMesh plate = make_box(Vec3(4e-3, 4e-3, 0.5e-3), {8, 8, 1}, HexSplit::six);
+  Model model = test::single_body_model(plate, test::aluminium());
+  State st = initial_state(model);
+  unsigned seed = 12345;
+  const auto uniform = [&](double lo, double hi) {
+    seed = seed * 1664525u + 1013904223u;
+    return lo + (hi - lo) * (seed >> 8) / double(1u << 24);
+  };
+  for (int i = 0; i < 200; ++i)
+    add_particle(st,
+                 Vec3(uniform(-1.5e-3, 1.5e-3), uniform(-1.5e-3, 1.5e-3), uniform(0.3e-3, 1.5e-3)),
+                 Vec3(uniform(-5, 5), uniform(-5, 5), uniform(-55, -45)), 1e-7,
+                 uniform(0.03e-3, 0.08e-3), 0.0, 0);
+  ParticleContact lists("grid", true), fresh("grid", false);
+  const int steps = 300;
+  long contacts = 0, moved = 0;
+  for (int k = 0; k < steps; ++k) {
+    st.dt = 1e-7;
+    predict(st, {});
+    std::vector<ContactPoint> a = lists.detect(model.surfaces, model.mesh, st);
+    const std::vector<ContactPoint> b = fresh.detect(model.surfaces, model.mesh, st);
+    ASSERT_EQ(a.size(), b.size()) << "step " << k;
+    for (std::size_t c = 0; c < a.size(); ++c) {
+      ASSERT_EQ(a[c].a_nodes, b[c].a_nodes) << "step " << k << ", contact " << c;
+      ASSERT_EQ(a[c].b_nodes, b[c].b_nodes);
+      ASSERT_EQ(a[c].b_w, b[c].b_w);
+      ASSERT_EQ(a[c].normal, b[c].normal);
+      ASSERT_EQ(a[c].gap, b[c].gap);
+    }
+    ASSERT_EQ(lists.moves(), fresh.moves()) << "step " << k;
+    contacts += static_cast<long>(a.size());
+    for (const auto& [p, d] : lists.moves()) {
+      st.x[p] += d;
+      st.x_star[p] += d;
+      ++moved;
+    }
+    for (ContactPoint& c : a) apply_contact(c, st, st.dt, st.contact_impulse);
+    commit(st);
+  }
+  EXPECT_GT(contacts, 300);  // the scene has contacts to agree on
+  EXPECT_EQ(fresh.broadphase_runs(), steps);
+  EXPECT_GT(lists.broadphase_runs(), 1);
+  EXPECT_LT(lists.broadphase_runs(), steps / 3);
+  RecordProperty("list_builds", std::to_string(lists.broadphase_runs()));
+  RecordProperty("moved", std::to_string(moved));
+}

@@ -75,18 +75,40 @@ class Fragmentation {
 /// x_j| − r_i − r_j. Every pair whose swept boxes (inflated by the radius) overlap is a contact
 /// with its gap: the kernel lets the particle close at most the gap within the step, so no particle
 /// passes through a face whatever its speed (speculative contact).
+///
+/// Binding lists (as for node–face contact): the broadphase runs with every box enlarged by a
+/// reach r (the particles' mean radius) and its pairs are kept until a particle or a surface
+/// node has moved r from where it was then, or reset() is called (particles added, surfaces
+/// rebuilt). Each step a kept pair goes on only when its boxes of the step overlap: the
+/// contacts, and their order, are those of a fresh broadphase every step (tested).
 class ParticleContact {
  public:
-  explicit ParticleContact(const std::string& broadphase);
+  explicit ParticleContact(const std::string& broadphase, bool binding_lists = true);
   std::vector<ContactPoint> detect(const std::vector<Surface>& surfaces, const Mesh& mesh,
                                    const State& st);
   /// Of the last detect(): particles found inside a body, with the move (to add to x and x*)
   /// that puts each centre on the plane of the face it is deepest behind.
   const std::vector<std::pair<Index, Vec3>>& moves() const { return moves_; }
+  /// The particles or the surfaces changed: the next detect() builds new lists.
+  void reset() { have_lists_ = false; }
+  /// Broadphase runs so far (each a rebuild of the lists).
+  long broadphase_runs() const { return runs_; }
 
  private:
+  bool lists_valid(const std::vector<Surface>& surfaces, const State& st) const;
+  void build_lists(const std::vector<Surface>& surfaces, const State& st);
   std::unique_ptr<Broadphase> broadphase_;
+  bool binding_lists_ = true;
   std::vector<std::pair<Index, Vec3>> moves_;
+  // The lists: (particle, face) with faces numbered over all surfaces in order, and particle
+  // pairs; the reach and the positions they were built from.
+  bool have_lists_ = false;
+  long runs_ = 0;
+  double reach_ = 0.0;
+  std::vector<std::pair<Index, Index>> particle_face_, particle_pairs_;
+  std::vector<std::pair<Index, Index>> face_at_;  // (surface, face) of each face number
+  std::vector<Vec3> particle_anchor_, node_anchor_;
+  std::vector<Index> anchor_nodes_;  // every surface node
 };
 
 }  // namespace tc
