@@ -222,8 +222,8 @@ std::vector<ContactPoint> ParticleContact::detect(const std::vector<Surface>& su
   // The boxes of this step: a kept pair goes on when they overlap.
   std::vector<Box> pbox(count);
   for (Index i = 0; i < count; ++i) pbox[i] = particle_box(st, i, 0.0);
-  std::vector<Box> fbox(face_at_.size());
-  std::vector<char> have_fbox(face_at_.size(), 0);
+  step_face_box_.resize(face_at_.size());
+  have_step_box_.assign(face_at_.size(), 0);
   std::vector<double> deepest(count, 0.0);
   std::vector<Vec3> move(count, Vec3::Zero());
 
@@ -232,11 +232,11 @@ std::vector<ContactPoint> ParticleContact::detect(const std::vector<Surface>& su
     const Surface& s = surfaces[face_at_[fi].first];
     const Index f = face_at_[fi].second;
     const Face& k = s.faces[f];
-    if (!have_fbox[fi]) {
-      fbox[fi] = face_box(k, st, 0.0);
-      have_fbox[fi] = 1;
+    if (!have_step_box_[fi]) {
+      step_face_box_[fi] = face_box(k, st, 0.0);
+      have_step_box_[fi] = 1;
     }
-    if (!boxes_overlap(pbox[i], fbox[fi])) continue;
+    if (!boxes_overlap(pbox[i], step_face_box_[fi])) continue;
     const Vec3 &centre = st.x[p], &a = st.x[k[0]], &b = st.x[k[1]], &d = st.x[k[2]];
     const TrianglePoint tp = closest_point_on_triangle(centre, a, b, d);
     const Vec3 q = tp.w[0] * a + tp.w[1] * b + tp.w[2] * d;

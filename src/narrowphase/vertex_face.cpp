@@ -38,11 +38,16 @@ bool behind_face(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c, dou
   if (nn == 0.0) return false;
   const double d = (p - a).dot(n) / std::sqrt(nn);  // signed distance, > 0 in front
   if (d > 0.0 || d < -depth) return false;
-  // Accept points outside an edge by up to 1e-3 of the longest edge, so that a node on the
-  // rim of one surface stays on the rim of the other when round-off moves it sideways.
+  if (inside_edges(p, a, b, c, n, 0.0)) return true;
+  // Accept points whose projection lies outside the face by up to 1e-3 of its longest edge, so
+  // that a node on the rim of one surface stays on the rim of the other when round-off moves
+  // it sideways. A distance, not a slack on the edge tests: that one reached 1e-3 L² / |e|
+  // beyond a short edge, and further still past a sharp corner, outside any box the contact
+  // search gives the face (its layer box is widened by 1e-3 L).
   const double longest =
       std::sqrt(std::max({(b - a).squaredNorm(), (c - b).squaredNorm(), (a - c).squaredNorm()}));
-  return inside_edges(p, a, b, c, n, 1e-3 * longest * longest * std::sqrt(nn));
+  const Vec3 q = p - d * n / std::sqrt(nn);  // p projected onto the face's plane
+  return closest_point_on_triangle(q, a, b, c).distance <= 1e-3 * longest;
 }
 
 TrianglePoint closest_point_on_triangle(const Vec3& p, const Vec3& a, const Vec3& b,

@@ -47,6 +47,32 @@ TEST(Narrowphase, BehindFaceWithinTheLayer) {
   EXPECT_FALSE(behind_face(Vec3(-0.01, 0.5, -0.01), a, b, c, 0.1));  // beside the face
 }
 
+// The rim tolerance is a distance from the face, 1e-3 of its longest edge, whatever its shape:
+// beyond a short edge (here 1e-3 of the longest) and past a sharp corner as beside a long
+// edge. Random points near slivers: all that is accepted lies within that distance of the
+// triangle's box (what the contact search's layer box holds), and the tolerance's edge is sharp.
+TEST(Narrowphase, BehindFaceRimIsADistanceFromTheFace) {
+  const Vec3 a(0, 0, 0), b(1, 0, 0), c(1, 1e-3, 0);  // |bc| = 1e-3 L, angle at a 0.057°
+  EXPECT_TRUE(behind_face(Vec3(1 + 0.9e-3, 0.5e-3, -0.01), a, b, c, 0.1));
+  EXPECT_FALSE(behind_face(Vec3(1 + 1.1e-3, 0.5e-3, -0.01), a, b, c, 0.1));
+  EXPECT_TRUE(behind_face(Vec3(-0.9e-3, 0, -0.01), a, b, c, 0.1));  // past the sharp corner
+  EXPECT_FALSE(behind_face(Vec3(-1.1e-3, 0, -0.01), a, b, c, 0.1));
+  unsigned seed = 7;
+  const auto uniform = [&](double lo, double hi) {
+    seed = seed * 1664525u + 1013904223u;
+    return lo + (hi - lo) * (seed >> 8) / double(1u << 24);
+  };
+  int accepted = 0;
+  for (int k = 0; k < 20000; ++k) {
+    const Vec3 p(uniform(-0.01, 1.01), uniform(-0.01, 0.011), uniform(-0.02, 0.001));
+    if (!behind_face(p, a, b, c, 0.1)) continue;
+    ++accepted;
+    EXPECT_TRUE(p.x() >= -1e-3 && p.x() <= 1 + 1e-3 && p.y() >= -1e-3 && p.y() <= 2e-3)
+        << p.transpose();
+  }
+  EXPECT_GT(accepted, 100);
+}
+
 TEST(Narrowphase, SweptVertexFaceFindsTheCrossingTime) {
   // A static triangle in z = 0 and a point crossing it at t = 0.3.
   const Vec3 a(0, 0, 0), b(1, 0, 0), c(0, 1, 0);

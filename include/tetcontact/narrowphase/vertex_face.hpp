@@ -14,9 +14,10 @@ namespace tc {
 bool point_in_tet(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d);
 
 /// Whether p lies behind the plane of the outward triangle (a, b, c) (normal (b−a)×(c−a)) by
-/// at most `depth`, and projects into the triangle, its edges and vertices included (a relative
-/// tolerance of 1e-9 of the face's area keeps coincident vertices in): the node–face contact
-/// condition of seed 001, a node that has entered the other body's boundary layer.
+/// at most `depth`, and projects into the triangle or within 1e-3 of its longest edge of it
+/// (a node on the rim of one surface stays on the rim of the other under round-off): the
+/// node–face contact condition of seed 001, a node that has entered the other body's boundary
+/// layer. Everything it accepts lies in the prism's box widened by 1e-3 of the longest edge.
 bool behind_face(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c, double depth);
 
 /// Closest point of triangle (a, b, c) to p: barycentric weights (≥ 0, sum 1) and distance.
