@@ -8,7 +8,10 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <stdexcept>
 #include <string>
+
+#include <nlohmann/json.hpp>
 
 namespace tc::test {
 
@@ -44,6 +47,23 @@ inline std::string read_text(const std::string& path) {
   std::ostringstream ss;
   ss << in.rdbuf();
   return ss.str();
+}
+
+using Json = nlohmann::ordered_json;
+
+/// A JSON file read with the library; a missing or malformed file throws (the test fails).
+inline Json read_json(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw std::runtime_error(path + ": missing");
+  return Json::parse(in);
+}
+
+/// The number at a JSON pointer ("/energy/balance_error_max"). A missing key or a null (not
+/// measured) throws: a check never passes on a value that is not there.
+inline double number(const Json& j, const std::string& pointer) {
+  const Json& v = j.at(Json::json_pointer(pointer));
+  if (!v.is_number()) throw std::runtime_error(pointer + " is not a number: " + v.dump());
+  return v.get<double>();
 }
 
 struct CliResult {

@@ -1,4 +1,9 @@
-# ctest helper: fails when a tracked C++ source is not clang-formatted.
+# ctest helper: fails when a tracked C++ source is not clang-formatted, or when clang-format
+# itself is missing.
+if(NOT CLANG_FORMAT OR NOT EXISTS "${CLANG_FORMAT}")
+  message(FATAL_ERROR "clang-format not found: install it (Debian package clang-format; `make "
+                      "test` does) to check the sources' format")
+endif()
 file(GLOB_RECURSE files ${ROOT}/src/*.cpp ${ROOT}/include/*.hpp ${ROOT}/tests/*.cpp ${ROOT}/bench/*.cpp)
 set(bad "")
 foreach(f ${files})

@@ -179,7 +179,7 @@ int ccd_command(const CcdOptions& o) {
     }
   }
   if (o.json) {
-    std::cout << j.dump();
+    std::cout << j.dump(2) << "\n";
     return 0;
   }
   if (!o.quiet) {

@@ -82,7 +82,7 @@ int profile_case(const ProfileOptions& o) {
                   1e3 * ct.broadphase_query / n, 1e3 * wall / n, wall > 0 ? 100 * bp / wall : 0.0,
                   wall > 0 ? 100 * contact / wall : 0.0);
   }
-  if (o.json) std::cout << out.dump();
+  if (o.json) std::cout << out.dump(2) << "\n";
   return 0;
 }
 
@@ -133,7 +133,7 @@ int profile_frames(const ProfileOptions& o) {
       std::printf("%-12s %12zu %12zu %10.2f %10.2f\n", m.c_str(), c.edge_edge.size(),
                   c.node_face.size(), 1e3 * bp->build_seconds, 1e3 * bp->query_seconds);
   }
-  if (o.json) std::cout << out.dump();
+  if (o.json) std::cout << out.dump(2) << "\n";
   return 0;
 }
 

@@ -73,60 +73,58 @@ class Progress {
   double last_ = -1e300, next_mark_ = 0.0;
 };
 
-Json summary_json(const Case& c, const Simulation& sim, const std::string& status, double wall,
-                  const std::vector<std::string>& warnings_in) {
-  const Model& model = sim.model();
-  const State& st = sim.state();
-  const Sample& first = sim.first_sample();
-  const Sample& last = sim.last_sample();
-  Json j = Json::object();
-  j["schema"] = "tetcontact.summary/1";
-  j["case"] = c.name;
-  j["case_file"] = c.file;
-  j["status"] = status;
-  j["steps"] = st.step;
-  j["time"] = last.t;
-  j["end_time"] = c.end_time;
-  j["wall_seconds"] = wall;
-  Json modules = Json::array();
-  for (const std::string& m : sim.modules()) modules.push_back(m);
-  j["modules"] = modules;
-
-  Json& mesh = j["mesh"];
+// The summary's sections, each built as its own value (ordered_json: no reference into an
+// object survives an insert into it). Stages a run does not have are null: "not measured",
+// never zero.
+Json mesh_json(const Model& model) {
   std::size_t faces = 0, edges = 0;
   for (const Surface& s : model.surfaces) faces += s.faces.size(), edges += s.edges.size();
+  Json mesh = Json::object();
   mesh["nodes"] = model.mesh.x.size();
   mesh["tets"] = model.mesh.tets.size();
   mesh["surface_faces"] = faces;
   mesh["surface_edges"] = edges;
+  return mesh;
+}
 
-  Json& timings = j["timings"];
-  for (const auto& [name, seconds] : sim.profile().stages) timings[name] = seconds;
-
-  Json& e = j["energy"];
+Json energy_json(const Simulation& sim) {
+  const Sample& first = sim.first_sample();
+  const Sample& last = sim.last_sample();
+  Json e = Json::object();
   e["kinetic"] = last.kinetic;
   e["internal"] = last.internal;
   e["plastic_work"] = last.plastic_work;
   e["viscous_work"] = last.viscous_work;
-  e["contact_work"] = nullptr;  // set below when the run has a contact stage
+  // Node–face, edge–edge and particle contacts all do work.
+  e["contact_work"] = sim.has_contact() || sim.conversions() ? Json(last.contact.work) : Json();
   e["boundary_work"] = last.boundary.work;
   e["wall_work"] = last.walls.work;
   e["total_initial"] = first.total;
   e["total_final"] = last.total;
   e["balance_error"] = last.balance_error;
   e["balance_error_max"] = sim.balance_error_max();
+  return e;
+}
 
-  Json& p = j["momentum"];
+Json momentum_json(const Sample& first, const Sample& last) {
+  Json p = Json::object();
   p["initial"] = first.momentum;
   p["final"] = last.momentum;
   p["boundary_impulse"] = last.boundary.impulse;
   p["wall_impulse"] = last.walls.impulse;
   p["relative_error"] = momentum_error(first, last);
+  return p;
+}
 
-  Json& mass = j["mass"];
+Json mass_json(const Sample& first, const Sample& last) {
+  Json mass = Json::object();
   mass["initial"] = first.mass;
   mass["final"] = last.mass;
+  mass["relative_error"] = first.mass > 0 ? std::abs(last.mass - first.mass) / first.mass : 0.0;
+  return mass;
+}
 
+Json bodies_json(const Model& model, const State& st) {
   Json bodies = Json::array();
   for (const BodyStats& b : body_stats(model, st)) {
     Json o = Json::object();
@@ -137,24 +135,26 @@ Json summary_json(const Case& c, const Simulation& sim, const std::string& statu
     o["bbox_max"] = b.bbox_max;
     bodies.push_back(o);
   }
-  j["bodies"] = bodies;
+  return bodies;
+}
 
+Json walls_json(const Simulation& sim) {
   Json walls = Json::array();
-  for (std::size_t w = 0; w < model.walls.size(); ++w) {
+  for (std::size_t w = 0; w < sim.model().walls.size(); ++w) {
     Json o = Json::object();
-    o["name"] = model.walls[w].name;
+    o["name"] = sim.model().walls[w].name;
     o["max_force"] = sim.wall_force_max()[w];
-    o["impulse"] = last.walls.impulse;  // all walls together
+    o["impulse"] = sim.last_sample().walls.impulse;  // all walls together
     walls.push_back(o);
   }
-  j["walls"] = walls;
-  Json warnings = Json::array();
-  for (const std::string& w : warnings_in) warnings.push_back(w);
-  j["warnings"] = warnings;
-  j["material_library"] = c.material_library.empty() ? Json() : Json(c.material_library);
+  return walls;
+}
 
-  Json& ts = j["time_step"];
-  ts["last"] = last.dt;
+Json time_step_json(const Case& c, const Simulation& sim) {
+  const Model& model = sim.model();
+  const State& st = sim.state();
+  Json ts = Json::object();
+  ts["last"] = sim.last_sample().dt;
   ts["cfl"] = c.cfl;
   ts["critical_tet"] = static_cast<long>(sim.critical_tet());
   ts["min"] = sim.min_dt();
@@ -165,78 +165,140 @@ Json summary_json(const Case& c, const Simulation& sim, const std::string& statu
     ts["critical_volume_ratio"] = st.vol[t] / st.vol0[t];
     ts["critical_damage"] = static_cast<long>(st.damage[t]);
   }
+  return ts;
+}
 
-  // Stages a run does not have: null means "not measured", never zero.
-  Json& contact = j["contact"];
+Json contact_json(const Simulation& sim) {
+  Json contact = Json::object();
   for (const char* k :
        {"node_face", "edge_edge", "candidates", "first_time", "last_time", "max_force", "work"})
     contact[k] = nullptr;
-  if (sim.has_contact()) {
-    const auto& ct = sim.contact_totals();
-    contact["node_face"] = ct.node_face;
-    contact["edge_edge"] = model.contact->edge_edge ? Json(ct.edge_edge) : Json();
-    contact["edge_candidates"] = model.contact->edge_edge ? Json(ct.edge_candidates) : Json();
-    contact["candidates"] = ct.candidates;
-    contact["max_contacts_per_step"] = ct.max_per_step;
-    contact["steps_in_contact"] = ct.steps_in_contact;
-    contact["first_time"] = ct.first_time >= 0 ? Json(ct.first_time) : Json();
-    contact["last_time"] = ct.last_time >= 0 ? Json(ct.last_time) : Json();
-    contact["duration"] = ct.first_time >= 0 ? Json(ct.last_time - ct.first_time) : Json();
-    contact["max_force"] = ct.max_force;
-    contact["work"] = last.contact.work;
-    contact["broadphase"] = model.contact->broadphase;
-    contact["broadphase_runs"] = ct.rebuilds;
-    e["contact_work"] = last.contact.work;
-  }
-  Json& pen = j["penetration"];
-  for (const char* k : {"max_depth", "max_depth_over_h", "max_crossings"}) pen[k] = nullptr;
-  // Fracture: cells damaged and destroyed at the end, and the conversions into particles with
-  // their ledger (null when the case makes no particles).
-  Json& fr = j["fracture"];
+  if (!sim.has_contact()) return contact;
+  const auto& ct = sim.contact_totals();
+  const bool edges = sim.model().contact->edge_edge;
+  contact["node_face"] = ct.node_face;
+  contact["edge_edge"] = edges ? Json(ct.edge_edge) : Json();
+  contact["edge_candidates"] = edges ? Json(ct.edge_candidates) : Json();
+  contact["candidates"] = ct.candidates;
+  contact["max_contacts_per_step"] = ct.max_per_step;
+  contact["steps_in_contact"] = ct.steps_in_contact;
+  contact["first_time"] = ct.first_time >= 0 ? Json(ct.first_time) : Json();
+  contact["last_time"] = ct.last_time >= 0 ? Json(ct.last_time) : Json();
+  contact["duration"] = ct.first_time >= 0 ? Json(ct.last_time - ct.first_time) : Json();
+  contact["max_force"] = ct.max_force;
+  contact["work"] = sim.last_sample().contact.work;
+  contact["broadphase"] = sim.model().contact->broadphase;
+  contact["broadphase_runs"] = ct.rebuilds;
+  return contact;
+}
+
+// Fracture: cells damaged and destroyed at the end, and the conversions into particles with
+// their ledger (null when the case makes no particles).
+Json fracture_json(const Case& c, const Simulation& sim) {
+  const Model& model = sim.model();
+  const State& st = sim.state();
+  Json fr = Json::object();
   fr["enabled"] = c.fracture;
-  fr["damaged"] = c.fracture ? Json(last.damaged) : Json();
-  fr["destroyed"] = c.fracture ? Json(last.destroyed) : Json();
+  fr["damaged"] = c.fracture ? Json(sim.last_sample().damaged) : Json();
+  fr["destroyed"] = c.fracture ? Json(sim.last_sample().destroyed) : Json();
   fr["particles"] = nullptr;
   fr["mass_to_particles"] = nullptr;
-  if (const ConversionLedger* l = sim.conversions()) {
-    fr["particles"] = l->particles;
-    fr["mass_to_particles"] = l->mass;
-    fr["internal_energy_to_particles"] = l->internal;
-    fr["kinetic_spread_to_particles"] = l->kinetic_spread;
-    fr["conversion_momentum_error"] = l->momentum_error;
-    fr["conversion_mass_error"] = l->mass_error;
-    fr["particle_contacts"] = sim.contact_totals().particle_contacts;
-    fr["eroded"] = l->eroded;  // a safeguard: cells whose step fell below the erosion limit
-    fr["particles_moved_out"] = sim.contact_totals().particles_moved_out;  // a safeguard
-    fr["particle_move_max"] = sim.contact_totals().particle_move_max;
-    double kinetic = 0.0;
-    for (Index i = 0; i < st.particle_count(); ++i) {
-      const Index n = st.first_particle + i;
-      kinetic += 0.5 * st.m[n] * centred_velocity(st, n).squaredNorm();
-    }
-    fr["particle_kinetic_energy"] = kinetic;
-    Json by_body = Json::array();  // where the particles came from
-    for (std::size_t b = 0; b < model.mesh.bodies.size(); ++b) {
-      long n = 0;
-      double m = 0.0;
-      for (Index i = 0; i < st.particle_count(); ++i)
-        if (model.mesh.tet_body[st.particle_tet[i]] == static_cast<Index>(b))
-          ++n, m += st.m[st.first_particle + i];
-      Json o = Json::object();
-      o["name"] = model.mesh.bodies[b].name;
-      o["particles"] = n;
-      o["mass"] = m;
-      by_body.push_back(o);
-    }
-    fr["from_bodies"] = by_body;
-    e["contact_work"] = last.contact.work;  // particle contacts do work too
+  const ConversionLedger* l = sim.conversions();
+  if (!l) return fr;
+  fr["particles"] = l->particles;
+  fr["mass_to_particles"] = l->mass;
+  fr["internal_energy_to_particles"] = l->internal;
+  fr["kinetic_spread_to_particles"] = l->kinetic_spread;
+  fr["conversion_momentum_error"] = l->momentum_error;
+  fr["conversion_mass_error"] = l->mass_error;
+  fr["particle_contacts"] = sim.contact_totals().particle_contacts;
+  fr["eroded"] = l->eroded;  // a safeguard: cells whose step fell below the erosion limit
+  fr["particles_moved_out"] = sim.contact_totals().particles_moved_out;  // a safeguard
+  fr["particle_move_max"] = sim.contact_totals().particle_move_max;
+  double kinetic = 0.0;
+  for (Index i = 0; i < st.particle_count(); ++i) {
+    const Index n = st.first_particle + i;
+    kinetic += 0.5 * st.m[n] * centred_velocity(st, n).squaredNorm();
   }
-  // The safeguards that acted (null: the run has no such safeguard).
-  Json& safe = j["safeguards"];
+  fr["particle_kinetic_energy"] = kinetic;
+  Json by_body = Json::array();  // where the particles came from
+  for (std::size_t b = 0; b < model.mesh.bodies.size(); ++b) {
+    long n = 0;
+    double m = 0.0;
+    for (Index i = 0; i < st.particle_count(); ++i)
+      if (model.mesh.tet_body[st.particle_tet[i]] == static_cast<Index>(b))
+        ++n, m += st.m[st.first_particle + i];
+    Json o = Json::object();
+    o["name"] = model.mesh.bodies[b].name;
+    o["particles"] = n;
+    o["mass"] = m;
+    by_body.push_back(o);
+  }
+  fr["from_bodies"] = by_body;
+  return fr;
+}
+
+// The safeguards that acted (null: the run has no such safeguard).
+Json safeguards_json(const Simulation& sim) {
   const ConversionLedger* conv = sim.conversions();
-  safe["eroded"] = conv && model.erosion_step_ratio > 0 ? Json(conv->eroded) : Json();
+  Json safe = Json::object();
+  safe["eroded"] = conv && sim.model().erosion_step_ratio > 0 ? Json(conv->eroded) : Json();
   safe["particles_moved_out"] = conv ? Json(sim.contact_totals().particles_moved_out) : Json();
-  mass["relative_error"] = first.mass > 0 ? std::abs(last.mass - first.mass) / first.mass : 0.0;
+  return safe;
+}
+
+// Penetration at the output frames (null where it was not measured).
+Json penetration_json(const Simulation& sim, const OutputWriter& writer) {
+  Json pen = Json::object();
+  for (const char* k : {"max_depth", "max_depth_over_h", "max_crossings"}) pen[k] = nullptr;
+  const bool one_body = sim.model().mesh.bodies.size() < 2 && !sim.model().particles;
+  // One body cannot penetrate another: zero is a measurement then, not a default.
+  if (!one_body && !writer.measured_penetration()) return pen;
+  const Penetration& pm = writer.penetration_max();
+  pen["max_depth"] = pm.max_depth;
+  pen["max_depth_over_h"] = pm.max_depth_over_h;
+  pen["max_crossings"] = pm.crossings;
+  pen["max_crossing_depth"] = pm.max_crossing_depth;
+  pen["max_nodes_inside"] = pm.nodes_inside;
+  if (sim.model().particles) {
+    pen["max_particles_inside"] = pm.particles_inside;
+    pen["max_particle_depth"] = pm.max_particle_depth;
+    pen["particles_inside_at_end"] = writer.penetration_last().particles_inside;
+  }
+  pen["measured_at"] = "output frames";
+  return pen;
+}
+
+Json summary_json(const Case& c, const Simulation& sim, const OutputWriter& writer,
+                  const std::string& status, double wall,
+                  const std::vector<std::string>& warnings) {
+  const Model& model = sim.model();
+  Json j = Json::object();
+  j["schema"] = "tetcontact.summary/1";
+  j["case"] = c.name;
+  j["case_file"] = c.file;
+  j["status"] = status;
+  j["steps"] = sim.state().step;
+  j["time"] = sim.last_sample().t;
+  j["end_time"] = c.end_time;
+  j["wall_seconds"] = wall;
+  j["modules"] = sim.modules();
+  j["mesh"] = mesh_json(model);
+  Json timings = Json::object();
+  for (const auto& [name, seconds] : sim.profile().stages) timings[name] = seconds;
+  j["timings"] = timings;
+  j["energy"] = energy_json(sim);
+  j["momentum"] = momentum_json(sim.first_sample(), sim.last_sample());
+  j["mass"] = mass_json(sim.first_sample(), sim.last_sample());
+  j["bodies"] = bodies_json(model, sim.state());
+  j["walls"] = walls_json(sim);
+  j["warnings"] = warnings;
+  j["material_library"] = c.material_library.empty() ? Json() : Json(c.material_library);
+  j["time_step"] = time_step_json(c, sim);
+  j["contact"] = contact_json(sim);
+  j["penetration"] = penetration_json(sim, writer);
+  j["fracture"] = fracture_json(c, sim);
+  j["safeguards"] = safeguards_json(sim);
   return j;
 }
 
@@ -370,24 +432,7 @@ int run_case(const RunOptions& o) {
   progress.done();
   writer.close();
   const double wall = seconds_since(t0);
-  Json summary = summary_json(c, *sim, status, wall, warnings);
-  if ((sim->model().mesh.bodies.size() < 2 && !sim->model().particles) ||
-      writer.measured_penetration()) {
-    // One body cannot penetrate another: zero is a measurement then, not a default.
-    const Penetration& pm = writer.penetration_max();
-    Json& pen = summary["penetration"];
-    pen["max_depth"] = pm.max_depth;
-    pen["max_depth_over_h"] = pm.max_depth_over_h;
-    pen["max_crossings"] = pm.crossings;
-    pen["max_crossing_depth"] = pm.max_crossing_depth;
-    pen["max_nodes_inside"] = pm.nodes_inside;
-    if (sim->model().particles) {
-      pen["max_particles_inside"] = pm.particles_inside;
-      pen["max_particle_depth"] = pm.max_particle_depth;
-      pen["particles_inside_at_end"] = writer.penetration_last().particles_inside;
-    }
-    pen["measured_at"] = "output frames";
-  }
+  Json summary = summary_json(c, *sim, writer, status, wall, warnings);
   // The case's stated bounds (`expect`), each against its summary figure.
   std::string expect_lines;
   if (!c.expect.empty()) {
@@ -400,6 +445,9 @@ int run_case(const RunOptions& o) {
       if (name == "momentum_error") value = momentum_error(sim->first_sample(), sim->last_sample());
       if (name == "energy_balance") value = sim->balance_error_max();
       if (name == "max_depth_over_h" && measured) value = pm.max_depth_over_h;
+      if (name == "max_crossings" && measured) value = static_cast<double>(pm.crossings);
+      if (name == "max_nodes_inside" && measured) value = static_cast<double>(pm.nodes_inside);
+      if (name == "max_crossing_depth" && measured) value = pm.max_crossing_depth;
       if (name == "particles_inside" && measured)
         value = static_cast<double>(writer.penetration_last().particles_inside);
       const bool pass = code == 0 && value <= bound;  // NaN (not measured) fails
@@ -441,7 +489,7 @@ int run_case(const RunOptions& o) {
     summary["references_pass"] = all;
     if (o.check && !all) code = 1;
   }
-  write_file_atomic(dir + "/summary.json", summary.dump());
+  write_file_atomic(dir + "/summary.json", summary.dump(2) + "\n");
   if (!o.quiet || code != 0) {
     print_table(c, *sim, status, dir, writer.frames(), wall);
     for (const ReferenceResult& r : refs)

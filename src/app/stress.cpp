@@ -351,7 +351,7 @@ int stress_command(const StressOptions& o) {
           failed, scenes.size());
   }
   j["scenes_failed"] = failed;
-  if (o.json) std::cout << j.dump();
+  if (o.json) std::cout << j.dump(2) << "\n";
   return total == 0 && failed == 0 ? 0 : 1;
 }
 

@@ -1,11 +1,10 @@
 #include "tetcontact/app/sweep.hpp"
 
-#include <yaml-cpp/yaml.h>
-
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <fstream>
 #include <iostream>
 #include <map>
 #include <sstream>
@@ -65,28 +64,30 @@ Figures comparable_figures(const Simulation& sim) {
   return f;
 }
 
-// The same figures from a run's summary.json (YAML reads JSON).
+// The same figures from a run's summary.json; a missing key is an error naming it.
 Figures summary_figures(const std::string& path) {
-  YAML::Node s;
-  try {
-    s = YAML::LoadFile(path);
-  } catch (const std::exception& e) {
-    throw CaseError(path + ": cannot read the reference summary (" + e.what() + ")");
-  }
+  std::ifstream in(path);
+  if (!in) throw CaseError(path + ": cannot read the reference summary");
   Figures f;
-  if (!s["bodies"]) throw CaseError(path + ": not a tetcontact summary.json (no 'bodies')");
-  for (const YAML::Node& b : s["bodies"]) {
-    const std::string name = b["name"].as<std::string>();
-    for (int d = 0; d < 3; ++d) {
-      f["velocity:" + name + ":" + "xyz"[d]] = b["velocity"][d].as<double>();
-      f["extent:" + name + ":" + "xyz"[d]] =
-          b["bbox_max"][d].as<double>() - b["bbox_min"][d].as<double>();
+  try {
+    const Json s = Json::parse(in);
+    if (!s.contains("bodies"))
+      throw CaseError(path + ": not a tetcontact summary.json (no 'bodies')");
+    for (const Json& b : s.at("bodies")) {
+      const std::string name = b.at("name").get<std::string>();
+      for (int d = 0; d < 3; ++d) {
+        f["velocity:" + name + ":" + "xyz"[d]] = b.at("velocity").at(d).get<double>();
+        f["extent:" + name + ":" + "xyz"[d]] =
+            b.at("bbox_max").at(d).get<double>() - b.at("bbox_min").at(d).get<double>();
+      }
     }
-  }
-  const YAML::Node c = s["contact"];
-  if (c && c["duration"] && !c["duration"].IsNull()) {
-    f["contact_duration"] = c["duration"].as<double>();
-    f["contact_max_force"] = c["max_force"].as<double>();
+    const Json& c = s.at("contact");
+    if (!c.at("duration").is_null()) {
+      f["contact_duration"] = c.at("duration").get<double>();
+      f["contact_max_force"] = c.at("max_force").get<double>();
+    }
+  } catch (const Json::exception& e) {
+    throw CaseError(path + ": cannot read the reference summary (" + e.what() + ")");
   }
   return f;
 }

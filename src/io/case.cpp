@@ -911,8 +911,9 @@ Case load_case(const std::string& path, const std::vector<std::string>& override
   }
   // Bounds the run must hold (the stability cases state theirs).
   if (const YAML::Node e = root["expect"]) {
-    static const std::vector<std::string> known{"momentum_error", "energy_balance",
-                                                "max_depth_over_h", "particles_inside"};
+    static const std::vector<std::string> known{
+        "momentum_error",   "energy_balance",     "max_depth_over_h", "max_crossings",
+        "max_nodes_inside", "max_crossing_depth", "particles_inside"};
     r.keys(e, "expect", known);
     for (const std::string& k : known)
       if (e[k]) {

@@ -6,6 +6,7 @@
 
 #include "tetcontact/diagnostics/balance.hpp"
 #include "tetcontact/io/files.hpp"
+#include "tetcontact/material/material.hpp"
 
 namespace tc {
 namespace {
@@ -97,10 +98,8 @@ std::string vtu_frame(const Model& model, const State& st, const std::vector<std
     data_array(out, "Float64", "pressure", 1, m,
                [&](std::size_t i, int) { return st.p[cells[i]]; });
   if (wants(fields, "von_mises"))
-    data_array(out, "Float64", "von_mises", 1, m, [&](std::size_t i, int) {
-      const Mat3 s = to_mat3(st.s[cells[i]]);
-      return std::sqrt(1.5 * s.cwiseProduct(s).sum());
-    });
+    data_array(out, "Float64", "von_mises", 1, m,
+               [&](std::size_t i, int) { return von_mises(st.s[cells[i]]); });
   if (wants(fields, "plastic_strain"))
     data_array(out, "Float64", "plastic_strain", 1, m,
                [&](std::size_t i, int) { return st.eps_p[cells[i]]; });

@@ -75,6 +75,13 @@ inline Sym6 to_sym6(const Mat3& m) {
           0.5 * (m(0, 2) + m(2, 0))};
 }
 
+/// Von Mises equivalent stress of a deviator s: sqrt(3/2 s:s) (the yield stress on the yield
+/// surface).
+inline double von_mises(const Sym6& s) {
+  const Mat3 m = to_mat3(s);
+  return std::sqrt(1.5 * m.cwiseProduct(m).sum());
+}
+
 /// Objective rotation of the deviatoric stress over a step (Hughes–Winget):
 ///   s ← Q s Qᵀ,  Q = (I − τW/2)⁻¹ (I + τW/2),
 /// which is exactly orthogonal for a skew W (the spin), so the principal values are kept to
