@@ -10,6 +10,7 @@
 #include <limits>
 #include <sstream>
 
+#include "tetcontact/app/expect.hpp"
 #include "tetcontact/app/setup.hpp"
 #include "tetcontact/diagnostics/reference.hpp"
 #include "tetcontact/io/case.hpp"
@@ -76,9 +77,9 @@ class Progress {
 // The summary's sections, each built as its own value (ordered_json: no reference into an
 // object survives an insert into it). Stages a run does not have are null: "not measured",
 // never zero.
-Json mesh_json(const Model& model) {
+Json mesh_json(const Model& model, const std::vector<Surface>& surfaces) {
   std::size_t faces = 0, edges = 0;
-  for (const Surface& s : model.surfaces) faces += s.faces.size(), edges += s.edges.size();
+  for (const Surface& s : surfaces) faces += s.faces.size(), edges += s.edges.size();
   Json mesh = Json::object();
   mesh["nodes"] = model.mesh.x.size();
   mesh["tets"] = model.mesh.tets.size();
@@ -283,7 +284,7 @@ Json summary_json(const Case& c, const Simulation& sim, const OutputWriter& writ
   j["end_time"] = c.end_time;
   j["wall_seconds"] = wall;
   j["modules"] = sim.modules();
-  j["mesh"] = mesh_json(model);
+  j["mesh"] = mesh_json(model, sim.surfaces());
   Json timings = Json::object();
   for (const auto& [name, seconds] : sim.profile().stages) timings[name] = seconds;
   j["timings"] = timings;
@@ -436,31 +437,27 @@ int run_case(const RunOptions& o) {
   // The case's stated bounds (`expect`), each against its summary figure.
   std::string expect_lines;
   if (!c.expect.empty()) {
+    ExpectFigures figures;
+    figures.momentum_error = momentum_error(sim->first_sample(), sim->last_sample());
+    figures.energy_balance = sim->balance_error_max();
+    if (writer.measured_penetration()) {
+      figures.penetration = writer.penetration_max();
+      figures.particles_inside_end = writer.penetration_last().particles_inside;
+    }
     Json list = Json::array();
     bool all = true;
-    const Penetration& pm = writer.penetration_max();
-    const bool measured = writer.measured_penetration();
-    for (const auto& [name, bound] : c.expect) {
-      double value = std::numeric_limits<double>::quiet_NaN();
-      if (name == "momentum_error") value = momentum_error(sim->first_sample(), sim->last_sample());
-      if (name == "energy_balance") value = sim->balance_error_max();
-      if (name == "max_depth_over_h" && measured) value = pm.max_depth_over_h;
-      if (name == "max_crossings" && measured) value = static_cast<double>(pm.crossings);
-      if (name == "max_nodes_inside" && measured) value = static_cast<double>(pm.nodes_inside);
-      if (name == "max_crossing_depth" && measured) value = pm.max_crossing_depth;
-      if (name == "particles_inside" && measured)
-        value = static_cast<double>(writer.penetration_last().particles_inside);
-      const bool pass = code == 0 && value <= bound;  // NaN (not measured) fails
+    for (const ExpectResult& e : judge_expect(c.expect, figures)) {
+      const bool pass = code == 0 && e.pass;
       Json item = Json::object();
-      item["name"] = name;
-      item["bound"] = bound;
-      item["measured"] = std::isnan(value) ? Json() : Json(value);
+      item["name"] = e.name;
+      item["bound"] = e.bound;
+      item["measured"] = std::isnan(e.measured) ? Json() : Json(e.measured);
       item["pass"] = pass;
       list.push_back(item);
       all = all && pass;
       char line[160];
       std::snprintf(line, sizeof line, "  expect     %-28s %-11.4g bound %-11.4g %s\n",
-                    name.c_str(), value, bound, pass ? "pass" : "FAIL");
+                    e.name.c_str(), e.measured, e.bound, pass ? "pass" : "FAIL");
       expect_lines += line;
     }
     summary["expect"] = list;

@@ -14,6 +14,7 @@
 #include "tetcontact/diagnostics/balance.hpp"
 #include "tetcontact/diagnostics/penetration.hpp"
 #include "tetcontact/io/case.hpp"
+#include "tetcontact/io/files.hpp"
 #include "tetcontact/io/json.hpp"
 #include "tetcontact/narrowphase/exact_ccd.hpp"
 #include "tetcontact/narrowphase/vertex_face.hpp"
@@ -224,10 +225,11 @@ std::vector<StressFamily> stress_families(std::uint64_t seed, int count) {
 }
 
 std::string default_scenes_dir() {
-  return std::string(TETCONTACT_DATA_DIR) + "/cases/micro";
+  return data_dir() + "/cases/micro";
 }
 
-std::vector<SceneResult> run_micro_scenes(const std::string& dir) {
+std::vector<SceneResult> run_micro_scenes(const std::string& dir,
+                                          const std::vector<std::string>& overrides) {
   namespace fs = std::filesystem;
   std::vector<fs::path> files;
   if (fs::is_directory(dir))
@@ -239,7 +241,7 @@ std::vector<SceneResult> run_micro_scenes(const std::string& dir) {
   for (const fs::path& f : files) {
     SceneResult r;
     r.name = f.stem().string();
-    const Case c = load_case(f.string());  // bad input is the caller's error, not a scene's
+    const Case c = load_case(f.string(), overrides);  // bad input is the caller's, not a scene's
     try {
       Simulation sim(build_model(c), solver_settings(c));
       PenetrationProbe probe(sim.model());
@@ -247,9 +249,12 @@ std::vector<SceneResult> run_micro_scenes(const std::string& dir) {
         sim.step();
         ++r.steps;
         const Penetration p = probe.measure(sim.state().x);
-        r.max_depth_over_h = std::max(r.max_depth_over_h, p.max_depth_over_h);
-        r.nodes_inside = std::max(r.nodes_inside, p.nodes_inside);
-        r.crossings = std::max(r.crossings, p.crossings);
+        Penetration& m = r.penetration;
+        m.max_depth = std::max(m.max_depth, p.max_depth);
+        m.max_depth_over_h = std::max(m.max_depth_over_h, p.max_depth_over_h);
+        m.nodes_inside = std::max(m.nodes_inside, p.nodes_inside);
+        m.crossings = std::max(m.crossings, p.crossings);
+        m.max_crossing_depth = std::max(m.max_crossing_depth, p.max_crossing_depth);
       }
       sim.finish();
       r.momentum_error = momentum_error(sim.first_sample(), sim.last_sample());
@@ -259,15 +264,24 @@ std::vector<SceneResult> run_micro_scenes(const std::string& dir) {
     } catch (const std::exception& e) {  // RunFailure, InvertedElement: the scene failed
       r.status = std::string("failed: ") + e.what();
     }
+    ExpectFigures figures;
+    figures.momentum_error = r.momentum_error;
+    figures.energy_balance = r.balance_error;
+    figures.penetration = r.penetration;
+    r.expect = judge_expect(c.expect, figures);
     r.pass = r.status == "ok" && r.momentum_error <= 1e-12;
+    for (const ExpectResult& e : r.expect) r.pass = r.pass && e.pass;
     out.push_back(r);
   }
   return out;
 }
 
 int stress_command(const StressOptions& o) {
-  if (!o.scenes_dir.empty() && !std::filesystem::is_directory(o.scenes_dir))
-    throw std::runtime_error(o.scenes_dir + ": micro-scene directory not found");
+  const std::string scenes_dir = !o.scenes              ? std::string()
+                                 : o.scenes_dir.empty() ? default_scenes_dir()
+                                                        : o.scenes_dir;
+  if (!scenes_dir.empty() && !std::filesystem::is_directory(scenes_dir))
+    throw std::runtime_error(scenes_dir + ": micro-scene directory not found");
   long total = 0;
   Json j = Json::object();
   Json& arr = j["families"] = Json::array();
@@ -319,8 +333,8 @@ int stress_command(const StressOptions& o) {
         "floating-point swept vertex-face test of vertex_face.hpp, for comparison\n",
         total);
   long failed = 0;
-  if (!o.scenes_dir.empty()) {
-    const std::vector<SceneResult> scenes = run_micro_scenes(o.scenes_dir);
+  if (!scenes_dir.empty()) {
+    const std::vector<SceneResult> scenes = run_micro_scenes(scenes_dir, o.overrides);
     Json& js = j["scenes"] = Json::array();
     if (!o.json)
       std::printf("\n%-26s %6s %-8s %14s %14s %12s %12s %10s\n", "micro-scene", "steps", "status",
@@ -333,21 +347,35 @@ int stress_command(const StressOptions& o) {
       x["status"] = r.status;
       x["momentum_error"] = r.momentum_error;
       x["balance_error"] = r.balance_error;
-      x["max_depth_over_h"] = r.max_depth_over_h;
-      x["nodes_inside"] = r.nodes_inside;
-      x["crossings"] = r.crossings;
+      x["max_depth_over_h"] = r.penetration.max_depth_over_h;
+      x["nodes_inside"] = r.penetration.nodes_inside;
+      x["crossings"] = r.penetration.crossings;
+      x["max_crossing_depth"] = r.penetration.max_crossing_depth;
+      Json bounds = Json::array();
+      std::string missed;
+      for (const ExpectResult& e : r.expect) {
+        Json b = Json::object();
+        b["name"] = e.name;
+        b["bound"] = e.bound;
+        b["measured"] = std::isnan(e.measured) ? Json() : Json(e.measured);
+        b["pass"] = e.pass;
+        bounds.push_back(b);
+        if (!e.pass) missed += " " + e.name;
+      }
+      x["expect"] = bounds;
       x["pass"] = r.pass;
       js.push_back(x);
       if (!o.json)
-        std::printf("%-26s %6ld %-8s %14.2e %14.2e %12.2e %12ld %10ld%s\n", r.name.c_str(), r.steps,
-                    r.status == "ok" ? "ok" : "FAILED", r.momentum_error, r.balance_error,
-                    r.max_depth_over_h, r.nodes_inside, r.crossings,
-                    r.status == "ok" ? "" : ("  " + r.status).c_str());
+        std::printf("%-26s %6ld %-8s %14.2e %14.2e %12.2e %12ld %10ld%s%s\n", r.name.c_str(),
+                    r.steps, r.pass ? "ok" : "FAILED", r.momentum_error, r.balance_error,
+                    r.penetration.max_depth_over_h, r.penetration.nodes_inside,
+                    r.penetration.crossings, r.status == "ok" ? "" : ("  " + r.status).c_str(),
+                    missed.empty() ? "" : ("  missed:" + missed).c_str());
     }
     if (!o.json)
       std::printf(
           "%ld of %zu micro-scenes failed (a pass: no NaN, no inverted element, momentum to "
-          "1e-12)\n",
+          "1e-12, the scene's expect: bounds held at every step)\n",
           failed, scenes.size());
   }
   j["scenes_failed"] = failed;

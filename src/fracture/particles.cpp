@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "tetcontact/element/element.hpp"
 #include "tetcontact/narrowphase/vertex_face.hpp"
-#include "tetcontact/solver/element.hpp"
 
 namespace tc {
 

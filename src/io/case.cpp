@@ -1,4 +1,5 @@
 #include "tetcontact/io/case.hpp"
+#include "tetcontact/io/files.hpp"
 
 #include <yaml-cpp/yaml.h>
 
@@ -477,7 +478,7 @@ YAML::Node load_yaml(const std::string& path, const char* what) {
 }  // namespace
 
 std::string default_material_library() {
-  return std::string(TETCONTACT_DATA_DIR) + "/materials.yaml";
+  return data_dir() + "/materials.yaml";
 }
 
 std::vector<Material> load_material_library(const std::string& path) {
@@ -570,8 +571,6 @@ Case load_case(const std::string& path, const std::vector<std::string>& override
         (fs::path(rel).is_absolute() ? fs::path(rel) : case_dir / rel).lexically_normal().string();
     if (!fs::is_regular_file(library_path))
       r.fail(root["material_library"], "material_library", "file not found: " + library_path);
-  } else {
-    library_path = default_material_library();
   }
   YAML::Node library;
   bool library_loaded = false;
@@ -582,6 +581,11 @@ Case load_case(const std::string& path, const std::vector<std::string>& override
     if (m.IsMap() && m["from"]) {
       const std::string from = r.string(m["from"], join(p, "from"));
       if (!library_loaded) {
+        if (library_path.empty()) try {
+            library_path = default_material_library();
+          } catch (const std::runtime_error& e) {
+            r.fail(m["from"], join(p, "from"), e.what());
+          }
         load_material_library(library_path);  // validates it, naming its own lines
         library = YAML::LoadFile(library_path);
         c.material_library = library_path;

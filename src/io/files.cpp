@@ -2,12 +2,32 @@
 
 #include <charconv>
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <regex>
 
 namespace tc {
 
 namespace fs = std::filesystem;
+
+std::string data_dir() {
+  if (const char* env = std::getenv("TETCONTACT_DATA"); env && *env) {
+    if (!fs::is_directory(env))
+      throw std::runtime_error(std::string("TETCONTACT_DATA=") + env + ": not a directory");
+    return env;
+  }
+  std::error_code ec;
+  const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
+  std::string looked;
+  if (!ec)
+    for (const fs::path& d :
+         {exe.parent_path().parent_path() / "data", exe.parent_path() / "data"}) {
+      if (fs::is_regular_file(d / "materials.yaml")) return d.string();
+      looked += (looked.empty() ? "" : ", ") + d.string();
+    }
+  throw std::runtime_error("tetcontact's data folder not found (looked at " + looked +
+                           "); set TETCONTACT_DATA to the tree's data/ folder");
+}
 
 void prepare_output_dir(const std::string& dir, bool force) {
   std::error_code ec;

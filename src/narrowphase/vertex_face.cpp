@@ -47,7 +47,7 @@ bool behind_face(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c, dou
   const double longest =
       std::sqrt(std::max({(b - a).squaredNorm(), (c - b).squaredNorm(), (a - c).squaredNorm()}));
   const Vec3 q = p - d * n / std::sqrt(nn);  // p projected onto the face's plane
-  return closest_point_on_triangle(q, a, b, c).distance <= 1e-3 * longest;
+  return closest_point_on_triangle(q, a, b, c).distance <= k_rim_tolerance * longest;
 }
 
 TrianglePoint closest_point_on_triangle(const Vec3& p, const Vec3& a, const Vec3& b,

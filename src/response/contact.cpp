@@ -9,7 +9,6 @@
 #include "tetcontact/mesh/surface.hpp"
 #include "tetcontact/narrowphase/exact_ccd.hpp"
 #include "tetcontact/narrowphase/vertex_face.hpp"
-#include "tetcontact/solver/model.hpp"
 
 namespace tc {
 
@@ -20,10 +19,27 @@ double since(Clock::time_point t0) {
 }
 }  // namespace
 
-NodeFaceContact::NodeFaceContact(const Model& model, const ContactSettings& settings)
-    : model_(model), settings_(settings), broadphase_(make_broadphase(settings.broadphase)) {
-  for (std::size_t s = 0; s < model.surfaces.size(); ++s) {
-    const Surface& surf = model.surfaces[s];
+NodeFaceContact::NodeFaceContact(const Mesh& mesh, const std::vector<Surface>& surfaces,
+                                 const ContactSettings& settings)
+    : mesh_(mesh),
+      surfaces_(surfaces),
+      settings_(settings),
+      broadphase_(make_broadphase(settings.broadphase)) {
+  build_primitives();
+  // Reach of the binding lists: 0.2 of the mean tet edge over all bodies, from the surfaces
+  // of the start (the reach decides only how long lists last, never which contacts are found).
+  double dx = 0.0;
+  for (const Surface& s : surfaces) dx += s.mean_edge_length;
+  reach_ = surfaces.empty() ? 0.0 : 0.2 * dx / static_cast<double>(surfaces.size());
+}
+
+void NodeFaceContact::build_primitives() {
+  nodes_.clear(), node_body_.clear(), node_surface_.clear(), node_slot_.clear();
+  faces_.clear(), face_body_.clear(), face_tet_.clear();
+  edges_.clear(), edge_body_.clear(), edge_faces_.clear();
+  input_ = BroadphaseInput{};
+  for (std::size_t s = 0; s < surfaces_.size(); ++s) {
+    const Surface& surf = surfaces_[s];
     for (std::size_t i = 0; i < surf.nodes.size(); ++i) {
       nodes_.push_back(surf.nodes[i]);
       node_body_.push_back(surf.body);
@@ -40,9 +56,9 @@ NodeFaceContact::NodeFaceContact(const Model& model, const ContactSettings& sett
   input_.node_body = node_body_;
   input_.face_body = face_body_;
   for (const Face& f : faces_) input_.face_nodes.push_back(f);
-  if (settings.edge_edge) {
+  if (settings_.edge_edge) {
     Index face_base = 0;
-    for (const Surface& surf : model.surfaces) {
+    for (const Surface& surf : surfaces_) {
       // The two faces at each edge (the surface is closed: every edge has two).
       std::map<Edge, std::array<Index, 2>> at_edge;
       for (std::size_t f = 0; f < surf.faces.size(); ++f)
@@ -65,10 +81,27 @@ NodeFaceContact::NodeFaceContact(const Model& model, const ContactSettings& sett
   input_.node_box.resize(nodes_.size());
   input_.face_box.resize(faces_.size());
   input_.edge_box.resize(edges_.size());
-  // Reach of the binding lists: 0.2 of the mean tet edge over all bodies.
-  double dx = 0.0;
-  for (const Surface& s : model.surfaces) dx += s.mean_edge_length;
-  reach_ = model.surfaces.empty() ? 0.0 : 0.2 * dx / static_cast<double>(model.surfaces.size());
+}
+
+// The surfaces changed: primitives rebuilt from them. The edge pairs in contact are kept,
+// renamed by their nodes (an edge that left the surface leaves its pairs); the binding lists
+// are rebuilt at the next step, since the faces a conversion exposed are in no list yet.
+void NodeFaceContact::surfaces_changed() {
+  std::vector<std::pair<std::array<Edge, 2>, Vec3>> kept;
+  for (const auto& [pair, n] : active_edges_)
+    kept.push_back({{edges_[pair.first], edges_[pair.second]}, n});
+  build_primitives();
+  std::map<Edge, Index> edge_index;
+  for (std::size_t e = 0; e < edges_.size(); ++e)
+    edge_index.emplace(edges_[e], static_cast<Index>(e));
+  active_edges_.clear();
+  for (const auto& [pair, n] : kept) {
+    const auto a = edge_index.find(pair[0]), b = edge_index.find(pair[1]);
+    if (a != edge_index.end() && b != edge_index.end())
+      active_edges_.push_back({{a->second, b->second}, n});
+  }
+  have_lists_ = false;
+  candidates_ = Candidates{};
 }
 
 // The box of the region where detect() accepts a node for face f, at xⁿ and x*: the prism
@@ -77,7 +110,7 @@ NodeFaceContact::NodeFaceContact(const Model& model, const ContactSettings& sett
 // broadphase boxes are enlarged.
 Box NodeFaceContact::layer_box(Index f, const State& st, double margin) const {
   const Face& k = faces_[f];
-  const Tet& tet = model_.mesh.tets[face_tet_[f]];
+  const Tet& tet = mesh_.tets[face_tet_[f]];
   Box box;
   bool first = true;
   double widen = 0.0;
@@ -92,8 +125,9 @@ Box NodeFaceContact::layer_box(Index f, const State& st, double margin) const {
       box.lo = box.lo.cwiseMin(p);
       box.hi = box.hi.cwiseMax(p);
     }
-    widen = std::max(widen, 1e-3 * std::sqrt(std::max({(b - a).squaredNorm(), (c - b).squaredNorm(),
-                                                       (a - c).squaredNorm()})));
+    widen = std::max(
+        widen, k_rim_tolerance * std::sqrt(std::max({(b - a).squaredNorm(), (c - b).squaredNorm(),
+                                                     (a - c).squaredNorm()})));
   }
   box.lo.array() -= margin + widen;
   box.hi.array() += margin + widen;
@@ -137,7 +171,7 @@ std::vector<ContactPoint> NodeFaceContact::detect(const State& st, ContactStepSt
   // Node normals (seed 001's contact normal), only when asked for.
   std::vector<std::vector<Vec3>> normals;
   if (settings_.normal == ContactSettings::Normal::node)
-    for (const Surface& s : model_.surfaces) normals.push_back(node_normals(s, x0));
+    for (const Surface& s : surfaces_) normals.push_back(node_normals(s, x0));
 
   // Binding lists keep a pair for many steps. A pair whose boxes of this step (the node's path,
   // the face's layer) do not overlap cannot be a contact now, since the layer box holds all
@@ -160,7 +194,7 @@ std::vector<ContactPoint> NodeFaceContact::detect(const State& st, ContactStepSt
         continue;
     }
     // The layer a node may enter: the face's tet, its altitude over the face at x*.
-    const Tet& tet = model_.mesh.tets[face_tet_[fi]];
+    const Tet& tet = mesh_.tets[face_tet_[fi]];
     const double vol = tet_signed_volume(x1[tet[0]], x1[tet[1]], x1[tet[2]], x1[tet[3]]);
     const double area = 0.5 * (x1[f[1]] - x1[f[0]]).cross(x1[f[2]] - x1[f[0]]).norm();
     const double depth = area > 0.0 ? 3.0 * vol / area : 0.0;

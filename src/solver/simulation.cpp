@@ -23,26 +23,6 @@ class StageTimer {
 
 }  // namespace
 
-double& StepProfile::operator[](const std::string& name) {
-  for (auto& [n, s] : stages)
-    if (n == name) return s;
-  stages.emplace_back(name, 0.0);
-  return stages.back().second;
-}
-
-double StepProfile::total() const {
-  double t = 0.0;
-  for (const auto& s : stages) t += s.second;
-  return t;
-}
-
-std::vector<Index> all_surface_nodes(const Model& model) {
-  std::vector<Index> nodes;
-  for (const Surface& s : model.surfaces) nodes.insert(nodes.end(), s.nodes.begin(), s.nodes.end());
-  std::sort(nodes.begin(), nodes.end());
-  return nodes;
-}
-
 State initial_state(const Model& model) {
   const Mesh& mesh = model.mesh;
   const std::size_t n = mesh.x.size(), m = mesh.tets.size();
@@ -74,7 +54,11 @@ State initial_state(const Model& model) {
 }
 
 Simulation::Simulation(Model model, SolverSettings settings)
-    : model_(std::move(model)), settings_(settings), state_(initial_state(model_)) {
+    : model_(std::move(model)),
+      settings_(settings),
+      state_(initial_state(model_)),
+      surfaces_(model_.surfaces),
+      element_(model_.element) {
   State& st = state_;
   // The modules this case needs, and nothing else.
   modules_ = {"integrator:central_difference", "elements:linear_tet"};
@@ -102,11 +86,11 @@ Simulation::Simulation(Model model, SolverSettings settings)
   if (!model_.constraints.empty()) modules_.push_back("boundary_conditions");
   if (!model_.walls.empty()) {
     modules_.push_back("response:rigid_walls");
-    surface_nodes_ = all_surface_nodes(model_);
+    surface_nodes_ = all_surface_nodes(surfaces_);
     wall_force_max_.assign(model_.walls.size(), 0.0);
   }
   if (model_.contact) {
-    contact_ = std::make_unique<NodeFaceContact>(model_, *model_.contact);
+    contact_ = std::make_unique<NodeFaceContact>(model_.mesh, surfaces_, *model_.contact);
     modules_.push_back("broadphase:" + model_.contact->broadphase);
     modules_.push_back("narrowphase:node_face");
     modules_.push_back("response:node_face");
@@ -205,7 +189,7 @@ void Simulation::corrections() {
   particle_contacts_.clear();
   if (fragmentation_ && st.particle_count() > 0) {
     StageTimer t(profile_["particles"]);
-    particle_contacts_ = particle_contact_->detect(model_.surfaces, model_.mesh, st);
+    particle_contacts_ = particle_contact_->detect(surfaces_, model_.mesh, st);
     for (const auto& [p, d] : particle_contact_->moves()) {
       st.x[p] += d;
       st.x_star[p] += d;
@@ -305,25 +289,27 @@ void Simulation::commit_stage() {
 }
 
 // Destroyed boundary cells of the last element pass become particles before this one, which
-// then no longer sees them; the surfaces they exposed join the contact search at once.
+// then no longer sees them; the surfaces they exposed join the contact search at once. The
+// model stays as set up: the surfaces of the run are the step's (surfaces_), and the contact
+// modules keep their memory across the change.
 void Simulation::fracture_stage() {
   if (fragmentation_->convert(model_.mesh, model_.materials, state_) == 0) return;
-  model_.surfaces = fragmentation_->surfaces(model_.mesh);
+  surfaces_ = fragmentation_->surfaces(model_.mesh);
   particle_contact_->reset();
-  if (!model_.walls.empty()) surface_nodes_ = all_surface_nodes(model_);
-  if (contact_) contact_ = std::make_unique<NodeFaceContact>(model_, *model_.contact);
+  if (!model_.walls.empty()) surface_nodes_ = all_surface_nodes(surfaces_);
+  if (contact_) contact_->surfaces_changed();
 }
 
 void Simulation::elements_stage() {
   State& st = state_;
   try {
     const ForceResult r = st.step > 0 ? update_material(model_.mesh.tets, model_.materials,
-                                                        model_.element, st.dt_prev, st, scratch_)
-                                      : compute_forces(model_.mesh.tets, model_.element, st);
+                                                        element_, st.dt_prev, st, scratch_)
+                                      : compute_forces(model_.mesh.tets, element_, st);
     critical_tet_ = r.critical_tet;
     if (fragmentation_ && model_.erosion_step_ratio > 0.0) {
       if (st.step == 0)  // the limit: a fraction of the first stable step
-        model_.element.erode_dt2 = std::pow(model_.erosion_step_ratio * r.dt_stable, 2);
+        element_.erode_dt2 = std::pow(model_.erosion_step_ratio * r.dt_stable, 2);
       fragmentation_->erode(r.eroding);
     }
     // No step is shortened to land on end_time: an abrupt change of τ costs the leapfrog

@@ -184,12 +184,12 @@ TEST(Cli, HelpVersionAndUsageErrors) {
   EXPECT_NE(r.out.find("--force"), std::string::npos);
   r = test::run_cli("check --help", dir.str());
   EXPECT_EQ(r.code, 0);
-  EXPECT_NE(r.out.find("usage: tetcontact check"), std::string::npos);
+  EXPECT_NE(r.out.find("Usage: tetcontact check [OPTIONS] case"), std::string::npos) << r.out;
   r = test::run_cli("frobnicate", dir.str());
   EXPECT_EQ(r.code, 2);
   r = test::run_cli("run " + quote(k_case) + " --bogus", dir.str());
   EXPECT_EQ(r.code, 2);
-  EXPECT_NE(r.err.find("unknown option '--bogus'"), std::string::npos);
+  EXPECT_NE(r.err.find("not expected: --bogus"), std::string::npos) << r.err;
   r = test::run_cli("check " + quote(k_case), dir.str());
   EXPECT_EQ(r.code, 0) << r.err;
   EXPECT_NE(r.out.find(": ok"), std::string::npos);

@@ -80,7 +80,7 @@ TEST(Stress, CliReportsZeroDisagreementsAndRejectsBadArguments) {
   EXPECT_NE(r.err.find("micro-scene directory not found"), std::string::npos) << r.err;
   r = test::run_cli("stress --count 0", dir.str());
   EXPECT_EQ(r.code, 2);
-  EXPECT_NE(r.err.find("--count needs a whole number >= 1"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("--count: Value 0 not in range 1"), std::string::npos) << r.err;
 }
 
 // The micro-scenes run through the solver: coincident faces, an edge lying in a face, a
@@ -96,7 +96,7 @@ TEST(Stress, MicroScenesRunWithoutNanInversionOrLostMomentum) {
     EXPECT_GT(r.steps, 10) << r.name;
     EXPECT_LT(r.momentum_error, 1e-12) << r.name;
     EXPECT_LT(r.balance_error, 0.01) << r.name;
-    EXPECT_LT(r.max_depth_over_h, 1e-3) << r.name;
+    EXPECT_LT(r.penetration.max_depth_over_h, 1e-3) << r.name;
   }
   EXPECT_EQ(names, "coincident-faces edge-in-face point-touch vertex-on-edge ");
 
@@ -114,4 +114,21 @@ TEST(Stress, MicroScenesRunWithoutNanInversionOrLostMomentum) {
   EXPECT_FALSE(crash[0].pass);
   EXPECT_NE(crash[0].status.find("failed"), std::string::npos) << crash[0].status;
   EXPECT_THROW(run_micro_scenes(dir / "none"), std::runtime_error);
+}
+
+// The pass rule checks contact: with contact off every scene still runs (no NaN, momentum
+// kept) but misses its penetration bound (depth 0.16 of a cell against bounds of 1e-6 to 4e-5).
+TEST(Stress, MicroScenesFailWithContactOff) {
+  const std::vector<SceneResult> scenes =
+      run_micro_scenes(default_scenes_dir(), {"contact.enabled=false"});
+  ASSERT_EQ(scenes.size(), 4u);
+  for (const SceneResult& r : scenes) {
+    EXPECT_EQ(r.status, "ok") << r.name;
+    EXPECT_LT(r.momentum_error, 1e-12) << r.name;
+    EXPECT_FALSE(r.pass) << r.name;
+    bool depth_missed = false;
+    for (const ExpectResult& e : r.expect)
+      if (e.name == "max_depth_over_h") depth_missed = !e.pass;
+    EXPECT_TRUE(depth_missed) << r.name;
+  }
 }

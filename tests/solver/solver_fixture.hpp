@@ -2,7 +2,7 @@
 #pragma once
 
 #include "tetcontact/mesh/generators.hpp"
-#include "tetcontact/solver/model.hpp"
+#include "tetcontact/model/model.hpp"
 
 namespace tc::test {
 

@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "tetcontact/io/case.hpp"
-#include "tetcontact/solver/model.hpp"
+#include "tetcontact/model/model.hpp"
 
 namespace tc {
 

@@ -7,8 +7,8 @@
 #include <vector>
 
 #include "tetcontact/broadphase/broadphase.hpp"
-#include "tetcontact/solver/model.hpp"
-#include "tetcontact/solver/state.hpp"
+#include "tetcontact/model/model.hpp"
+#include "tetcontact/model/state.hpp"
 
 namespace tc {
 

@@ -6,8 +6,8 @@
 #include <string>
 #include <vector>
 
-#include "tetcontact/solver/model.hpp"
-#include "tetcontact/solver/state.hpp"
+#include "tetcontact/model/model.hpp"
+#include "tetcontact/model/state.hpp"
 
 namespace tc {
 

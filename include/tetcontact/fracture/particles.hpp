@@ -14,8 +14,8 @@
 #include "tetcontact/broadphase/broadphase.hpp"
 #include "tetcontact/material/material.hpp"
 #include "tetcontact/mesh/surface.hpp"
+#include "tetcontact/model/state.hpp"
 #include "tetcontact/response/impulse.hpp"
-#include "tetcontact/solver/state.hpp"
 
 namespace tc {
 

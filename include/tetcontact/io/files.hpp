@@ -34,6 +34,12 @@ class AtomicFile {
   bool committed_ = false;
 };
 
+/// The folder of tetcontact's data (materials.yaml, cases/): $TETCONTACT_DATA when set, else
+/// `data` beside the folder of the running program (build/tetcontact finds the source tree's
+/// data/), else `data` beside the program itself. No source path is compiled in: the program
+/// works from a copied or moved tree. Throws std::runtime_error naming the places looked at.
+std::string data_dir();
+
 /// Shortest decimal form that reads back to the same double ("nan"/"inf" for non-finite).
 std::string format_double(double v);
 

@@ -11,7 +11,7 @@
 #include "tetcontact/diagnostics/penetration.hpp"
 #include "tetcontact/io/case.hpp"
 #include "tetcontact/io/files.hpp"
-#include "tetcontact/solver/simulation.hpp"
+#include "tetcontact/model/sample.hpp"
 
 namespace tc {
 

@@ -5,8 +5,8 @@
 #include <utility>
 #include <vector>
 
-#include "tetcontact/solver/model.hpp"
-#include "tetcontact/solver/state.hpp"
+#include "tetcontact/model/model.hpp"
+#include "tetcontact/model/state.hpp"
 
 namespace tc {
 

@@ -13,11 +13,19 @@ namespace tc {
 /// n_i · (p − x_i) ≤ 0 for the outward normal n_i of every face and a point x_i of it.
 bool point_in_tet(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d);
 
+/// The rim tolerance of node–face contact, as a fraction of a face's longest edge: a point up
+/// to this far outside a face (measured from the face) still counts as over it. behind_face
+/// accepts with it and the contact's layer boxes are widened by it; binding lists on and off
+/// give identical contacts only while the two agree, so both use this one constant.
+inline constexpr double k_rim_tolerance = 1e-3;
+
 /// Whether p lies behind the plane of the outward triangle (a, b, c) (normal (b−a)×(c−a)) by
-/// at most `depth`, and projects into the triangle or within 1e-3 of its longest edge of it
+/// at most `depth`, and projects into the triangle or within k_rim_tolerance of its longest
+/// edge of it
 /// (a node on the rim of one surface stays on the rim of the other under round-off): the
 /// node–face contact condition of seed 001, a node that has entered the other body's boundary
-/// layer. Everything it accepts lies in the prism's box widened by 1e-3 of the longest edge.
+/// layer. Everything it accepts lies in the prism's box widened by k_rim_tolerance of the
+/// longest edge.
 bool behind_face(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c, double depth);
 
 /// Closest point of triangle (a, b, c) to p: barycentric weights (≥ 0, sum 1) and distance.

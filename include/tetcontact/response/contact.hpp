@@ -10,40 +10,10 @@
 
 #include "tetcontact/broadphase/broadphase.hpp"
 #include "tetcontact/mesh/surface.hpp"
+#include "tetcontact/model/model.hpp"
 #include "tetcontact/response/impulse.hpp"
 
 namespace tc {
-
-struct Model;
-
-/// Friction of one body pair (case file `contact.pairs`).
-struct PairFriction {
-  Index body_a = 0, body_b = 0;
-  FrictionMode mode = FrictionMode::slip;
-  double coefficient = 0.0;
-};
-
-struct ContactSettings {
-  std::string broadphase = "fcl_tree";
-  double margin = 0.0;  // m, added to every swept box
-  int passes = 3;       // sequential correction passes per step
-  enum class Order { input, lighter_first } order = Order::lighter_first;
-  /// face: the normal of the penetrated face (default); node: minus the averaged normal of
-  /// the faces around the penetrating node (seed 001).
-  enum class Normal { face, node } normal = Normal::face;
-  FrictionMode mode = FrictionMode::slip;  // for body pairs not listed in `pairs`
-  double coefficient = 0.0;
-  std::vector<PairFriction> pairs;
-  /// Seed 001's binding lists: candidates from boxes enlarged by a reach r = 0.2·dx (half of
-  /// the 0.4·dx the seed leaves between Rs and 0.75·Rmax; dx the mean tet edge), reused until
-  /// a surface node has moved r from where the lists were built. Off: the exact swept boxes
-  /// of every step.
-  bool binding_lists = true;
-  /// Seed 000's edge–edge contact on top of node–face: surface edges of different bodies that
-  /// cross during the step (exact CCD) get the reaction of eqs. (11)–(12). Off by default
-  /// until the exact test is fast (it costs ~0.2 ms a pair).
-  bool edge_edge = false;
-};
 
 /// Per-step figures of the contact stage.
 struct ContactStepStats {
@@ -58,7 +28,15 @@ struct ContactStepStats {
 
 class NodeFaceContact {
  public:
-  NodeFaceContact(const Model& model, const ContactSettings& settings);
+  /// `surfaces` are the live surfaces of the run (owned by the caller, read at every step):
+  /// after they change, call surfaces_changed().
+  NodeFaceContact(const Mesh& mesh, const std::vector<Surface>& surfaces,
+                  const ContactSettings& settings);
+
+  /// The surfaces changed (cells turned into particles exposed new faces): the primitives are
+  /// rebuilt; the edge pairs in contact are kept (by their nodes); the binding lists are
+  /// rebuilt at the next step.
+  void surfaces_changed();
 
   /// Contacts of this step: every surface node of one body against the faces of the others
   /// (symmetric), from positions xⁿ (st.x) and x* (st.x_star). A candidate is a contact when
@@ -73,8 +51,10 @@ class NodeFaceContact {
   const Broadphase& broadphase() const { return *broadphase_; }
 
  private:
+  void build_primitives();
   Box layer_box(Index face, const State& st, double margin) const;
-  const Model& model_;
+  const Mesh& mesh_;
+  const std::vector<Surface>& surfaces_;
   ContactSettings settings_;
   std::unique_ptr<Broadphase> broadphase_;
   // Surface primitives of all bodies.

@@ -7,11 +7,10 @@
 #include <array>
 #include <vector>
 
-#include "tetcontact/solver/state.hpp"
+#include "tetcontact/model/model.hpp"
+#include "tetcontact/model/state.hpp"
 
 namespace tc {
-
-enum class FrictionMode { slip, stick, coulomb };
 
 struct ContactPoint {
   std::array<Index, 4> a_nodes{};

@@ -5,16 +5,10 @@
 #include <string>
 #include <vector>
 
-#include "tetcontact/solver/state.hpp"
+#include "tetcontact/model/model.hpp"
+#include "tetcontact/model/state.hpp"
 
 namespace tc {
-
-struct RigidWall {
-  std::string name;
-  Vec3 point = Vec3::Zero();
-  Vec3 normal = Vec3::UnitZ();  // unit, pointing to the side the bodies are on
-  double friction = 0.0;        // Coulomb coefficient k (0: ideal slip)
-};
 
 struct WallResult {
   Vec3 impulse = Vec3::Zero();  // impulse given to the bodies this step (N s)

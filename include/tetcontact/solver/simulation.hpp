@@ -9,28 +9,15 @@
 
 #include "tetcontact/diagnostics/balance.hpp"
 #include "tetcontact/diagnostics/reference.hpp"
+#include "tetcontact/element/element.hpp"
 #include "tetcontact/fracture/particles.hpp"
+#include "tetcontact/model/model.hpp"
+#include "tetcontact/model/sample.hpp"
+#include "tetcontact/model/state.hpp"
+#include "tetcontact/response/contact.hpp"
 #include "tetcontact/response/wall.hpp"
-#include "tetcontact/solver/element.hpp"
-#include "tetcontact/solver/model.hpp"
-#include "tetcontact/solver/state.hpp"
 
 namespace tc {
-
-/// Seconds spent in each stage over the run, in pipeline order.
-struct StepProfile {
-  std::vector<std::pair<std::string, double>> stages;
-  double& operator[](const std::string& name);
-  double total() const;
-};
-
-/// A stage that looks at the complete state at t^n (positions, stresses, U^n and U^{n+1})
-/// once per step: output writers, diagnostics.
-class Observer {
- public:
-  virtual ~Observer() = default;
-  virtual void observe(const State& st, const Sample& sample) = 0;
-};
 
 /// The state at t = 0: reference positions, initial velocities, lumped masses (a quarter of
 /// each tet's mass on each of its nodes), zero stress, sound speeds.
@@ -53,6 +40,9 @@ class Simulation {
 
   const State& state() const { return state_; }
   const Model& model() const { return model_; }
+  /// The surfaces of the run now: the model's, less the faces of cells turned into particles,
+  /// plus the faces those exposed.
+  const std::vector<Surface>& surfaces() const { return surfaces_; }
   const SolverSettings& settings() const { return settings_; }
   const Sample& first_sample() const { return first_; }
   const Sample& last_sample() const { return last_; }
@@ -99,9 +89,11 @@ class Simulation {
   void corrections();
   [[noreturn]] void rethrow_with_body(const InvertedElement& e) const;
 
-  Model model_;
+  const Model model_;  // as set up: never changed during the run
   SolverSettings settings_;
   State state_;
+  std::vector<Surface> surfaces_;  // the run's surfaces (fracture exposes new faces)
+  ElementOptions element_;         // the model's, with the erosion limit of the first step
   NodalScratch scratch_;
   std::vector<Index> surface_nodes_;
   std::vector<WallResult> wall_results_;

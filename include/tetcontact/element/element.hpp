@@ -5,7 +5,8 @@
 #include <string>
 #include <vector>
 
-#include "tetcontact/solver/state.hpp"
+#include "tetcontact/model/model.hpp"
+#include "tetcontact/model/state.hpp"
 
 namespace tc {
 
@@ -34,17 +35,6 @@ struct InvertedElement : RunFailure {
   a[0] = -(a[1] + a[2] + a[3]);
   return a;
 }
-
-/// Options of the element formulation, from the case's `solver` section.
-struct ElementOptions {
-  double viscosity_linear = 0.06;            // C1 of bulk_viscosity
-  double viscosity_quadratic = 1.5;          // C2 of bulk_viscosity
-  std::vector<char> average_nodal_pressure;  // per material: pressure averaged at nodes
-  bool fracture = false;                     // spall damage and loosening (seed 000)
-  /// Erosion (a safeguard, fracture.erosion_step_ratio): tets whose stable step squared falls
-  /// below this are listed in ForceResult::eroding (0: off).
-  double erode_dt2 = 0.0;
-};
 
 /// Scratch arrays of the average-nodal-pressure passes, sized on first use.
 struct NodalScratch {

@@ -5,8 +5,8 @@
 
 #include <Eigen/Eigenvalues>
 
-#include "solver_fixture.hpp"
-#include "tetcontact/solver/element.hpp"
+#include "../solver/solver_fixture.hpp"
+#include "tetcontact/element/element.hpp"
 #include "tetcontact/solver/simulation.hpp"
 
 using namespace tc;

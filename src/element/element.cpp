@@ -1,4 +1,4 @@
-#include "tetcontact/solver/element.hpp"
+#include "tetcontact/element/element.hpp"
 
 #include <Eigen/Eigenvalues>
 #include <algorithm>

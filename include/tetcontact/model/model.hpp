@@ -1,0 +1,100 @@
+// Everything the solver needs from a case, as plain data: the data layer below every stage
+// (ARCHITECTURE.md, "Folder order"). Built once by the setup and never changed during a run;
+// what a run changes (positions, stresses, cells turned into particles, the surfaces they
+// expose) lives in State and in the stages that own it.
+#pragma once
+
+#include <array>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "tetcontact/material/material.hpp"
+#include "tetcontact/mesh/mesh.hpp"
+#include "tetcontact/mesh/surface.hpp"
+
+namespace tc {
+
+enum class FrictionMode { slip, stick, coulomb };
+
+/// Friction of one body pair (case file `contact.pairs`).
+struct PairFriction {
+  Index body_a = 0, body_b = 0;
+  FrictionMode mode = FrictionMode::slip;
+  double coefficient = 0.0;
+};
+
+struct ContactSettings {
+  std::string broadphase = "fcl_tree";
+  double margin = 0.0;  // m, added to every swept box
+  int passes = 3;       // sequential correction passes per step
+  enum class Order { input, lighter_first } order = Order::lighter_first;
+  /// face: the normal of the penetrated face (default); node: minus the averaged normal of
+  /// the faces around the penetrating node (seed 001).
+  enum class Normal { face, node } normal = Normal::face;
+  FrictionMode mode = FrictionMode::slip;  // for body pairs not listed in `pairs`
+  double coefficient = 0.0;
+  std::vector<PairFriction> pairs;
+  /// Seed 001's binding lists: candidates from boxes enlarged by a reach r = 0.2·dx (half of
+  /// the 0.4·dx the seed leaves between Rs and 0.75·Rmax; dx the mean tet edge), reused until
+  /// a surface node has moved r from where the lists were built. Off: the exact swept boxes
+  /// of every step.
+  bool binding_lists = true;
+  /// Seed 000's edge–edge contact on top of node–face: surface edges of different bodies that
+  /// cross during the step (exact CCD) get the reaction of eqs. (11)–(12). Off by default
+  /// until the exact test is fast (it costs ~0.2 ms a pair).
+  bool edge_edge = false;
+};
+
+struct RigidWall {
+  std::string name;
+  Vec3 point = Vec3::Zero();
+  Vec3 normal = Vec3::UnitZ();  // unit, pointing to the side the bodies are on
+  double friction = 0.0;        // Coulomb coefficient k (0: ideal slip)
+};
+
+/// Options of the element formulation, from the case's `solver` section.
+struct ElementOptions {
+  double viscosity_linear = 0.06;            // C1 of bulk_viscosity
+  double viscosity_quadratic = 1.5;          // C2 of bulk_viscosity
+  std::vector<char> average_nodal_pressure;  // per material: pressure averaged at nodes
+  bool fracture = false;                     // spall damage and loosening (seed 000)
+  /// Erosion (a safeguard, fracture.erosion_step_ratio): tets whose stable step squared falls
+  /// below this are listed in ForceResult::eroding (0: off).
+  double erode_dt2 = 0.0;
+};
+
+/// Prescribed velocity components on a set of nodes (a fixed node prescribes zero).
+struct VelocityConstraint {
+  std::string name;  // e.g. "boundary_conditions.0"
+  std::vector<Index> nodes;
+  std::array<bool, 3> components{true, true, true};
+  Vec3 velocity = Vec3::Zero();
+};
+
+struct Model {
+  Mesh mesh;
+  std::vector<Surface> surfaces;     // one per body
+  std::vector<Material> materials;   // distinct materials used
+  std::vector<Index> body_material;  // body → materials index
+  std::vector<VelocityConstraint> constraints;
+  std::vector<RigidWall> walls;
+  std::optional<ContactSettings> contact;  // the contact stage, when the case enables it
+  std::vector<Vec3> initial_velocity;      // per node
+  ElementOptions element;                  // viscosity, average nodal pressure per material
+  bool particles = false;  // destroyed boundary cells become particles (fracture.particles)
+  /// Erosion (with particles): a cell whose stable step falls below this fraction of the
+  /// first step's becomes a particle wherever it is (fracture.erosion_step_ratio; 0: off).
+  double erosion_step_ratio = 0.0;
+};
+
+/// Surface nodes of every body, sorted (the nodes that can touch a wall or another body).
+std::vector<Index> all_surface_nodes(const std::vector<Surface>& surfaces);
+
+struct SolverSettings {
+  double end_time = 0.0;
+  double cfl = 0.5;
+  long max_steps = 10'000'000;
+};
+
+}  // namespace tc
