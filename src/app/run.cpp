@@ -478,6 +478,7 @@ int run_case(const RunOptions& o) {
       o["tolerance"] = r.judged ? Json(r.spec->tolerance) : Json();
       o["pass"] = r.judged ? Json(r.pass) : Json();
       o["source"] = r.spec->source;
+      o["kind"] = r.spec->kind;
       if (!r.error.empty()) o["error"] = r.error;
       list.push_back(o);
       all = all && r.pass;
@@ -496,11 +497,12 @@ int run_case(const RunOptions& o) {
         std::printf("  measure    %-28s %.5g\n", r.spec->name.c_str(), r.measured);
       else
         std::printf(
-            "  reference  %-28s measured %-11.5g reference %-11.5g error %+7.2f%% (tolerance "
+            "  %-10s %-28s measured %-11.5g reference %-11.5g error %+7.2f%% (tolerance "
             "%.1f%%) "
             "%s\n",
-            r.spec->name.c_str(), r.measured, r.spec->value, 100 * r.relative_error,
-            100 * r.spec->tolerance, r.pass ? "pass" : "FAIL");
+            r.spec->kind == "regression" ? "regression" : "reference", r.spec->name.c_str(),
+            r.measured, r.spec->value, 100 * r.relative_error, 100 * r.spec->tolerance,
+            r.pass ? "pass" : "FAIL");
   }
   if (!o.quiet || code != 0) std::cout << expect_lines;
   if (o.check && code != 0 && status == "ok")

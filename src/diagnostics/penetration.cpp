@@ -10,19 +10,20 @@ PenetrationProbe::PenetrationProbe(const Model& model)
     : model_(model), broadphase_(make_broadphase("sweep")) {}
 
 Penetration PenetrationProbe::measure(const State& st) {
-  return measure(st.x, st.damage, st.first_particle);
+  return measure(st.x, st.surfaces, st.damage, st.first_particle);
 }
 
 Penetration PenetrationProbe::measure(const std::vector<Vec3>& x) {
-  return measure(x, {}, static_cast<Index>(x.size()));
+  return measure(x, model_.surfaces, {}, static_cast<Index>(x.size()));
 }
 
-Penetration PenetrationProbe::measure(const std::vector<Vec3>& x, const std::vector<Damage>& damage,
-                                      Index first_particle) {
+Penetration PenetrationProbe::measure(const std::vector<Vec3>& x,
+                                      const std::vector<Surface>& surfaces,
+                                      const std::vector<Damage>& damage, Index first_particle) {
   // The surfaces as they are now (fracture changes them).
   nodes_.clear(), node_body_.clear(), edges_.clear(), edge_body_.clear();
   faces_.clear(), face_body_.clear(), body_h_.clear();
-  for (const Surface& s : model_.surfaces) {
+  for (const Surface& s : surfaces) {
     for (Index n : s.nodes) nodes_.push_back(n), node_body_.push_back(s.body);
     for (const Edge& e : s.edges) edges_.push_back(e), edge_body_.push_back(s.body);
     for (const Face& f : s.faces) faces_.push_back(f), face_body_.push_back(s.body);

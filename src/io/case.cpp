@@ -707,9 +707,14 @@ Case load_case(const std::string& path, const std::vector<std::string>& override
     r.each(refs, "reference", "reference values", [&](const YAML::Node& n, const std::string& p) {
       r.keys(n, p,
              {"name", "measure", "body", "axis", "component", "region", "area", "value",
-              "tolerance", "source"});
+              "tolerance", "source", "kind"});
       ReferenceSpec ref;
       ref.name = r.string(r.require(n, p, "name"), join(p, "name"));
+      if (n["kind"]) {
+        ref.kind = r.string(n["kind"], join(p, "kind"));
+        if (ref.kind != "physical" && ref.kind != "regression")
+          r.fail(n["kind"], join(p, "kind"), "kind must be physical or regression");
+      }
       const YAML::Node m = r.require(n, p, "measure");
       const std::string measure = r.string(m, join(p, "measure"));
       using M = ReferenceSpec::Measure;

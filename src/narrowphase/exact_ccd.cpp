@@ -584,9 +584,10 @@ bool coplanarity_never_zero(const std::array<Vec3, 8>& q, int o, int i, int j, i
 // contact (when no time is asked: a time is always exact); NaN: undecided.
 double filters(const std::array<Vec3, 8>& q, const std::array<int, 8>& side,
                const std::array<int, 4>& det, Certain (*interval)(const std::array<Vec3, 8>&),
-               bool earliest) {
-  if (boxes_apart(q, side)) return -1.0;
-  if (coplanarity_never_zero(q, det[0], det[1], det[2], det[3])) return -1.0;
+               bool earliest, const CcdFilters& use) {
+  if (use.boxes && boxes_apart(q, side)) return -1.0;
+  if (use.coplanarity && coplanarity_never_zero(q, det[0], det[1], det[2], det[3])) return -1.0;
+  if (!use.interval) return std::nan("");
   const Certain sure = interval(q);
   if (sure == Certain::no) return -1.0;
   if (sure == Certain::yes && !earliest) return 0.0;
@@ -600,10 +601,10 @@ std::array<PVec, 4> moving_points(const std::array<Vec3, 8>& q) {
           moving(q[3], q[7], E)};
 }
 
-double vertex_face_query(const std::array<Vec3, 8>& q, bool earliest) {
+double vertex_face_query(const std::array<Vec3, 8>& q, bool earliest, const CcdFilters& use) {
   // det[b − a, c − a, p − a] for q = p, a, b, c.
   const double f =
-      filters(q, {0, 1, 1, 1, 0, 1, 1, 1}, {1, 2, 3, 0}, interval_vertex_face_ccd, earliest);
+      filters(q, {0, 1, 1, 1, 0, 1, 1, 1}, {1, 2, 3, 0}, interval_vertex_face_ccd, earliest, use);
   if (!std::isnan(f)) return f;
   const auto [p, a, b, c] = moving_points(q);
   const Poly coplanar = dot(cross(sub(b, a), sub(c, a)), sub(p, a));
@@ -613,10 +614,10 @@ double vertex_face_query(const std::array<Vec3, 8>& q, bool earliest) {
   return exists(coplanar, {}, meet, earliest);
 }
 
-double edge_edge_query(const std::array<Vec3, 8>& q, bool earliest) {
+double edge_edge_query(const std::array<Vec3, 8>& q, bool earliest, const CcdFilters& use) {
   // det[b − a, c − a, d − a] for q = a, b, c, d.
   const double f =
-      filters(q, {0, 0, 1, 1, 0, 0, 1, 1}, {0, 1, 2, 3}, interval_edge_edge_ccd, earliest);
+      filters(q, {0, 0, 1, 1, 0, 0, 1, 1}, {0, 1, 2, 3}, interval_edge_edge_ccd, earliest, use);
   if (!std::isnan(f)) return f;
   const auto [a, b, c, d] = moving_points(q);
   const Poly coplanar = dot(cross(sub(b, a), sub(c, a)), sub(d, a));
@@ -629,18 +630,24 @@ double edge_edge_query(const std::array<Vec3, 8>& q, bool earliest) {
 
 }  // namespace
 
+bool exact_vertex_face_ccd(const std::array<Vec3, 8>& q, const CcdFilters& filters) {
+  return vertex_face_query(q, false, filters) >= 0.0;
+}
+bool exact_edge_edge_ccd(const std::array<Vec3, 8>& q, const CcdFilters& filters) {
+  return edge_edge_query(q, false, filters) >= 0.0;
+}
 bool exact_vertex_face_ccd(const std::array<Vec3, 8>& q) {
-  return vertex_face_query(q, false) >= 0.0;
+  return exact_vertex_face_ccd(q, CcdFilters{});
 }
 bool exact_edge_edge_ccd(const std::array<Vec3, 8>& q) {
-  return edge_edge_query(q, false) >= 0.0;
+  return exact_edge_edge_ccd(q, CcdFilters{});
 }
 std::optional<double> exact_vertex_face_toi(const std::array<Vec3, 8>& q) {
-  const double t = vertex_face_query(q, true);
+  const double t = vertex_face_query(q, true, CcdFilters{});
   return t >= 0.0 ? std::optional<double>(t) : std::nullopt;
 }
 std::optional<double> exact_edge_edge_toi(const std::array<Vec3, 8>& q) {
-  const double t = edge_edge_query(q, true);
+  const double t = edge_edge_query(q, true, CcdFilters{});
   return t >= 0.0 ? std::optional<double>(t) : std::nullopt;
 }
 

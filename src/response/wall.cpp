@@ -25,23 +25,31 @@ std::vector<ContactPoint> wall_contacts(const std::vector<RigidWall>& walls,
   return out;
 }
 
+std::vector<std::vector<ContactPoint>> wall_contact_lists(const std::vector<RigidWall>& walls,
+                                                          const std::vector<Index>& nodes,
+                                                          const State& st) {
+  std::vector<std::vector<ContactPoint>> lists(walls.size());
+  for (std::size_t w = 0; w < walls.size(); ++w) lists[w] = wall_contacts({walls[w]}, nodes, st);
+  return lists;
+}
+
+std::vector<WallResult> wall_results(const std::vector<std::vector<ContactPoint>>& lists) {
+  std::vector<WallResult> results(lists.size());
+  for (std::size_t w = 0; w < lists.size(); ++w)
+    for (const ContactPoint& c : lists[w]) {
+      results[w].impulse += c.lambda * c.normal + c.tangential;
+      results[w].contacts += c.lambda > 0.0;
+    }
+  return results;
+}
+
 std::vector<WallResult> apply_walls(const std::vector<RigidWall>& walls,
                                     const std::vector<Index>& nodes, State& st) {
-  std::vector<WallResult> results(walls.size());
+  std::vector<std::vector<ContactPoint>> lists = wall_contact_lists(walls, nodes, st);
   for (Vec3& j : st.wall_impulse) j.setZero();
-  for (std::size_t w = 0; w < walls.size(); ++w) {
-    std::vector<ContactPoint> contacts = wall_contacts({walls[w]}, nodes, st);
-    for (ContactPoint& c : contacts) {
-      const Vec3 before = st.wall_impulse[c.a_nodes[0]];
-      apply_contact(c, st, st.dt, st.wall_impulse);
-      const Vec3 j = st.wall_impulse[c.a_nodes[0]] - before;
-      if (j.squaredNorm() > 0.0) {
-        results[w].impulse += j;
-        ++results[w].contacts;
-      }
-    }
-  }
-  return results;
+  for (auto& list : lists)
+    for (ContactPoint& c : list) apply_contact(c, st, st.dt, st.wall_impulse);
+  return wall_results(lists);
 }
 
 }  // namespace tc

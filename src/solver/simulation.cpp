@@ -28,6 +28,7 @@ State initial_state(const Model& model) {
   const std::size_t n = mesh.x.size(), m = mesh.tets.size();
   State st;
   st.x = mesh.x;
+  st.surfaces = model.surfaces;
   st.first_particle = static_cast<Index>(n);
   st.v = model.initial_velocity;
   st.v.resize(n, Vec3::Zero());
@@ -57,7 +58,6 @@ Simulation::Simulation(Model model, SolverSettings settings)
     : model_(std::move(model)),
       settings_(settings),
       state_(initial_state(model_)),
-      surfaces_(model_.surfaces),
       element_(model_.element) {
   State& st = state_;
   // The modules this case needs, and nothing else.
@@ -86,11 +86,11 @@ Simulation::Simulation(Model model, SolverSettings settings)
   if (!model_.constraints.empty()) modules_.push_back("boundary_conditions");
   if (!model_.walls.empty()) {
     modules_.push_back("response:rigid_walls");
-    surface_nodes_ = all_surface_nodes(surfaces_);
+    surface_nodes_ = all_surface_nodes(state_.surfaces);
     wall_force_max_.assign(model_.walls.size(), 0.0);
   }
   if (model_.contact) {
-    contact_ = std::make_unique<NodeFaceContact>(model_.mesh, surfaces_, *model_.contact);
+    contact_ = std::make_unique<NodeFaceContact>(model_.mesh, state_.surfaces, *model_.contact);
     modules_.push_back("broadphase:" + model_.contact->broadphase);
     modules_.push_back("narrowphase:node_face");
     modules_.push_back("response:node_face");
@@ -177,9 +177,8 @@ void Simulation::finish() {
 void Simulation::corrections() {
   if (model_.walls.empty() && !contact_ && !fragmentation_) return;
   State& st = state_;
-  std::vector<std::vector<ContactPoint>> walls(model_.walls.size());
-  for (std::size_t w = 0; w < model_.walls.size(); ++w)
-    walls[w] = wall_contacts({model_.walls[w]}, surface_nodes_, st);
+  std::vector<std::vector<ContactPoint>> walls =
+      wall_contact_lists(model_.walls, surface_nodes_, st);
   contacts_.clear();
   if (contact_) {
     contacts_ = contact_->detect(st, contact_stats_);
@@ -189,7 +188,7 @@ void Simulation::corrections() {
   particle_contacts_.clear();
   if (fragmentation_ && st.particle_count() > 0) {
     StageTimer t(profile_["particles"]);
-    particle_contacts_ = particle_contact_->detect(surfaces_, model_.mesh, st);
+    particle_contacts_ = particle_contact_->detect(state_.surfaces, model_.mesh, st);
     for (const auto& [p, d] : particle_contact_->moves()) {
       st.x[p] += d;
       st.x_star[p] += d;
@@ -209,12 +208,7 @@ void Simulation::corrections() {
   }
   for (const ContactPoint& c : particle_contacts_)
     contact_totals_.particle_contacts += c.lambda > 0.0;
-  wall_results_.assign(model_.walls.size(), WallResult{});
-  for (std::size_t w = 0; w < walls.size(); ++w)
-    for (const ContactPoint& c : walls[w]) {
-      wall_results_[w].impulse += c.lambda * c.normal + c.tangential;
-      wall_results_[w].contacts += c.lambda > 0.0;
-    }
+  wall_results_ = wall_results(walls);
 }
 
 void Simulation::predict_stage() {
@@ -290,13 +284,13 @@ void Simulation::commit_stage() {
 
 // Destroyed boundary cells of the last element pass become particles before this one, which
 // then no longer sees them; the surfaces they exposed join the contact search at once. The
-// model stays as set up: the surfaces of the run are the step's (surfaces_), and the contact
+// model stays as set up: the surfaces of the run are the state's (State::surfaces), and the contact
 // modules keep their memory across the change.
 void Simulation::fracture_stage() {
   if (fragmentation_->convert(model_.mesh, model_.materials, state_) == 0) return;
-  surfaces_ = fragmentation_->surfaces(model_.mesh);
+  state_.surfaces = fragmentation_->surfaces(model_.mesh);
   particle_contact_->reset();
-  if (!model_.walls.empty()) surface_nodes_ = all_surface_nodes(surfaces_);
+  if (!model_.walls.empty()) surface_nodes_ = all_surface_nodes(state_.surfaces);
   if (contact_) contact_->surfaces_changed();
 }
 

@@ -105,7 +105,8 @@ TEST(Wall, ElasticBarOnWallMatchesOneDimensionalTheory) {
   const double duration = last - first, expected = 2 * L / c;
   EXPECT_NEAR(duration / expected, 1.0, 0.05) << duration << " s vs " << expected << " s";
   const double force = mat.density * c * v0 * a * a;
-  EXPECT_NEAR(sim.wall_force_max()[0] / force, 1.0, 0.25) << "peak " << sim.wall_force_max()[0];
+  // The peak overshoots ρcv at the front by 11.8 % on this mesh (measured).
+  EXPECT_NEAR(sim.wall_force_max()[0] / force, 1.0, 0.15) << "peak " << sim.wall_force_max()[0];
   const double mean_force = impulse / duration;
   EXPECT_NEAR(mean_force / force, 1.0, 0.05) << "mean " << mean_force << " N vs " << force;
   const Sample& end = sim.last_sample();
@@ -115,5 +116,5 @@ TEST(Wall, ElasticBarOnWallMatchesOneDimensionalTheory) {
   // Momentum balance with the wall's impulse, and energy balance with its work.
   EXPECT_LT((end.momentum - sim.first_sample().momentum - end.external_impulse()).norm(),
             1e-12 * end.momentum_scale);
-  EXPECT_LT(sim.balance_error_max(), 0.01);
+  EXPECT_LT(sim.balance_error_max(), 4e-4);  // 3.7e-5 measured
 }

@@ -34,7 +34,7 @@ TEST(Conservation, MomentumInFreeFlightToRoundOff) {
 }
 
 // The vibration case: ≥ 2,000 steps of free elastic vibration, energy balance within 0.5%.
-TEST(Conservation, ElasticVibrationEnergyWithinHalfPercent) {
+TEST(Conservation, ElasticVibrationEnergyBalance) {
   const Case c = load_case(test::source_path("data/cases/elastic-vibration.yaml"));
   Simulation sim(build_model(c), solver_settings(c));
   while (!sim.done()) sim.step();
@@ -45,7 +45,7 @@ TEST(Conservation, ElasticVibrationEnergyWithinHalfPercent) {
   // the middle plane's share (1/41 of the lattice planes, half-weight tets around it).
   EXPECT_GT(first.kinetic, 0.0130);
   EXPECT_LT(first.kinetic, 0.0135);
-  EXPECT_LT(sim.balance_error_max(), 0.005);
+  EXPECT_LT(sim.balance_error_max(), 4e-4);  // 4.3e-5 measured
   // Energy really moves between kinetic and internal.
   EXPECT_GT(sim.last_sample().internal, 0.01 * first.kinetic);
   EXPECT_LT((sim.last_sample().momentum - first.momentum).norm(), 1e-12 * first.momentum_scale);
@@ -70,7 +70,7 @@ TEST(Conservation, BoundaryWorkClosesDrivenBar) {
   sim.finish();
   const Sample& s = sim.last_sample();
   EXPECT_GT(s.boundary.work, 0.0);
-  EXPECT_LT(sim.balance_error_max(), 0.005);
+  EXPECT_LT(sim.balance_error_max(), 5e-6);  // 5.0e-7 measured
   // Momentum gained equals the impulse the boundary gave.
   EXPECT_LT((s.momentum - sim.first_sample().momentum - s.boundary.impulse).norm(),
             1e-9 * s.momentum_scale);

@@ -29,8 +29,8 @@ TEST(Validation, BallPerforatesPlateAndConversionsConserve) {
   // Conservation through every conversion.
   const Sample &first = sim.first_sample(), &last = sim.last_sample();
   EXPECT_LT(std::abs(last.mass - first.mass), 1e-13 * first.mass);
-  EXPECT_LT(momentum_error(first, last), 1e-10);
-  EXPECT_LT(sim.balance_error_max(), 0.02);
+  EXPECT_LT(momentum_error(first, last), 1e-13);  // 1.5e-15 measured
+  EXPECT_LT(sim.balance_error_max(), 4e-4);       // 3.5e-5 measured
   ASSERT_NE(sim.conversions(), nullptr);
   EXPECT_LT(sim.conversions()->momentum_error, 1e-14);
   for (const Vec3& x : st.x) ASSERT_TRUE(x.allFinite());

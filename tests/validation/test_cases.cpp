@@ -34,15 +34,17 @@ Outcome run_case(const std::string& file, const std::vector<std::string>& overri
   return o;
 }
 
-void expect_all_pass(const Outcome& o) {
+// Every declared reference passes; the energy balance holds to `energy` (about 10x what the
+// case measured) and momentum to round-off.
+void expect_all_pass(const Outcome& o, double energy) {
   ASSERT_FALSE(o.refs.empty());
   for (const ReferenceResult& r : o.refs) {
     EXPECT_TRUE(r.pass) << r.spec->name << ": measured " << r.measured << ", reference "
                         << r.spec->value << ", error " << 100 * r.relative_error << " %";
     ::testing::Test::RecordProperty(r.spec->name, std::to_string(r.measured));
   }
-  EXPECT_LT(o.balance_error_max, 0.01);
-  EXPECT_LT(o.momentum_error, 1e-10);
+  EXPECT_LT(o.balance_error_max, energy);
+  EXPECT_LT(o.momentum_error, 1e-13);
 }
 
 // Runs a case through the CLI with edge–edge contact on or off; returns its summary.json.
@@ -58,15 +60,16 @@ test::Json run_edge_edge(const std::string& case_file, const std::string& args, 
 }
 
 // Edge–edge on: crossings and nodes inside below `on_limit` cells; off: crossings deeper than
-// `off_floor` cells; both conserve momentum to 1e-12 and close the energy balance to 1 %.
+// `off_floor` cells; both conserve momentum to 1e-13 and close the energy balance to 4e-3
+// (measured at most 3.5e-4: the cubes with edge–edge on).
 void expect_on_off(const test::Json& on, const test::Json& off, double h, double on_limit,
                    double off_floor) {
   EXPECT_LT(test::number(on, "/penetration/max_crossing_depth") / h, on_limit) << on;
   EXPECT_LE(test::number(on, "/penetration/max_depth_over_h"), on_limit);
   EXPECT_GT(test::number(off, "/penetration/max_crossing_depth") / h, off_floor) << off;
   for (const test::Json* s : {&on, &off}) {
-    EXPECT_LT(test::number(*s, "/momentum/relative_error"), 1e-12);
-    EXPECT_LT(test::number(*s, "/energy/balance_error_max"), 0.01);
+    EXPECT_LT(test::number(*s, "/momentum/relative_error"), 1e-13);
+    EXPECT_LT(test::number(*s, "/energy/balance_error_max"), 4e-3);
   }
 }
 
@@ -75,12 +78,12 @@ void expect_on_off(const test::Json& on, const test::Json& off, double h, double
 // Final length within 2 % and impact-face radius within 4 % of the published converged
 // results, at the default mesh with the default formulation (average nodal pressure on).
 TEST(Validation, TaylorCopper) {
-  expect_all_pass(run_case("data/cases/taylor-copper.yaml"));
+  expect_all_pass(run_case("data/cases/taylor-copper.yaml"), 6e-5);  // 6.2e-6 measured
 }
 
 // Shock stress at the centre within 5 % of the Mie–Grüneisen Hugoniot.
 TEST(Validation, PlateImpact) {
-  expect_all_pass(run_case("data/cases/plate-impact-1d.yaml"));
+  expect_all_pass(run_case("data/cases/plate-impact-1d.yaml"), 8e-5);  // 7.8e-6 measured
 }
 
 // The plate-impact references must tell a solid from a fluid: with a yield stress of 1 kPa the
@@ -97,7 +100,7 @@ TEST(Validation, PlateImpactFailsForAFluid) {
 // Two elastic bars end to end: contact duration within 3 % of 2L/c, mean contact stress within
 // 5 % of ρcv, velocities exchanged within 3 %, momentum to 1e-12.
 TEST(Validation, BarsImpact) {
-  expect_all_pass(run_case("data/cases/bars-impact.yaml"));
+  expect_all_pass(run_case("data/cases/bars-impact.yaml"), 2e-4);  // 1.8e-5 measured
 }
 
 // Two rods meeting at ±227 m/s deform as the rod on the rigid wall at 227 m/s: length and
@@ -113,8 +116,8 @@ TEST(Validation, TaylorSymmetric) {
     Simulation sim(build_model(c), solver_settings(c));
     while (!sim.done()) sim.step();
     sim.finish();
-    EXPECT_LT(sim.balance_error_max(), 0.01) << file;
-    std::vector<std::pair<double, double>> out;  // (length, radius) per body
+    EXPECT_LT(sim.balance_error_max(), 1e-4) << file;  // 1.0e-5 measured (both cases)
+    std::vector<std::pair<double, double>> out;        // (length, radius) per body
     for (const BodyStats& b : body_stats(sim.model(), sim.state())) {
       const Vec3 e = b.bbox_max - b.bbox_min;
       out.emplace_back(e.z(), 0.5 * std::max(e.x(), e.y()));
@@ -197,8 +200,8 @@ TEST(Validation, HertzSpheresContactTimeAndPeakForce) {
   for (const auto& r : o.refs)
     EXPECT_TRUE(r.pass) << r.spec->name << ": " << r.measured << ", error "
                         << 100 * r.relative_error << " %";
-  EXPECT_LT(o.balance_error_max, 0.01);
-  EXPECT_LT(o.momentum_error, 1e-12);
+  EXPECT_LT(o.balance_error_max, 8e-4);  // 7.5e-5 measured
+  EXPECT_LT(o.momentum_error, 1e-13);
 }
 
 // A reference the run cannot measure is reported as missed, with the reason, and the run still

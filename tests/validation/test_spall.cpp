@@ -56,7 +56,7 @@ TEST(Validation, SpallPlaneWhereTheReleasesMeet) {
   ASSERT_GT(r.first_cells, 0);
   EXPECT_NEAR(r.first_z, -2.0e-3, 2 * 0.05e-3);
   EXPECT_LT(r.momentum_error, 1e-12);
-  EXPECT_LT(r.balance_error, 0.02);
+  EXPECT_LT(r.balance_error, 5e-4);  // 4.3e-5 measured
   // No cell is crushed next to the failed ones (regression: with failed cells in the nodal
   // pressure averages the step fell from 4e-9 to 6e-12 s): measured 1.9e-9 s at the end.
   EXPECT_GT(r.last_dt, 1e-9);

@@ -40,13 +40,14 @@ class PenetrationProbe {
   /// the body it is inside, searched within two mean edge lengths (a deeper node reports
   /// that bound).
   Penetration measure(const std::vector<Vec3>& x);
-  /// At a state: cells turned into particles are left out, and particle centres inside any
-  /// body are measured as nodes are (particles_inside, max_particle_depth).
+  /// At a state, with its surfaces (State::surfaces): cells turned into particles are left
+  /// out, and particle centres inside any body are measured as nodes are (particles_inside,
+  /// max_particle_depth).
   Penetration measure(const State& st);
 
  private:
-  Penetration measure(const std::vector<Vec3>& x, const std::vector<Damage>& damage,
-                      Index first_particle);
+  Penetration measure(const std::vector<Vec3>& x, const std::vector<Surface>& surfaces,
+                      const std::vector<Damage>& damage, Index first_particle);
   const Model& model_;
   std::unique_ptr<Broadphase> broadphase_;
   std::vector<Index> nodes_, node_body_;

@@ -34,6 +34,10 @@ struct ReferenceSpec {
   double value = 0.0;      // the reference; NaN: measured and reported, not judged
   double tolerance = 0.0;  // allowed relative error
   std::string source;      // where the reference comes from
+  /// physical: an analytical solution, a published experiment or converged result; regression:
+  /// the program's own earlier answer (another case, a finer run), which guards against
+  /// change but proves nothing about the physics.
+  std::string kind = "physical";
 };
 
 struct ReferenceResult {

@@ -7,6 +7,7 @@
 
 #include "tetcontact/material/material.hpp"
 #include "tetcontact/mesh/mesh.hpp"
+#include "tetcontact/mesh/surface.hpp"
 
 namespace tc {
 
@@ -51,6 +52,10 @@ struct State {
                                         // energy of its nodes' spread of velocity
   std::vector<Index> particle_tet;      // the cell each came from
   Index particle_count() const { return static_cast<Index>(particle_radius.size()); }
+
+  // The surfaces of the run: the model's, less the faces of cells turned into particles, plus
+  // the faces those exposed (fracture rebuilds them; everything else reads them).
+  std::vector<Surface> surfaces;
 
   double t = 0.0;        // t^n
   double dt = 0.0;       // τ for the step t^n → t^{n+1}

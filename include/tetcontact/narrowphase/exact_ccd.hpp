@@ -29,6 +29,19 @@ bool exact_vertex_face_ccd(const std::array<Vec3, 8>& q);
 /// Edge–edge: q = a0(0), a1(0), b0(0), b1(0), a0(1), a1(1), b0(1), b1(1).
 bool exact_edge_edge_ccd(const std::array<Vec3, 8>& q);
 
+/// The filters that run before the exact integer path, in this order: the exact test of the
+/// primitives' boxes over the step, the certified Bernstein test of the coplanarity
+/// determinant, the certified interval subdivision (interval_ccd.hpp). Each answers only where
+/// it is certain, so the answer never depends on them; with all three off the integer path
+/// answers alone: the oracle each filter is tested against.
+struct CcdFilters {
+  bool boxes = true;
+  bool coplanarity = true;
+  bool interval = true;
+};
+bool exact_vertex_face_ccd(const std::array<Vec3, 8>& q, const CcdFilters& filters);
+bool exact_edge_edge_ccd(const std::array<Vec3, 8>& q, const CcdFilters& filters);
+
 /// Earliest time of impact in [0, 1], or none. The time is exact up to its rounding to a
 /// double: an irrational root is returned as the lower end of an isolating interval whose ends
 /// round to the same double, a rational one as its nearest double toward zero.

@@ -23,6 +23,17 @@ struct ContactPoint;
 std::vector<ContactPoint> wall_contacts(const std::vector<RigidWall>& walls,
                                         const std::vector<Index>& nodes, const State& st);
 
+/// wall_contacts of each wall, a list per wall (the solver's and apply_walls' one source).
+std::vector<std::vector<ContactPoint>> wall_contact_lists(const std::vector<RigidWall>& walls,
+                                                          const std::vector<Index>& nodes,
+                                                          const State& st);
+
+/// What each wall gave after the correction passes over its contacts: the impulse on the
+/// bodies, Σ (λ n + tangential), and the contacts that pushed (λ > 0).
+std::vector<WallResult> wall_results(const std::vector<std::vector<ContactPoint>>& lists);
+
+/// One correction pass over the walls alone: wall_contact_lists, apply_contact on each (the
+/// solver interleaves these passes with the other contacts), wall_results.
 /// Corrects the predicted velocities U* of `nodes` against each wall (stage after predict)
 /// with the impulse kernel (response/impulse.hpp): the normal impulse
 ///   λ = m · max(0, −d/τ − U*·n)

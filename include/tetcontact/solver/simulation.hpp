@@ -42,7 +42,7 @@ class Simulation {
   const Model& model() const { return model_; }
   /// The surfaces of the run now: the model's, less the faces of cells turned into particles,
   /// plus the faces those exposed.
-  const std::vector<Surface>& surfaces() const { return surfaces_; }
+  const std::vector<Surface>& surfaces() const { return state_.surfaces; }
   const SolverSettings& settings() const { return settings_; }
   const Sample& first_sample() const { return first_; }
   const Sample& last_sample() const { return last_; }
@@ -92,8 +92,7 @@ class Simulation {
   const Model model_;  // as set up: never changed during the run
   SolverSettings settings_;
   State state_;
-  std::vector<Surface> surfaces_;  // the run's surfaces (fracture exposes new faces)
-  ElementOptions element_;         // the model's, with the erosion limit of the first step
+  ElementOptions element_;  // the model's, with the erosion limit of the first step
   NodalScratch scratch_;
   std::vector<Index> surface_nodes_;
   std::vector<WallResult> wall_results_;

@@ -1,0 +1,130 @@
+#!/usr/bin/env python3
+"""Regenerate README tables from the program's own output (issue 13: numbers from runs,
+never retyped).
+
+    tools/readme_tables.py stability BINARY [--work DIR]   the stability suite's table
+    tools/readme_tables.py micro BINARY                     the micro-scene table
+
+`stability` runs every case of data/cases/stability/ twice, as shipped (`--check`) and with
+contact switched off, and prints one markdown row per case from the two summary.json files:
+steps and smallest step, momentum, energy against its bound, the penetration measures against
+their bounds, the safeguards, and what contact off gives. `micro` runs `stress --json` with
+contact on and off. Paste the output over the table in README.md.
+"""
+import argparse
+import json
+import os
+import subprocess
+import sys
+import tempfile
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+
+WHAT = {
+    "touching-coincident": "Al blocks over coincident faces at t = 0, 10 m/s",
+    "touching-gap0": "staggered meshes (4×4 / 5×5), gap 0",
+    "touching-ulp": "gap 1 ulp of 0.01 m (1.7e-18 m)",
+    "touching-1e-12": "gap 1e-12 m",
+    "sliver-contact": "steel block on an Al slab of one layer of 10 × 10 × 0.2 mm hexes "
+                      "(aspect ≥ 50), 50 m/s",
+    "plate-one-element": "steel sphere on an Al plate one element thick, 300 m/s",
+    "grazing-1deg": "Al block onto an Al plate at 1°, 200 m/s",
+    "stiff-on-soft": "tungsten alloy on E = 0.2 GPa, ρ = 1500 (stiffness ratio 1.8e3, "
+                     "density 12), 100 m/s",
+    "tiny-step": "the touching blocks with cfl 5e-6: τ = 1.0e-12 s",
+    "hypervelocity": "Al sphere on an Al plate at 7 km/s (M0 = 1.34), fracture, particles, "
+                     "erosion",
+    "spinning": "free Al cylinder at 20,000 rad/s for 0.8 rad",
+}
+ORDER = list(WHAT)
+
+
+def g(x):
+    if x is None:
+        return "–"
+    if x == 0 or 0.01 <= abs(x) < 1000:
+        return f"{x:.2g}"
+    return f"{x:.1e}".replace("e-0", "e-").replace("e+0", "e")
+
+
+def run(binary, case, out, extra):
+    cmd = [binary, "run", case, "--quiet", "--force", "--out", out] + extra
+    r = subprocess.run(cmd, capture_output=True, text=True)
+    path = os.path.join(out, "summary.json")
+    if not os.path.exists(path):
+        sys.exit(f"{case}: no summary ({r.stderr.strip()})")
+    with open(path) as f:
+        return json.load(f), r.returncode
+
+
+def bound(s, name):
+    for e in s.get("expect", []):
+        if e["name"] == name:
+            return e["bound"]
+    return None
+
+
+def stability(binary, work):
+    print("| case | what | steps, min τ | momentum | energy (bound) | depth/h (bound), nodes "
+          "inside, crossings | safeguards | contact off: depth/h, `--check` |")
+    print("|---|---|---|---|---|---|---|---|")
+    for name in ORDER:
+        case = os.path.join(ROOT, "data/cases/stability", name + ".yaml")
+        on, code = run(binary, case, os.path.join(work, name), ["--check"])
+        off, code_off = (None, None)
+        if on["modules"] and any(m.startswith("broadphase:") for m in on["modules"]):
+            off, code_off = run(binary, case, os.path.join(work, name + "-off"),
+                                ["--check", "--set", "contact.enabled=false"])
+        p = on["penetration"]
+        pen = "–"
+        if p.get("max_depth_over_h") is not None and off is not None:
+            pen = (f"{g(p['max_depth_over_h'])} ({g(bound(on, 'max_depth_over_h'))}), "
+                   f"{p['max_nodes_inside']}, {p['max_crossings']}")
+            if p.get("particles_inside_at_end") is not None:
+                pen += f"; {p['particles_inside_at_end']} particles inside"
+        safe = on["safeguards"]
+        sg = "–"
+        if safe.get("eroded") is not None:
+            sg = f"{safe['eroded']:,} eroded, {safe['particles_moved_out']:,} moved out"
+        offc = "–"
+        if off is not None:
+            offc = (f"{g(off['penetration']['max_depth_over_h'])}, "
+                    f"{'fails' if code_off == 1 and not off['expect_pass'] else 'PASSES'}")
+        steps = f"{on['steps']:,}, {g(on['time_step']['min'])} s"
+        print(f"| `{name}` | {WHAT[name]} | {steps} | {g(on['momentum']['relative_error'])} | "
+              f"{g(on['energy']['balance_error_max'])} ({g(bound(on, 'energy_balance'))}) | "
+              f"{pen} | {sg} | {offc} |" + ("" if code == 0 else " **check failed**"))
+
+
+def micro(binary):
+    res = {}
+    for label, extra in (("on", []), ("off", ["--set", "contact.enabled=false"])):
+        r = subprocess.run([binary, "stress", "--count", "10", "--json"] + extra,
+                           capture_output=True, text=True)
+        res[label] = {s["name"]: s for s in json.loads(r.stdout)["scenes"]}
+    print("| micro-scene | steps | pass | momentum error | energy balance | max depth / h "
+          "(bound) | nodes inside | edge crossings | contact off: depth / h, pass |")
+    print("|---|---|---|---|---|---|---|---|---|")
+    for name, s in res["on"].items():
+        b = next((e["bound"] for e in s["expect"] if e["name"] == "max_depth_over_h"), None)
+        o = res["off"][name]
+        print(f"| {name} | {s['steps']} | {'yes' if s['pass'] else 'NO'} | "
+              f"{g(s['momentum_error'])} | {g(s['balance_error'])} | "
+              f"{g(s['max_depth_over_h'])} ({g(b)}) | {s['nodes_inside']} | {s['crossings']} | "
+              f"{g(o['max_depth_over_h'])}, {'yes' if o['pass'] else 'no'} |")
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawTextHelpFormatter)
+    ap.add_argument("table", choices=["stability", "micro"])
+    ap.add_argument("binary")
+    ap.add_argument("--work", help="keep the runs here (default: a temporary folder)")
+    a = ap.parse_args()
+    if a.table == "stability":
+        stability(os.path.abspath(a.binary), a.work or tempfile.mkdtemp(prefix="stability-"))
+    else:
+        micro(os.path.abspath(a.binary))
+
+
+if __name__ == "__main__":
+    main()
