@@ -10,6 +10,7 @@
 #include <random>
 #include <stdexcept>
 
+#include "tetcontact/app/float_ccd.hpp"
 #include "tetcontact/app/setup.hpp"
 #include "tetcontact/diagnostics/balance.hpp"
 #include "tetcontact/diagnostics/penetration.hpp"

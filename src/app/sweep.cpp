@@ -137,8 +137,10 @@ std::string num(double v) {
 
 }  // namespace
 
-int sweep_command(const SweepOptions& o) {
-  // Every combination, the last key varying fastest.
+namespace {
+
+// Every combination of the varied values, the last key varying fastest.
+std::vector<std::vector<std::string>> combinations(const SweepOptions& o) {
   std::vector<std::vector<std::string>> combos{{}};
   for (const auto& [key, values] : o.vary) {
     std::vector<std::vector<std::string>> next;
@@ -149,6 +151,121 @@ int sweep_command(const SweepOptions& o) {
       }
     combos = std::move(next);
   }
+  return combos;
+}
+
+// One run of the sweep: its figures, penetration measured at 20 times and at the end.
+Row sweep_run(const Case& c, const std::vector<std::string>& values) {
+  Row row;
+  row.values = values;
+  row.cfl = c.cfl;
+  row.passes = c.contact ? c.contact_settings.passes : 0;
+  const auto t0 = std::chrono::steady_clock::now();
+  try {
+    Simulation sim(build_model(c), solver_settings(c));
+    row.tets = sim.model().mesh.tet_count();
+    std::unique_ptr<PenetrationProbe> probe;
+    if (sim.model().mesh.bodies.size() >= 2)
+      probe = std::make_unique<PenetrationProbe>(sim.model());
+    double next = 0.0;
+    const auto measure = [&] {
+      const Penetration p = probe->measure(sim.state());
+      row.depth_over_h =
+          std::max(std::isnan(row.depth_over_h) ? 0.0 : row.depth_over_h, p.max_depth_over_h);
+      row.crossings = std::max(row.crossings, p.crossings);
+    };
+    try {
+      while (!sim.done()) {
+        sim.step();
+        if (probe && sim.state().t >= next) {
+          measure();
+          next += c.end_time / 20.0;
+        }
+      }
+      sim.finish();
+      if (probe) measure();
+    } catch (const RunFailure& e) {
+      row.status = std::string("failed: ") + e.what();
+    }
+    row.wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    row.steps = sim.state().step;
+    row.momentum = momentum_error(sim.first_sample(), sim.last_sample());
+    row.balance = sim.balance_error_max();
+    row.figures = comparable_figures(sim);
+    if (row.status == "ok")
+      for (const ReferenceResult& ref :
+           evaluate_references(c.references, sim.model(), sim.state(), sim.run_figures()))
+        row.ref_error.push_back(ref.relative_error);
+  } catch (const SetupError& e) {
+    row.status = std::string("bad input: ") + e.what();
+  }
+  return row;
+}
+
+// The error of each run against the sweep's reference; the finest run is the one with the
+// most tets, then the smallest cfl, then the most passes, then the later in the sweep.
+void sweep_errors(std::vector<Row>& rows, const std::string& reference, const Figures& file) {
+  std::size_t finest = 0;
+  for (std::size_t r = 1; r < rows.size(); ++r) {
+    const Row &a = rows[r], &b = rows[finest];
+    if (std::tie(a.tets, b.cfl, a.passes) >= std::tie(b.tets, a.cfl, b.passes)) finest = r;
+  }
+  for (Row& row : rows) {
+    if (row.status != "ok") continue;
+    if (reference == "analytic") {
+      row.error = 0.0;
+      for (double e : row.ref_error)
+        if (!std::isnan(e)) row.error = std::max(row.error, std::abs(e));  // NaN: not judged
+    } else {
+      row.error = figures_error(row.figures, reference == "finest" ? rows[finest].figures : file);
+    }
+  }
+}
+
+std::string sweep_csv(const SweepOptions& o, const Case& c0, const std::vector<Row>& rows) {
+  std::ostringstream csv;
+  for (const auto& [key, values] : o.vary) csv << csv_field(key) << ',';
+  csv << "status,wall_seconds,steps,tets,error";
+  if (o.reference == "analytic")
+    for (const ReferenceSpec& ref : c0.references) csv << ',' << csv_field("error:" + ref.name);
+  csv << ",momentum_error,energy_balance_max,penetration_depth_over_h,crossings\n";
+  for (const Row& row : rows) {
+    for (const std::string& v : row.values) csv << csv_field(v) << ',';
+    csv << csv_field(row.status) << ',' << num(row.wall) << ',' << row.steps << ',' << row.tets
+        << ',' << num(row.error);
+    if (o.reference == "analytic")
+      for (std::size_t k = 0; k < c0.references.size(); ++k)
+        csv << ',' << (k < row.ref_error.size() ? num(row.ref_error[k]) : "");
+    csv << ',' << num(row.momentum) << ',' << num(row.balance) << ',' << num(row.depth_over_h)
+        << ',' << (row.crossings >= 0 ? std::to_string(row.crossings) : "") << '\n';
+  }
+  return csv.str();
+}
+
+std::string sweep_table(const SweepOptions& o, const Case& c0, const std::vector<Row>& rows,
+                        const std::string& dir) {
+  std::ostringstream os;
+  os << "sweep of " << c0.name << " (" << rows.size() << " runs; error against "
+     << (o.reference == "analytic" ? "the case's references"
+         : o.reference == "finest" ? "the finest run"
+                                   : o.reference)
+     << ")\n";
+  for (const auto& [key, values] : o.vary) os << "  " << key;
+  os << "  | wall s | steps | error | momentum | energy | depth/h | crossings | status\n";
+  for (const Row& row : rows) {
+    for (const std::string& v : row.values) os << "  " << v;
+    os << "  | " << num(row.wall) << " | " << row.steps << " | " << num(row.error) << " | "
+       << num(row.momentum) << " | " << num(row.balance) << " | " << num(row.depth_over_h) << " | "
+       << (row.crossings >= 0 ? std::to_string(row.crossings) : "-") << " | " << row.status << "\n";
+  }
+  os << "written: " << dir << "/sweep.csv\n";
+  return os.str();
+}
+
+}  // namespace
+
+int sweep_command(const SweepOptions& o) {
+  const std::vector<std::vector<std::string>> combos = combinations(o);
   // All cases are read (and so checked) before anything runs or is written.
   std::vector<Case> cases;
   Figures file_reference;
@@ -177,56 +294,11 @@ int sweep_command(const SweepOptions& o) {
     std::cerr << "tetcontact: error: " << e.what() << "\n";
     return 2;
   }
-
   std::vector<Row> rows;
   int code = 0;
   for (std::size_t r = 0; r < cases.size(); ++r) {
-    const Case& c = cases[r];
-    Row row;
-    row.values = combos[r];
-    row.cfl = c.cfl;
-    row.passes = c.contact ? c.contact_settings.passes : 0;
-    const auto t0 = std::chrono::steady_clock::now();
-    try {
-      Simulation sim(build_model(c), solver_settings(c));
-      row.tets = sim.model().mesh.tet_count();
-      std::unique_ptr<PenetrationProbe> probe;
-      if (sim.model().mesh.bodies.size() >= 2)
-        probe = std::make_unique<PenetrationProbe>(sim.model());
-      double next = 0.0;  // penetration measured at 20 times over the run, and at the end
-      const auto measure = [&] {
-        const Penetration p = probe->measure(sim.state());
-        row.depth_over_h =
-            std::max(std::isnan(row.depth_over_h) ? 0.0 : row.depth_over_h, p.max_depth_over_h);
-        row.crossings = std::max(row.crossings, p.crossings);
-      };
-      try {
-        while (!sim.done()) {
-          sim.step();
-          if (probe && sim.state().t >= next) {
-            measure();
-            next += c.end_time / 20.0;
-          }
-        }
-        sim.finish();
-        if (probe) measure();
-      } catch (const RunFailure& e) {
-        row.status = std::string("failed: ") + e.what();
-        code = 1;
-      }
-      row.wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-      row.steps = sim.state().step;
-      row.momentum = momentum_error(sim.first_sample(), sim.last_sample());
-      row.balance = sim.balance_error_max();
-      row.figures = comparable_figures(sim);
-      if (row.status == "ok")
-        for (const ReferenceResult& ref :
-             evaluate_references(c.references, sim.model(), sim.state(), sim.run_figures()))
-          row.ref_error.push_back(ref.relative_error);
-    } catch (const SetupError& e) {
-      row.status = std::string("bad input: ") + e.what();
-      code = 1;
-    }
+    Row row = sweep_run(cases[r], combos[r]);
+    if (row.status != "ok") code = 1;
     if (!o.quiet) {
       std::cerr << "sweep: run " << r + 1 << "/" << cases.size() << ":";
       for (std::size_t k = 0; k < row.values.size(); ++k)
@@ -236,62 +308,9 @@ int sweep_command(const SweepOptions& o) {
     }
     rows.push_back(std::move(row));
   }
-
-  // The error of each run against the sweep's reference; the finest run is the one with the
-  // most tets, then the smallest cfl, then the most passes, then the later in the sweep.
-  const Case& c0 = cases.front();
-  std::size_t finest = 0;
-  for (std::size_t r = 1; r < rows.size(); ++r) {
-    const Row &a = rows[r], &b = rows[finest];
-    if (std::tie(a.tets, b.cfl, a.passes) >= std::tie(b.tets, a.cfl, b.passes)) finest = r;
-  }
-  for (Row& row : rows) {
-    if (row.status != "ok") continue;
-    if (o.reference == "analytic") {
-      row.error = 0.0;
-      for (double e : row.ref_error)
-        if (!std::isnan(e)) row.error = std::max(row.error, std::abs(e));  // NaN: not judged
-    } else {
-      row.error = figures_error(row.figures,
-                                o.reference == "finest" ? rows[finest].figures : file_reference);
-    }
-  }
-
-  std::ostringstream csv;
-  for (const auto& [key, values] : o.vary) csv << csv_field(key) << ',';
-  csv << "status,wall_seconds,steps,tets,error";
-  if (o.reference == "analytic")
-    for (const ReferenceSpec& ref : c0.references) csv << ',' << csv_field("error:" + ref.name);
-  csv << ",momentum_error,energy_balance_max,penetration_depth_over_h,crossings\n";
-  for (const Row& row : rows) {
-    for (const std::string& v : row.values) csv << csv_field(v) << ',';
-    csv << csv_field(row.status) << ',' << num(row.wall) << ',' << row.steps << ',' << row.tets
-        << ',' << num(row.error);
-    if (o.reference == "analytic")
-      for (std::size_t k = 0; k < c0.references.size(); ++k)
-        csv << ',' << (k < row.ref_error.size() ? num(row.ref_error[k]) : "");
-    csv << ',' << num(row.momentum) << ',' << num(row.balance) << ',' << num(row.depth_over_h)
-        << ',' << (row.crossings >= 0 ? std::to_string(row.crossings) : "") << '\n';
-  }
-  write_file_atomic(dir + "/sweep.csv", csv.str());
-
-  // The table.
-  std::ostringstream os;
-  os << "sweep of " << c0.name << " (" << rows.size() << " runs; error against "
-     << (o.reference == "analytic" ? "the case's references"
-         : o.reference == "finest" ? "the finest run"
-                                   : o.reference)
-     << ")\n";
-  for (const auto& [key, values] : o.vary) os << "  " << key;
-  os << "  | wall s | steps | error | momentum | energy | depth/h | crossings | status\n";
-  for (const Row& row : rows) {
-    for (const std::string& v : row.values) os << "  " << v;
-    os << "  | " << num(row.wall) << " | " << row.steps << " | " << num(row.error) << " | "
-       << num(row.momentum) << " | " << num(row.balance) << " | " << num(row.depth_over_h) << " | "
-       << (row.crossings >= 0 ? std::to_string(row.crossings) : "-") << " | " << row.status << "\n";
-  }
-  os << "written: " << dir << "/sweep.csv\n";
-  std::cout << os.str();
+  sweep_errors(rows, o.reference, file_reference);
+  write_file_atomic(dir + "/sweep.csv", sweep_csv(o, cases.front(), rows));
+  std::cout << sweep_table(o, cases.front(), rows, dir);
   return code;
 }
 

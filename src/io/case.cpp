@@ -511,25 +511,10 @@ const Material& Case::material(const std::string& n) const {
   throw CaseError(file + ": unknown material '" + n + "'");
 }
 
-Case load_case(const std::string& path, const std::vector<std::string>& overrides) {
-  if (!fs::exists(path)) throw CaseError(path + ": case file not found");
-  if (!fs::is_regular_file(path)) throw CaseError(path + ": not a regular file");
-  YAML::Node root = load_yaml(path, "case file");
-  if (!root || root.IsNull()) throw CaseError(path + ": empty case file");
-  std::set<std::string> overridden;
-  for (const std::string& o : overrides) overridden.insert(apply_override(root, path, o));
+namespace {
 
-  const Reader r(path, overridden);
-  const fs::path case_dir = fs::absolute(path).parent_path();
-  Case c;
-  c.file = path;
-  r.keys(root, "",
-         {"name", "description", "end_time", "solver", "material_library", "materials", "bodies",
-          "boundary_conditions", "walls", "output", "reference", "contact", "fracture", "expect"});
-  c.name = root["name"] ? r.string(root["name"], "name") : fs::path(path).stem().string();
-  if (root["description"]) c.description = r.string(root["description"], "description");
-  c.end_time = r.positive(r.require(root, "", "end_time"), "end_time", "s");
-
+// The case's solver section: CFL, step limit, viscosity, average nodal pressure.
+void read_solver(const Reader& r, const YAML::Node& root, Case& c) {
   if (const YAML::Node s = root["solver"]) {
     r.keys(s, "solver", {"cfl", "max_steps", "viscosity", "average_nodal_pressure"});
     if (s["cfl"]) {
@@ -559,7 +544,10 @@ Case load_case(const std::string& path, const std::vector<std::string>& override
         r.fail(a, "solver.average_nodal_pressure", "expected auto, true or false");
     }
   }
+}
 
+// The case's materials, each from the library (`from`) with the case's keys over it.
+void read_materials(const Reader& r, const YAML::Node& root, Case& c, const fs::path& case_dir) {
   // Materials (a library entry named by `from`, with the case's keys over it).
   const YAML::Node mats = r.require(root, "", "materials");
   r.map(mats, "materials");
@@ -610,7 +598,10 @@ Case load_case(const std::string& path, const std::vector<std::string>& override
       if (other.name == name) r.fail(it->first, p, "duplicate material name");
     c.materials.push_back(mat);
   }
+}
 
+// The case's bodies: name, material, mesh, transform, velocities.
+void read_bodies(const Reader& r, const YAML::Node& root, Case& c, const fs::path& case_dir) {
   // Bodies.
   const YAML::Node bodies = r.require(root, "", "bodies");
   if (!bodies.IsSequence() || bodies.size() == 0)
@@ -648,7 +639,10 @@ Case load_case(const std::string& path, const std::vector<std::string>& override
     }
     c.bodies.push_back(std::move(body));
   }
+}
 
+// The case's boundary conditions: fixed or prescribed velocity components on a body's region.
+void read_boundary_conditions(const Reader& r, const YAML::Node& root, Case& c) {
   // Boundary conditions.
   if (const YAML::Node bcs = root["boundary_conditions"]) {
     r.each(bcs, "boundary_conditions", "boundary conditions",
@@ -685,7 +679,10 @@ Case load_case(const std::string& path, const std::vector<std::string>& override
              c.boundary_conditions.push_back(bc);
            });
   }
+}
 
+// The case's rigid walls.
+void read_walls(const Reader& r, const YAML::Node& root, Case& c) {
   // Rigid walls.
   if (const YAML::Node walls = root["walls"]) {
     r.each(walls, "walls", "walls", [&](const YAML::Node& n, const std::string& p) {
@@ -701,7 +698,10 @@ Case load_case(const std::string& path, const std::vector<std::string>& override
       c.walls.push_back(w);
     });
   }
+}
 
+// The case's reference values and measures.
+void read_references(const Reader& r, const YAML::Node& root, Case& c) {
   // Reference values.
   if (const YAML::Node refs = root["reference"]) {
     r.each(refs, "reference", "reference values", [&](const YAML::Node& n, const std::string& p) {
@@ -789,7 +789,10 @@ Case load_case(const std::string& path, const std::vector<std::string>& override
       c.references.push_back(ref);
     });
   }
+}
 
+// The case's output: frame interval, fields, history.
+void read_output(const Reader& r, const YAML::Node& root, Case& c) {
   // Output.
   c.output.interval = c.end_time / 20.0;
   c.output.fields = {"displacement", "velocity", "stress", "pressure", "body"};
@@ -817,7 +820,10 @@ Case load_case(const std::string& path, const std::vector<std::string>& override
       }
     }
   }
+}
 
+// The case's contact between bodies.
+void read_contact(const Reader& r, const YAML::Node& root, Case& c) {
   // Contact between bodies.
   if (const YAML::Node s = root["contact"]) {
     r.keys(s, "contact",
@@ -901,7 +907,10 @@ Case load_case(const std::string& path, const std::vector<std::string>& override
       }
     }
   }
+}
 
+// The case's fracture and particles.
+void read_fracture(const Reader& r, const YAML::Node& root, Case& c) {
   // Fracture (seed 000): spall damage and loosening, and destroyed boundary cells turned into
   // particles (on unless `particles: false`: then they stay in the mesh without stress).
   if (const YAML::Node s = root["fracture"]) {
@@ -918,6 +927,10 @@ Case load_case(const std::string& path, const std::vector<std::string>& override
                "fracture.particles true");
     }
   }
+}
+
+// The case's the bounds the run must hold (`expect`).
+void read_expect(const Reader& r, const YAML::Node& root, Case& c) {
   // Bounds the run must hold (the stability cases state theirs).
   if (const YAML::Node e = root["expect"]) {
     static const std::vector<std::string> known{
@@ -931,6 +944,39 @@ Case load_case(const std::string& path, const std::vector<std::string>& override
         c.expect.emplace_back(k, v);
       }
   }
+}
+
+}  // namespace
+
+Case load_case(const std::string& path, const std::vector<std::string>& overrides) {
+  if (!fs::exists(path)) throw CaseError(path + ": case file not found");
+  if (!fs::is_regular_file(path)) throw CaseError(path + ": not a regular file");
+  YAML::Node root = load_yaml(path, "case file");
+  if (!root || root.IsNull()) throw CaseError(path + ": empty case file");
+  std::set<std::string> overridden;
+  for (const std::string& o : overrides) overridden.insert(apply_override(root, path, o));
+
+  const Reader r(path, overridden);
+  const fs::path case_dir = fs::absolute(path).parent_path();
+  Case c;
+  c.file = path;
+  r.keys(root, "",
+         {"name", "description", "end_time", "solver", "material_library", "materials", "bodies",
+          "boundary_conditions", "walls", "output", "reference", "contact", "fracture", "expect"});
+  c.name = root["name"] ? r.string(root["name"], "name") : fs::path(path).stem().string();
+  if (root["description"]) c.description = r.string(root["description"], "description");
+  c.end_time = r.positive(r.require(root, "", "end_time"), "end_time", "s");
+
+  read_solver(r, root, c);
+  read_materials(r, root, c, case_dir);
+  read_bodies(r, root, c, case_dir);
+  read_boundary_conditions(r, root, c);
+  read_walls(r, root, c);
+  read_references(r, root, c);
+  read_output(r, root, c);
+  read_contact(r, root, c);
+  read_fracture(r, root, c);
+  read_expect(r, root, c);
   if (c.fracture &&
       std::find(c.output.fields.begin(), c.output.fields.end(), "damage") == c.output.fields.end())
     c.output.fields.push_back("damage");  // what fracture adds is always shown

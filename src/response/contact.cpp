@@ -134,13 +134,12 @@ Box NodeFaceContact::layer_box(Index f, const State& st, double margin) const {
   return box;
 }
 
-std::vector<ContactPoint> NodeFaceContact::detect(const State& st, ContactStepStats& stats) {
-  auto t0 = Clock::now();
+// Binding lists stay valid while every surface node's path this step stays within the reach
+// of where they were built: then a node and a face that meet now had boxes (enlarged by
+// the reach) that overlapped then. Rebuilt from the swept boxes otherwise.
+void NodeFaceContact::refresh_lists(const State& st, ContactStepStats& stats) {
   const std::vector<Vec3>& x0 = st.x;
   const std::vector<Vec3>& x1 = st.x_star;
-  // Binding lists stay valid while every surface node's path this step stays within the reach
-  // of where they were built: then a node and a face that meet now had boxes (enlarged by
-  // the reach) that overlapped then.
   bool rebuild = !settings_.binding_lists || !have_lists_;
   for (std::size_t i = 0; i < nodes_.size() && !rebuild; ++i)
     rebuild = (x1[nodes_[i]] - anchor_[i]).squaredNorm() > reach_ * reach_ ||
@@ -163,11 +162,13 @@ std::vector<ContactPoint> NodeFaceContact::detect(const State& st, ContactStepSt
     stats.build_seconds = broadphase_->build_seconds;
     stats.query_seconds = broadphase_->query_seconds;
   }
-  const Candidates& cand = candidates_;
-  stats.broadphase_seconds = since(t0);
-  stats.candidates = static_cast<long>(cand.node_face.size());
-  t0 = Clock::now();
+}
 
+// Node–face contacts of the listed pairs (seed 001 §3), in the lists' order.
+void NodeFaceContact::node_face_contacts(const State& st, std::vector<ContactPoint>& contacts) {
+  const std::vector<Vec3>& x0 = st.x;
+  const std::vector<Vec3>& x1 = st.x_star;
+  const Candidates& cand = candidates_;
   // Node normals (seed 001's contact normal), only when asked for.
   std::vector<std::vector<Vec3>> normals;
   if (settings_.normal == ContactSettings::Normal::node)
@@ -181,7 +182,6 @@ std::vector<ContactPoint> NodeFaceContact::detect(const State& st, ContactStepSt
     step_face_box_.resize(faces_.size());
     have_step_box_.assign(faces_.size(), 0);
   }
-  std::vector<ContactPoint> contacts;
   for (const auto& [ni, fi] : cand.node_face) {
     const Index node = nodes_[ni];
     const Face& f = faces_[fi];
@@ -233,6 +233,15 @@ std::vector<ContactPoint> NodeFaceContact::detect(const State& st, ContactStepSt
       }
     contacts.push_back(c);
   }
+}
+
+// Edge–edge contacts (seed 000): the pairs in contact last step that are still close, then
+// the listed pairs that cross during the step (exact CCD); remembers this step's pairs.
+void NodeFaceContact::edge_edge_contacts(const State& st, ContactStepStats& stats,
+                                         std::vector<ContactPoint>& contacts) {
+  const std::vector<Vec3>& x0 = st.x;
+  const std::vector<Vec3>& x1 = st.x_star;
+  const Candidates& cand = candidates_;
   // Seed 000: surface edges of different bodies that cross during the step, and the pairs in
   // contact last step that are still close (kept with their normal's orientation).
   stats.edge_candidates = static_cast<long>(cand.edge_edge.size());
@@ -348,6 +357,17 @@ std::vector<ContactPoint> NodeFaceContact::detect(const State& st, ContactStepSt
       add_edge_contact(ea, eb, closest_at_start(ea, eb), nullptr);
   }
   active_edges_ = std::move(active);
+}
+
+std::vector<ContactPoint> NodeFaceContact::detect(const State& st, ContactStepStats& stats) {
+  auto t0 = Clock::now();
+  refresh_lists(st, stats);
+  stats.broadphase_seconds = since(t0);
+  stats.candidates = static_cast<long>(candidates_.node_face.size());
+  t0 = Clock::now();
+  std::vector<ContactPoint> contacts;
+  node_face_contacts(st, contacts);
+  edge_edge_contacts(st, stats, contacts);
   if (settings_.order == ContactSettings::Order::lighter_first)
     std::stable_sort(contacts.begin(), contacts.end(),
                      [&](const ContactPoint& a, const ContactPoint& b) {

@@ -6,6 +6,7 @@
 #include <random>
 
 #include "../test_util.hpp"
+#include "tetcontact/app/float_ccd.hpp"
 #include "tetcontact/narrowphase/exact_ccd.hpp"
 #include "tetcontact/narrowphase/vertex_face.hpp"
 

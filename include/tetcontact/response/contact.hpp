@@ -52,6 +52,10 @@ class NodeFaceContact {
 
  private:
   void build_primitives();
+  void refresh_lists(const State& st, ContactStepStats& stats);
+  void node_face_contacts(const State& st, std::vector<ContactPoint>& contacts);
+  void edge_edge_contacts(const State& st, ContactStepStats& stats,
+                          std::vector<ContactPoint>& contacts);
   Box layer_box(Index face, const State& st, double margin) const;
   const Mesh& mesh_;
   const std::vector<Surface>& surfaces_;
