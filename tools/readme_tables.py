@@ -4,6 +4,7 @@ never retyped).
 
     tools/readme_tables.py stability BINARY [--work DIR]   the stability suite's table
     tools/readme_tables.py micro BINARY                     the micro-scene table
+    tools/readme_tables.py profile BINARY                   the broadphase profile (bars)
 
 `stability` runs every case of data/cases/stability/ twice, as shipped (`--check`) and with
 contact switched off, and prints one markdown row per case from the two summary.json files:
@@ -114,16 +115,32 @@ def micro(binary):
               f"{g(o['max_depth_over_h'])}, {'yes' if o['pass'] else 'no'} |")
 
 
+def profile(binary):
+    r = subprocess.run([binary, "profile", os.path.join(ROOT, "data/cases/bars-impact.yaml"),
+                        "--steps", "300", "--json"], capture_output=True, text=True)
+    print("| method | primitives | candidates/step | contacts/step | candidates/all pairs | "
+          "build ms | query ms | step ms | broadphase share | contact share |")
+    print("|---|---|---|---|---|---|---|---|---|---|")
+    for m in json.loads(r.stdout):
+        sec = m["seconds_per_step"]
+        print(f"| {m['method']} | {int(m['primitives']):,} | {m['candidates_per_step']:.1f} | "
+              f"{m['contacts_per_step']:.1f} | {g(m['pruning_ratio'])} | {sec['build'] * 1e3:.3f} | "
+              f"{sec['query'] * 1e3:.3f} | {sec['step'] * 1e3:.3f} | "
+              f"{100 * m['broadphase_share']:.1f} % | {100 * m['contact_share']:.1f} % |")
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawTextHelpFormatter)
-    ap.add_argument("table", choices=["stability", "micro"])
+    ap.add_argument("table", choices=["stability", "micro", "profile"])
     ap.add_argument("binary")
     ap.add_argument("--work", help="keep the runs here (default: a temporary folder)")
     a = ap.parse_args()
     if a.table == "stability":
         stability(os.path.abspath(a.binary), a.work or tempfile.mkdtemp(prefix="stability-"))
-    else:
+    elif a.table == "micro":
         micro(os.path.abspath(a.binary))
+    else:
+        profile(os.path.abspath(a.binary))
 
 
 if __name__ == "__main__":
