@@ -203,7 +203,7 @@ inline std::optional<bool> edge_edge(const std::array<Vec3, 8>& q) {
     const int v1 = sign_at_root(s1, s, lo, hi), v2 = sign_at_root(s2, s, lo, hi);
     const int v3 = sign_at_root(s3, s, lo, hi), v4 = sign_at_root(s4, s, lo, hi);
     if ((v1 * v2 > 0) || (v3 * v4 > 0)) return -1;  // one edge wholly on one side of the other
-    if (v1 * v2 < 0 && v3 * v4 < 0) return 1;        // a proper crossing
+    if (v1 * v2 < 0 && v3 * v4 < 0) return 1;       // a proper crossing
     return 0;
   });
 }

@@ -96,6 +96,25 @@ std::vector<Query> handcrafted() {
   return out;
 }
 
+// Random queries (points in [−1, 1]³; in half of them the second primitive sweeps through the
+// first's middle, so that many collide), alternately vertex–face and edge–edge; truth unset.
+std::vector<Query> random_queries(unsigned seed, int count) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> u(-1, 1);
+  std::vector<Query> out;
+  for (int k = 0; k < count; ++k) {
+    Query x;
+    x.ee = k % 2;
+    for (Vec3& p : x.q) p = Vec3(u(rng), u(rng), u(rng));
+    if (k % 4 < 2) {
+      const Vec3 shift = (x.q[0] + x.q[1]) - (x.q[2] + x.q[3]);
+      for (int n = 0; n < 4; ++n) x.q[4 + n] = x.q[n] + (n < 2 ? Vec3::Zero() : shift);
+    }
+    out.push_back(x);
+  }
+  return out;
+}
+
 }  // namespace
 
 // Each filter alone in front of the integer path, and all three, give the integer path's own
@@ -105,16 +124,7 @@ std::vector<Query> handcrafted() {
 TEST(IntervalCcd, EachFilterAgreesWithTheIntegerPathAlone) {
   std::vector<Query> queries = handcrafted();
   ASSERT_EQ(queries.size(), 7279u) << "data/ccd/handcrafted.txt missing or short";
-  std::mt19937 rng(5);
-  std::uniform_real_distribution<double> u(-1, 1);
-  for (int k = 0; k < 4000; ++k) {
-    Query x;
-    x.ee = k % 2;
-    for (Vec3& p : x.q) p = Vec3(u(rng), u(rng), u(rng));
-    if (k % 4 < 2) {  // the second primitive sweeps through the first's middle
-      const Vec3 shift = (x.q[0] + x.q[1]) - (x.q[2] + x.q[3]);
-      for (int n = 0; n < 4; ++n) x.q[4 + n] = x.q[n] + (n < 2 ? Vec3::Zero() : shift);
-    }
+  for (Query x : random_queries(5, 4000)) {
     x.truth = x.ee ? exact_edge_edge_ccd(x.q, {false, false, false})
                    : exact_vertex_face_ccd(x.q, {false, false, false});
     queries.push_back(x);
@@ -145,18 +155,7 @@ TEST(IntervalCcd, EachFilterAgreesWithTheIntegerPathAlone) {
 TEST(IntervalCcd, AgreesWithAnIndependentExactReference) {
   std::vector<Query> queries = handcrafted();
   ASSERT_EQ(queries.size(), 7279u) << "data/ccd/handcrafted.txt missing or short";
-  std::mt19937 rng(17);
-  std::uniform_real_distribution<double> u(-1, 1);
-  for (int k = 0; k < 2000; ++k) {
-    Query x;
-    x.ee = k % 2;
-    for (Vec3& p : x.q) p = Vec3(u(rng), u(rng), u(rng));
-    if (k % 4 < 2) {
-      const Vec3 shift = (x.q[0] + x.q[1]) - (x.q[2] + x.q[3]);
-      for (int n = 0; n < 4; ++n) x.q[4 + n] = x.q[n] + (n < 2 ? Vec3::Zero() : shift);
-    }
-    queries.push_back(x);
-  }
+  for (const Query& x : random_queries(17, 2000)) queries.push_back(x);
   long decided = 0, hits = 0, random_decided = 0;
   for (std::size_t i = 0; i < queries.size(); ++i) {
     const Query& x = queries[i];
