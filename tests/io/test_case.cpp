@@ -1,11 +1,14 @@
 // Case files: every error class gives one message with file, line and key path.
 #include <gtest/gtest.h>
 
+#include <cstdlib>
+#include <filesystem>
 #include <limits>
 
 #include "../test_util.hpp"
 #include "tetcontact/app/setup.hpp"
 #include "tetcontact/io/case.hpp"
+#include "tetcontact/io/files.hpp"
 #include "tetcontact/io/json.hpp"
 
 using namespace tc;
@@ -479,4 +482,16 @@ TEST(Case, ErosionRatioOutOfRangeOrWithoutParticlesIsRefused) {
           << e.what();
     }
   }
+}
+
+// No source path is compiled in: the data folder is found beside the program's folder (the
+// build tree's ../data), or named by TETCONTACT_DATA; a wrong name is an error that says so.
+TEST(Files, DataFolderBesideTheProgramOrFromTheEnvironment) {
+  ::unsetenv("TETCONTACT_DATA");
+  EXPECT_TRUE(std::filesystem::equivalent(data_dir(), test::source_path("data")));
+  ::setenv("TETCONTACT_DATA", "/nonexistent/tetcontact-data", 1);
+  EXPECT_THROW(data_dir(), std::runtime_error);
+  ::setenv("TETCONTACT_DATA", test::source_path("data").c_str(), 1);
+  EXPECT_EQ(data_dir(), test::source_path("data"));
+  ::unsetenv("TETCONTACT_DATA");
 }

@@ -26,6 +26,9 @@ State initial_state(const Model& model);
 class Simulation {
  public:
   Simulation(Model model, SolverSettings settings);
+  // The stages hold references into the model and the state: a Simulation stays where it is.
+  Simulation(const Simulation&) = delete;
+  Simulation& operator=(const Simulation&) = delete;
 
   /// One step t^n → t^{n+1}.
   void step();
