@@ -18,7 +18,6 @@
 #include "tetcontact/io/files.hpp"
 #include "tetcontact/io/json.hpp"
 #include "tetcontact/narrowphase/exact_ccd.hpp"
-#include "tetcontact/narrowphase/vertex_face.hpp"
 #include "tetcontact/solver/simulation.hpp"
 
 namespace tc {
@@ -331,7 +330,7 @@ int stress_command(const StressOptions& o) {
   if (!o.json)
     std::printf(
         "%ld disagreements with the constructed answers (exact CCD); float disagreements: the\n"
-        "floating-point swept vertex-face test of vertex_face.hpp, for comparison\n",
+        "floating-point swept vertex-face test of app/float_ccd.hpp, for comparison\n",
         total);
   long failed = 0;
   if (!scenes_dir.empty()) {
