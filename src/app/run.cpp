@@ -10,8 +10,8 @@
 #include <limits>
 #include <sstream>
 
-#include "tetcontact/app/expect.hpp"
 #include "tetcontact/app/setup.hpp"
+#include "tetcontact/diagnostics/expect.hpp"
 #include "tetcontact/diagnostics/reference.hpp"
 #include "tetcontact/io/case.hpp"
 #include "tetcontact/io/files.hpp"
@@ -284,7 +284,7 @@ Json summary_json(const Case& c, const Simulation& sim, const OutputWriter& writ
   j["end_time"] = c.end_time;
   j["wall_seconds"] = wall;
   j["modules"] = sim.modules();
-  j["mesh"] = mesh_json(model, sim.surfaces());
+  j["mesh"] = mesh_json(model, sim.state().surfaces);
   Json timings = Json::object();
   for (const auto& [name, seconds] : sim.profile().stages) timings[name] = seconds;
   j["timings"] = timings;

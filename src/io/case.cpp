@@ -1,5 +1,4 @@
 #include "tetcontact/io/case.hpp"
-#include "tetcontact/io/files.hpp"
 
 #include <yaml-cpp/yaml.h>
 
@@ -10,6 +9,9 @@
 #include <limits>
 #include <set>
 #include <sstream>
+
+#include "tetcontact/diagnostics/expect.hpp"
+#include "tetcontact/io/files.hpp"
 
 namespace tc {
 namespace {
@@ -569,11 +571,13 @@ void read_materials(const Reader& r, const YAML::Node& root, Case& c, const fs::
     if (m.IsMap() && m["from"]) {
       const std::string from = r.string(m["from"], join(p, "from"));
       if (!library_loaded) {
-        if (library_path.empty()) try {
+        if (library_path.empty()) {  // the shipped library, found only when a case needs it
+          try {
             library_path = default_material_library();
           } catch (const std::runtime_error& e) {
             r.fail(m["from"], join(p, "from"), e.what());
           }
+        }
         load_material_library(library_path);  // validates it, naming its own lines
         library = YAML::LoadFile(library_path);
         c.material_library = library_path;
@@ -929,13 +933,11 @@ void read_fracture(const Reader& r, const YAML::Node& root, Case& c) {
   }
 }
 
-// The case's the bounds the run must hold (`expect`).
+// The bounds the run must hold (`expect`).
 void read_expect(const Reader& r, const YAML::Node& root, Case& c) {
   // Bounds the run must hold (the stability cases state theirs).
   if (const YAML::Node e = root["expect"]) {
-    static const std::vector<std::string> known{
-        "momentum_error",   "energy_balance",     "max_depth_over_h", "max_crossings",
-        "max_nodes_inside", "max_crossing_depth", "particles_inside"};
+    const std::vector<std::string>& known = expect_figure_names();
     r.keys(e, "expect", known);
     for (const std::string& k : known)
       if (e[k]) {

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "tetcontact/app/expect.hpp"
+#include "tetcontact/diagnostics/expect.hpp"
 
 #include "tetcontact/mesh/mesh.hpp"
 

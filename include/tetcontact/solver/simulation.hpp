@@ -43,9 +43,6 @@ class Simulation {
 
   const State& state() const { return state_; }
   const Model& model() const { return model_; }
-  /// The surfaces of the run now: the model's, less the faces of cells turned into particles,
-  /// plus the faces those exposed.
-  const std::vector<Surface>& surfaces() const { return state_.surfaces; }
   const SolverSettings& settings() const { return settings_; }
   const Sample& first_sample() const { return first_; }
   const Sample& last_sample() const { return last_; }

@@ -1,4 +1,4 @@
-#include "tetcontact/app/expect.hpp"
+#include "tetcontact/diagnostics/expect.hpp"
 
 #include <cmath>
 #include <limits>

@@ -1,5 +1,6 @@
-// A case's stated bounds (`expect:`), judged against the figures of a run: one code path for
-// `run --check` and the micro-scenes of `stress`.
+// A case's stated bounds (`expect:`), judged against the figures of a run: one list of the
+// figures a bound may name (read by the case reader) and one code path that judges them (for
+// `run --check` and the micro-scenes of `stress`).
 #pragma once
 
 #include <optional>
@@ -19,6 +20,14 @@ struct ExpectFigures {
   std::optional<long> particles_inside_end;  // particle centres inside a body at the end
 };
 
+/// The figures an `expect:` bound may name, in the order judge_expect reads them.
+inline const std::vector<std::string>& expect_figure_names() {
+  static const std::vector<std::string> names{
+      "momentum_error",   "energy_balance",     "max_depth_over_h", "max_crossings",
+      "max_nodes_inside", "max_crossing_depth", "particles_inside"};
+  return names;
+}
+
 struct ExpectResult {
   std::string name;
   double bound = 0.0;
@@ -26,9 +35,8 @@ struct ExpectResult {
   bool pass = false;
 };
 
-/// Each bound against its figure: momentum_error, energy_balance, max_depth_over_h,
-/// max_crossings, max_nodes_inside, max_crossing_depth, particles_inside. A figure the run did
-/// not measure fails its bound.
+/// Each bound against its figure (expect_figure_names). A figure the run did not measure fails
+/// its bound.
 std::vector<ExpectResult> judge_expect(const std::vector<std::pair<std::string, double>>& bounds,
                                        const ExpectFigures& figures);
 
