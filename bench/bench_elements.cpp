@@ -60,7 +60,7 @@ void BM_ElementStage(benchmark::State& state) {
   Simulation sim(std::move(model), settings);
   sim.step();
   State st = sim.state();
-  NodalScratch scratch;
+  ElementScratch scratch;
   for (auto _ : state) {
     benchmark::DoNotOptimize(update_material(sim.model().mesh.tets, sim.model().materials,
                                              sim.model().element, st.dt_prev, st, scratch));

@@ -74,9 +74,10 @@ TEST(Architecture, FoldersIncludeOnlyThemselvesAndFoldersBelow) {
 // stage can depend on it without depending on another stage.
 TEST(Architecture, ModelIsTheDataLayer) {
   const std::vector<std::string> order = folder_order();
-  ASSERT_GE(order.size(), 3u);
-  EXPECT_EQ(order[0], "mesh");
-  EXPECT_EQ(order[1], "material");
-  EXPECT_EQ(order[2], "model");
+  ASSERT_GE(order.size(), 4u);
+  EXPECT_EQ(order[0], "parallel");  // threads: under everything, knows nothing of the physics
+  EXPECT_EQ(order[1], "mesh");
+  EXPECT_EQ(order[2], "material");
+  EXPECT_EQ(order[3], "model");
   EXPECT_EQ(order.back(), "app");
 }

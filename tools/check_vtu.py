@@ -8,6 +8,11 @@ mesh's tets, with radius, mass, velocity, energy and body, finite, radius and ma
     check_vtu.py OUTDIR                               check an existing result folder
     check_vtu.py --run BINARY CASE OUTDIR [END_TIME]  run a short version of CASE first
                                                       (to END_TIME, default 2e-5 s)
+    check_vtu.py --formats BINARY CASE OUTDIR [END_TIME]
+                                                      run it with output.format ascii, binary
+                                                      and compressed; each folder must pass the
+                                                      checks and VTK must read the same values,
+                                                      bit for bit, from all three
 
 Needs Debian's python3-vtk9 (run with /usr/bin/python3). Exit code 0 when all checks pass."""
 import json
@@ -53,16 +58,66 @@ def check_arrays(data, expected, name):
     return found
 
 
+def run_short(binary, case, out, end, fmt=None):
+    cmd = [binary, "run", case, "--out", out, "--force", "--quiet",
+           "--set", f"end_time={end!r}", "--set", f"output.interval={end / 2!r}",
+           "--set", "output.fields=[displacement,velocity,stress,pressure,body,von_mises]"]
+    if fmt:
+        cmd += ["--set", f"output.format={fmt}"]
+    subprocess.run(cmd, check=True)
+
+
+def all_arrays(path):
+    """Every point, cell and point-coordinate array of a .vtu as VTK reads it."""
+    grid = read(path, os.path.basename(path))
+    out = {"Points": vtk_to_numpy(grid.GetPoints().GetData()).copy(),
+           "types": vtk_to_numpy(grid.GetCellTypesArray()).copy()}
+    for kind, data in (("point", grid.GetPointData()), ("cell", grid.GetCellData())):
+        for i in range(data.GetNumberOfArrays()):
+            out[f"{kind}:{data.GetArrayName(i)}"] = vtk_to_numpy(data.GetArray(i)).copy()
+    return out
+
+
+def formats(argv):
+    """The same run written as ascii, binary and compressed: VTK reads the same bits."""
+    binary, case, out = argv[:3]
+    end = float(argv[3]) if len(argv) > 3 else 2.0e-5
+    dirs = {f: os.path.join(out, f) for f in ("ascii", "binary", "compressed")}
+    for f, d in dirs.items():
+        run_short(binary, case, d, end, f)
+        check(check_folder(d) == 0, f"{f}: the folder passes every check")
+    frames = sorted(n for n in os.listdir(dirs["ascii"]) if n.endswith(".vtu"))
+    check(len(frames) >= 2, "frames written")
+    for name in frames:
+        ref = all_arrays(os.path.join(dirs["ascii"], name))
+        for f in ("binary", "compressed"):
+            got = all_arrays(os.path.join(dirs[f], name))
+            check(sorted(got) == sorted(ref), f"{f}/{name}: the same arrays")
+            for k in ref:
+                if k in got:
+                    check(got[k].dtype == ref[k].dtype and got[k].shape == ref[k].shape and
+                          got[k].tobytes() == ref[k].tobytes(), f"{f}/{name}: {k} bit-identical")
+    size = {f: sum(os.path.getsize(os.path.join(d, n)) for n in frames) for f, d in dirs.items()}
+    print("check_vtu: frame bytes", size)
+    check(size["binary"] < size["ascii"], "binary frames smaller than ascii")
+    check(size["compressed"] < size["binary"], "compressed frames smaller than binary")
+    print(f"check_vtu: {checks['passed']} passed, {checks['failed']} failed")
+    return 1 if checks["failed"] else 0
+
+
 def main(argv):
+    if argv[:1] == ["--formats"]:
+        return formats(argv[1:])
     if argv[:1] == ["--run"]:
         binary, case, out = argv[1:4]
-        end = float(argv[4]) if len(argv) > 4 else 2.0e-5
-        subprocess.run([binary, "run", case, "--out", out, "--force", "--quiet",
-                        "--set", f"end_time={end!r}", "--set", f"output.interval={end / 2!r}",
-                        "--set", "output.fields=[displacement,velocity,stress,pressure,body,von_mises]"],
-                       check=True)
+        run_short(binary, case, out, float(argv[4]) if len(argv) > 4 else 2.0e-5)
     else:
         (out,) = argv
+    return check_folder(out)
+
+
+def check_folder(out):
+    failed_before = checks["failed"]
     summary = json.load(open(os.path.join(out, "summary.json")))
     nodes, tets = summary["mesh"]["nodes"], summary["mesh"]["tets"]
     series = ET.parse(os.path.join(out, "case.pvd")).getroot().find("Collection")
@@ -106,8 +161,8 @@ def main(argv):
         if t == 0.0:
             disp = vtk_to_numpy(grid.GetPointData().GetArray("displacement"))
             check(abs(disp).max() == 0.0, f"{name}: zero displacement at t = 0")
-    print(f"check_vtu: {checks['passed']} passed, {checks['failed']} failed")
-    return 1 if checks["failed"] else 0
+    print(f"check_vtu: {out}: {checks['passed']} passed, {checks['failed']} failed")
+    return 1 if checks["failed"] > failed_before else 0
 
 
 if __name__ == "__main__":

@@ -5,6 +5,9 @@ never retyped).
     tools/readme_tables.py stability BINARY [--work DIR]   the stability suite's table
     tools/readme_tables.py micro BINARY                     the micro-scene table
     tools/readme_tables.py profile BINARY                   the broadphase profile (bars)
+    tools/readme_tables.py threads BINARY [--cases NAME...] the thread-scaling table: bars,
+                                                            cylinders (edge–edge on), Hertz and
+                                                            ball-plate in full on 1 and 2 threads
 
 `stability` runs every case of data/cases/stability/ twice, as shipped (`--check`) and with
 contact switched off, and prints one markdown row per case from the two summary.json files:
@@ -129,16 +132,66 @@ def profile(binary):
               f"{100 * m['broadphase_share']:.1f} % | {100 * m['contact_share']:.1f} % |")
 
 
+# The thread-scaling table (issue 14): each case run in full on 1 and 2 threads.
+THREAD_CASES = [
+    ("bars", "data/cases/bars-impact.yaml", []),
+    ("cylinders, edge–edge on", "data/cases/cylinders.yaml", ["contact.edge_edge=true"]),
+    ("Hertz", "data/cases/hertz-spheres.yaml", []),
+    ("ball-plate", "data/cases/ball-plate.yaml", []),
+]
+
+
+def stage_shares(summary):
+    t = summary["timings"]
+    wall = summary["wall_seconds"]
+    groups = {"elements": ["elements"], "contact": ["broadphase", "narrowphase", "response"],
+              "particles": ["particles", "fracture"], "output": ["output"], "balance": ["balance"]}
+    parts = []
+    for name, stages in groups.items():
+        sec = sum(t.get(s, 0.0) for s in stages)
+        if sec > 0:
+            parts.append(f"{name} {100 * sec / wall:.0f} %")
+    return ", ".join(parts)
+
+
+def threads(binary, work, only):
+    print("| case | tets | steps | wall, 1 thread | wall, 2 threads | speed-up | "
+          "stage shares at 1 thread | stage shares at 2 threads |")
+    print("|---|---|---|---|---|---|---|---|")
+    for name, case, sets in THREAD_CASES:
+        if only and not any(o in case for o in only):
+            continue
+        summaries = {}
+        for n in (1, 2):
+            out = os.path.join(work, f"{os.path.basename(case)}-{n}")
+            cmd = [binary, "run", os.path.join(ROOT, case), "--quiet", "--force", "--threads",
+                   str(n), "--out", out]
+            for kv in sets:
+                cmd += ["--set", kv]
+            subprocess.run(cmd, check=True)
+            summaries[n] = json.load(open(os.path.join(out, "summary.json")))
+        one, two = summaries[1], summaries[2]
+        assert one["steps"] == two["steps"]
+        print(f"| {name} | {one['mesh']['tets']:,} | {one['steps']:,} | "
+              f"{one['wall_seconds']:.1f} s | {two['wall_seconds']:.1f} s | "
+              f"{one['wall_seconds'] / two['wall_seconds']:.2f}× | {stage_shares(one)} | "
+              f"{stage_shares(two)} |", flush=True)
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawTextHelpFormatter)
-    ap.add_argument("table", choices=["stability", "micro", "profile"])
+    ap.add_argument("table", choices=["stability", "micro", "profile", "threads"])
     ap.add_argument("binary")
     ap.add_argument("--work", help="keep the runs here (default: a temporary folder)")
+    ap.add_argument("--cases", nargs="*", help="threads: only the cases whose file names "
+                    "contain one of these")
     a = ap.parse_args()
     if a.table == "stability":
         stability(os.path.abspath(a.binary), a.work or tempfile.mkdtemp(prefix="stability-"))
     elif a.table == "micro":
         micro(os.path.abspath(a.binary))
+    elif a.table == "threads":
+        threads(os.path.abspath(a.binary), a.work or tempfile.mkdtemp(prefix="threads-"), a.cases)
     else:
         profile(os.path.abspath(a.binary))
 

@@ -15,6 +15,7 @@
 #include "tetcontact/app/run.hpp"
 #include "tetcontact/app/stress.hpp"
 #include "tetcontact/app/sweep.hpp"
+#include "tetcontact/parallel/parallel.hpp"
 
 namespace {
 
@@ -162,6 +163,18 @@ CLI::App* add_profile(CLI::App& app, tc::ProfileOptions& p) {
   return cmd;
 }
 
+// --threads N: the case's solver.threads, for this command (wins over --set solver.threads).
+void add_threads(CLI::App* cmd, int& threads) {
+  cmd->add_option("--threads", threads,
+                  "threads (default: the case's solver.threads, else all cores); results are "
+                  "bit-identical for any count")
+      ->check(CLI::Range(1, 4096));
+}
+
+void apply_threads(int threads, std::vector<std::string>& overrides) {
+  if (threads > 0) overrides.push_back("solver.threads=" + std::to_string(threads));
+}
+
 // Runs a command: bad input it did not classify itself is an internal error (exit 1).
 template <class F>
 int guarded(F&& command, int on_error = 1) {
@@ -194,6 +207,10 @@ int main(int argc, char** argv) {
   CLI::App* stress_cmd = add_stress(app, stress);
   CLI::App* sweep_cmd = add_sweep(app, sweep);
   CLI::App* profile_cmd = add_profile(app, profile);
+  int run_threads = 0, sweep_threads = 0, profile_threads = 0;
+  add_threads(run_cmd, run_threads);
+  add_threads(sweep_cmd, sweep_threads);
+  add_threads(profile_cmd, profile_threads);
   try {
     app.parse(argc, argv);
     if (profile_cmd->parsed() && profile.case_path.empty() == profile.frames.empty())
@@ -202,6 +219,10 @@ int main(int argc, char** argv) {
     const int code = app.exit(e);  // help and version print and give 0
     return code == 0 ? 0 : k_bad_usage;
   }
+  apply_threads(run_threads, run.overrides);
+  apply_threads(sweep_threads, sweep.overrides);
+  apply_threads(profile_threads, profile.overrides);
+  if (profile_threads > 0) tc::parallel::set_threads(profile_threads);  // frames mode: no case
   if (run_cmd->parsed()) return guarded([&] { return tc::run_case(run); });
   if (check_cmd->parsed()) return guarded([&] { return tc::check_case(check); });
   if (ccd_cmd->parsed()) return guarded([&] { return tc::ccd_command(ccd); });

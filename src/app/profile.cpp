@@ -1,19 +1,31 @@
 #include "tetcontact/app/profile.hpp"
 
+#include <unistd.h>
+
 #include <chrono>
 #include <cstdio>
+#include <fstream>
 #include <iostream>
 
 #include "tetcontact/app/setup.hpp"
 #include "tetcontact/broadphase/broadphase.hpp"
 #include "tetcontact/io/json.hpp"
 #include "tetcontact/io/ply.hpp"
+#include "tetcontact/parallel/parallel.hpp"
 #include "tetcontact/solver/simulation.hpp"
 
 namespace tc {
 namespace {
 
 using Clock = std::chrono::steady_clock;
+
+// Resident memory of this process, bytes (Linux /proc/self/statm; 0 where unreadable).
+double resident_bytes() {
+  std::ifstream statm("/proc/self/statm");
+  double pages = 0.0, resident = 0.0;
+  if (!(statm >> pages >> resident)) return 0.0;
+  return resident * static_cast<double>(sysconf(_SC_PAGESIZE));
+}
 
 std::vector<std::string> methods_for(const std::string& method, double pairs) {
   if (method != "all") {
@@ -35,19 +47,24 @@ int profile_case(const ProfileOptions& o) {
   for (const Surface& s : probe.surfaces) all_pairs += s.nodes.size() * (faces - s.faces.size());
   Json out = Json::array();
   if (!o.json)
-    std::printf("%-12s %10s %11s %10s %10s %10s %9s %9s %9s %9s %9s\n", "method", "primitives",
-                "cand/step", "cont/step", "cand/all", "cont/cand", "build ms", "query ms",
-                "step ms", "bp share", "contact");
+    std::printf("%-12s %10s %11s %10s %10s %10s %9s %9s %9s %9s %9s %8s %8s %7s\n", "method",
+                "primitives", "cand/step", "cont/step", "cand/all", "cont/cand", "build ms",
+                "query ms", "step ms", "bp share", "contact", "islands", "largest", "B/tet");
   for (const std::string& m : methods_for(o.method, all_pairs)) {
     std::vector<std::string> ov = o.overrides;
     ov.push_back("contact.enabled=true");
     ov.push_back("contact.broadphase=" + m);
     const Case c = load_case(o.case_path, ov);
+    // Memory of the run: what the process holds more once the model is built and the steps
+    // have run (the model, the state, the kernels' and the contact modules' arrays).
+    const double resident_before = resident_bytes();
     Simulation sim(build_model(c), solver_settings(c));
     const auto t0 = Clock::now();
     long steps = 0;
     while (!sim.done() && steps < o.steps) sim.step(), ++steps;
     const double wall = std::chrono::duration<double>(Clock::now() - t0).count();
+    const double tets = static_cast<double>(sim.model().mesh.tets.size());
+    const double bytes_per_tet = (resident_bytes() - resident_before) / std::max(1.0, tets);
     const auto& ct = sim.contact_totals();
     const double n = std::max(1L, steps);
     const double cand = ct.candidates / n, cont = ct.node_face / n;
@@ -62,11 +79,19 @@ int profile_case(const ProfileOptions& o) {
     j["nodes"] = nodes;
     j["faces"] = faces;
     j["steps"] = steps;
+    j["tets"] = tets;
+    j["threads"] = parallel::threads();
+    j["bytes_per_tet"] = bytes_per_tet;
     j["broadphase_runs"] = ct.rebuilds;
     j["candidates_per_step"] = cand;
     j["contacts_per_step"] = cont;
     j["pruning_ratio"] = all_pairs > 0 ? cand / all_pairs : 0.0;
     j["contacts_over_candidates"] = cand > 0 ? cont / cand : 0.0;
+    // The correction passes run island by island on the threads: the largest island's share
+    // of the points bounds their speed-up.
+    j["islands_per_step"] = ct.islands / n;
+    j["largest_island_share"] =
+        ct.island_points > 0 ? double(ct.largest_island_points) / ct.island_points : 0.0;
     Json& sec = j["seconds_per_step"];
     sec["build"] = ct.broadphase_build / n;
     sec["query"] = ct.broadphase_query / n;
@@ -76,11 +101,15 @@ int profile_case(const ProfileOptions& o) {
     j["contact_share"] = wall > 0 ? contact / wall : 0.0;
     out.push_back(j);
     if (!o.json)
-      std::printf("%-12s %10.0f %11.1f %10.1f %10.3e %10.3f %9.3f %9.3f %9.3f %8.1f%% %8.1f%%\n",
-                  m.c_str(), nodes + faces, cand, cont, all_pairs > 0 ? cand / all_pairs : 0.0,
-                  cand > 0 ? cont / cand : 0.0, 1e3 * ct.broadphase_build / n,
-                  1e3 * ct.broadphase_query / n, 1e3 * wall / n, wall > 0 ? 100 * bp / wall : 0.0,
-                  wall > 0 ? 100 * contact / wall : 0.0);
+      std::printf(
+          "%-12s %10.0f %11.1f %10.1f %10.3e %10.3f %9.3f %9.3f %9.3f %8.1f%% %8.1f%% %8.1f "
+          "%7.1f%% %7.0f\n",
+          m.c_str(), nodes + faces, cand, cont, all_pairs > 0 ? cand / all_pairs : 0.0,
+          cand > 0 ? cont / cand : 0.0, 1e3 * ct.broadphase_build / n,
+          1e3 * ct.broadphase_query / n, 1e3 * wall / n, wall > 0 ? 100 * bp / wall : 0.0,
+          wall > 0 ? 100 * contact / wall : 0.0, ct.islands / n,
+          ct.island_points > 0 ? 100.0 * ct.largest_island_points / ct.island_points : 0.0,
+          bytes_per_tet);
   }
   if (o.json) std::cout << out.dump(2) << "\n";
   return 0;

@@ -18,6 +18,7 @@
 #include "tetcontact/io/json.hpp"
 #include "tetcontact/io/output.hpp"
 #include "tetcontact/mesh/gmsh.hpp"
+#include "tetcontact/parallel/parallel.hpp"
 #include "tetcontact/solver/simulation.hpp"
 
 namespace tc {
@@ -288,6 +289,7 @@ Json summary_json(const Case& c, const Simulation& sim, const OutputWriter& writ
   Json timings = Json::object();
   for (const auto& [name, seconds] : sim.profile().stages) timings[name] = seconds;
   j["timings"] = timings;
+  j["threads"] = parallel::threads();
   j["energy"] = energy_json(sim);
   j["momentum"] = momentum_json(sim.first_sample(), sim.last_sample());
   j["mass"] = mass_json(sim.first_sample(), sim.last_sample());

@@ -82,6 +82,7 @@ SolverSettings solver_settings(const Case& c) {
   s.end_time = c.end_time;
   s.cfl = c.cfl;
   s.max_steps = c.max_steps;
+  s.threads = c.threads;
   return s;
 }
 

@@ -6,6 +6,8 @@
 #include <limits>
 #include <sstream>
 
+#include "tetcontact/parallel/parallel.hpp"
+
 namespace tc {
 
 namespace {
@@ -102,9 +104,10 @@ struct TetGeometry {
 // its CFL limit:
 //   f_i = σ a_i / 3 (f_0 = −(f_1 + f_2 + f_3): each tet's forces balance),
 //   τ_t = l / (Q + sqrt(Q² + c²)), l = 3V / max|a_i|, Q = C1 c + C2 l |ε̇v| in compression.
-[[gnu::always_inline]] inline void scatter_forces(Index t, const Tet& k, const TetGeometry& g,
-                                                  const ElementOptions& options, State& st,
-                                                  ForceResult& r) {
+// The forces go to the tet's own corners f[0..3]; gather_forces adds them at the nodes.
+[[gnu::always_inline]] inline void tet_forces(Index t, const TetGeometry& g,
+                                              const ElementOptions& options, const State& st,
+                                              Vec3* f, ForceResult& r) {
   const Sym6& s = st.s[t];
   const double pq = st.p[t] + st.q[t];
   constexpr double third = 1.0 / 3.0;  // σ/3, so that f_i = (σ/3) a_i
@@ -116,18 +119,12 @@ struct TetGeometry {
     const double fx = sxx * a[0] + sxy * a[1] + sxz * a[2];
     const double fy = sxy * a[0] + syy * a[1] + syz * a[2];
     const double fz = sxz * a[0] + syz * a[1] + szz * a[2];
-    Vec3& f = st.f[k[i]];
-    f[0] += fx;
-    f[1] += fy;
-    f[2] += fz;
+    f[i] = Vec3(fx, fy, fz);
     f0[0] += fx;
     f0[1] += fy;
     f0[2] += fz;
   }
-  Vec3& f = st.f[k[0]];
-  f[0] -= f0[0];
-  f[1] -= f0[1];
-  f[2] -= f0[2];
+  f[0] = Vec3(-f0[0], -f0[1], -f0[2]);
   // Compared as squares (r.dt_stable holds τ² until finish_forces): a tet in expansion needs
   // no square root at all.
   const double l2 = 9.0 * g.vol * g.vol / g.amax2;
@@ -149,6 +146,55 @@ struct TetGeometry {
   if (dt2 < options.erode_dt2) r.eroding.push_back(t);
 }
 
+// The results of the blocks of a pass, in block order, after those of earlier passes: the
+// smallest step with the first tet that reaches it, and the eroding tets in tet order — what
+// one serial loop over the same tets finds.
+void merge(ForceResult& into, const std::vector<ForceResult>& blocks) {
+  for (const ForceResult& b : blocks) {
+    if (b.dt_stable < into.dt_stable) {
+      into.dt_stable = b.dt_stable;
+      into.critical_tet = b.critical_tet;
+    }
+    into.eroding.insert(into.eroding.end(), b.eroding.begin(), b.eroding.end());
+  }
+}
+
+std::vector<ForceResult> block_results(std::size_t tets) {
+  ForceResult none;
+  none.dt_stable = std::numeric_limits<double>::infinity();
+  return std::vector<ForceResult>(parallel::block_count(tets), none);
+}
+
+// The node–tet incidence, once per mesh (tets never change; particles are skipped by damage).
+void build_incidence(const std::vector<Tet>& tets, std::size_t nodes, ElementScratch& scratch) {
+  if (scratch.incidence.size() == 4 * tets.size() && !tets.empty()) return;
+  scratch.incidence_begin.assign(nodes + 1, 0);
+  for (const Tet& k : tets)
+    for (Index a : k) ++scratch.incidence_begin[a + 1];
+  for (std::size_t a = 0; a < nodes; ++a)
+    scratch.incidence_begin[a + 1] += scratch.incidence_begin[a];
+  scratch.incidence.resize(4 * tets.size());
+  std::vector<Index> next(scratch.incidence_begin.begin(), scratch.incidence_begin.end() - 1);
+  for (std::size_t t = 0; t < tets.size(); ++t)
+    for (int c = 0; c < 4; ++c)
+      scratch.incidence[next[tets[t][c]]++] = static_cast<Index>(4 * t + c);
+  scratch.tet_force.assign(4 * tets.size(), Vec3::Zero());
+}
+
+// F_a = Σ over the cells around a (ascending) of their corner forces: the serial scatter's sum.
+// Nodes past the mesh's (particles) carry none.
+void gather_forces(std::size_t mesh_nodes, const ElementScratch& scratch, State& st) {
+  parallel::for_each(st.f.size(), [&](std::size_t a) {
+    Vec3 f = Vec3::Zero();
+    if (a < mesh_nodes)
+      for (Index e = scratch.incidence_begin[a]; e < scratch.incidence_begin[a + 1]; ++e) {
+        const Index corner = scratch.incidence[e];
+        if (st.damage[corner >> 2] != Damage::particle) f += scratch.tet_force[corner];
+      }
+    st.f[a] = f;
+  });
+}
+
 // The squared minimum of scatter_forces back to a time step.
 inline ForceResult finish_forces(ForceResult r) {
   r.dt_stable = std::sqrt(r.dt_stable);
@@ -165,24 +211,32 @@ void init_sound_speed(const std::vector<Material>& materials, State& st) {
   }
 }
 
-ForceResult compute_forces(const std::vector<Tet>& tets, const ElementOptions& options, State& st) {
-  for (Vec3& f : st.f) f.setZero();
+ForceResult compute_forces(const std::vector<Tet>& tets, const ElementOptions& options, State& st,
+                           ElementScratch& scratch) {
+  const std::size_t mesh_nodes = static_cast<std::size_t>(st.first_particle);
+  build_incidence(tets, mesh_nodes, scratch);
+  std::vector<ForceResult> blocks = block_results(tets.size());
+  parallel::for_blocks(tets.size(), [&](std::size_t blk, std::size_t begin, std::size_t end) {
+    TetGeometry g;
+    for (std::size_t t = begin; t < end; ++t) {
+      if (st.damage[t] == Damage::particle) continue;
+      const Index ti = static_cast<Index>(t);
+      end_geometry(ti, tets[t], st, g, "");
+      tet_forces(ti, g, options, st, &scratch.tet_force[4 * t], blocks[blk]);
+    }
+  });
   ForceResult r;
   r.dt_stable = std::numeric_limits<double>::infinity();
-  TetGeometry g;
-  for (std::size_t t = 0; t < tets.size(); ++t) {
-    if (st.damage[t] == Damage::particle) continue;
-    const Index ti = static_cast<Index>(t);
-    end_geometry(ti, tets[t], st, g, "");
-    scatter_forces(ti, tets[t], g, options, st, r);
-  }
+  merge(r, blocks);
+  gather_forces(mesh_nodes, scratch, st);
   return finish_forces(r);
 }
 
 ForceResult update_material(const std::vector<Tet>& tets, const std::vector<Material>& materials,
                             const ElementOptions& options, double tau, State& st,
-                            NodalScratch& scratch) {
-  for (Vec3& f : st.f) f.setZero();
+                            ElementScratch& scratch) {
+  const std::size_t mesh_nodes = static_cast<std::size_t>(st.first_particle);
+  build_incidence(tets, mesh_nodes, scratch);
   ForceResult forces;
   forces.dt_stable = std::numeric_limits<double>::infinity();
   const auto anp = [&](Index mat) {
@@ -205,157 +259,179 @@ ForceResult update_material(const std::vector<Tet>& tets, const std::vector<Mate
     }
     scratch.vol.assign(n, 0.0);
     scratch.energy.assign(n, 0.0);
-    if (options.fracture) scratch.vol0.assign(n, 0.0);  // over the intact cells, each step
     scratch.pressure.assign(n, 0.0);
     scratch.tet_dvol.assign(tets.size(), 0.0);
+    scratch.tet_energy.assign(tets.size(), 0.0);
+    scratch.tet_averaged.assign(tets.size(), 0);
   }
 
   // Pass 1: kinematics, deviator, viscosity; for per-tet pressure also the EOS, the energy
   // and the forces.
   const double h = 0.5 * tau;
-  TetGeometry gm, ge;  // mid-step and end-of-step geometry
-  for (std::size_t t = 0; t < tets.size(); ++t) {
-    if (st.damage[t] == Damage::particle) continue;  // now a particle: no longer a cell
-    const Index ti = static_cast<Index>(t);
-    const Tet& k = tets[t];
-    const Index mi = st.tet_material[t];
-    const Material& mat = materials[mi];
+  std::vector<ForceResult> blocks = block_results(tets.size());
+  parallel::for_blocks(tets.size(), [&](std::size_t blk, std::size_t begin, std::size_t end) {
+    TetGeometry gm, ge;  // mid-step and end-of-step geometry
+    for (std::size_t t = begin; t < end; ++t) {
+      if (st.damage[t] == Damage::particle) continue;  // now a particle: no longer a cell
+      const Index ti = static_cast<Index>(t);
+      const Tet& k = tets[t];
+      const Index mi = st.tet_material[t];
+      const Material& mat = materials[mi];
 
-    // Edges at the end of the step and at mid-step (x^{n+1/2} = x^{n+1} − τ/2 U^{n+1}), and
-    // the velocity differences U_i − U_0.
-    const Vec3 &x0 = st.x[k[0]], &u0 = st.v[k[0]];
-    double ee[3][3], em[3][3], du[3][3];
-    for (int i = 0; i < 3; ++i) {
-      const Vec3 &xi = st.x[k[i + 1]], &ui = st.v[k[i + 1]];
-      for (int d = 0; d < 3; ++d) {
-        ee[i][d] = xi[d] - x0[d];
-        du[i][d] = ui[d] - u0[d];
-        em[i][d] = ee[i][d] - h * du[i][d];
-      }
-    }
-    tet_geometry(em, gm);
-    if (!(gm.vol > 0.0)) inverted(ti, "during the step", gm.vol, st.vol0[t]);
-    tet_geometry(ee, ge);
-    if (!std::isfinite(ge.vol)) throw InvertedElement(ti, "non-finite node position");
-    if (!(ge.vol > 0.0)) inverted(ti, "at the end of the step", ge.vol, st.vol0[t]);
-
-    // L = Σ_i (U_i − U_0) ⊗ ∇N_i, ∇N_i = −a_i / (3V) at mid-step.
-    double L[3][3];
-    const double inv3v = -1.0 / (3.0 * gm.vol);
-    for (int r = 0; r < 3; ++r)
-      for (int c = 0; c < 3; ++c)
-        L[r][c] = inv3v * (du[0][r] * gm.a[1][c] + du[1][r] * gm.a[2][c] + du[2][r] * gm.a[3][c]);
-    const Sym6 d{L[0][0],
-                 L[1][1],
-                 L[2][2],
-                 0.5 * (L[0][1] + L[1][0]),
-                 0.5 * (L[1][2] + L[2][1]),
-                 0.5 * (L[0][2] + L[2][0])};
-    const std::array<double, 3> w{0.5 * (L[2][1] - L[1][2]), 0.5 * (L[0][2] - L[2][0]),
-                                  0.5 * (L[1][0] - L[0][1])};
-    const double trD = d[0] + d[1] + d[2];
-
-    // Deviator (Jaumann rate, radial return) and its trapezoidal work τ V ½(sⁿ + sⁿ⁺¹) : D.
-    const Sym6 s_old = st.s[t];
-    const bool failed = options.fracture && st.damage[t] != Damage::intact;  // no deviator
-    const DeviatorIncrement inc =
-        failed ? DeviatorIncrement{} : update_deviator6(mat, st.s[t], d, w, tau, st.eps_p[t]);
-    const Sym6& s_new = st.s[t];
-    double sd = 0.0;
-    for (int c = 0; c < 6; ++c) sd += (c < 3 ? 1.0 : 2.0) * (s_old[c] + s_new[c]) * d[c];
-    const double w_dev = 0.5 * tau * gm.vol * sd;
-    if (inc.dplastic > 0.0) {
-      // Plastic work V σy Δε̄p, with σy at mid-increment (exact for linear hardening).
-      st.w_plastic[t] +=
-          gm.vol * (inc.yield - 0.5 * mat.hardening_modulus * inc.dplastic) * inc.dplastic;
-      st.eps_p[t] += inc.dplastic;
-    }
-
-    // Viscosity from the mid-step strain rate; its work is the trapezoid of the values at both
-    // ends of the step (q^{n+1/2} is what the forces at t^{n+1} carry), as for the pressure.
-    double q = 0.0;
-    if (trD < 0.0) {  // compression only: length, density and sound speed only then
-      const double l = 3.0 * gm.vol / std::sqrt(gm.amax2);
-      const double rho_mid = mat.density * st.vol0[t] / gm.vol;
-      q = bulk_viscosity(rho_mid, l, std::sqrt(st.sound2[t]), trD, options.viscosity_linear,
-                         options.viscosity_quadratic);
-    }
-    const double dvol = ge.vol - st.vol[t];
-    const double w_q = -0.5 * (st.q[t] + q) * dvol;
-    st.q[t] = q;
-    st.trace_d[t] = trD;
-    st.w_viscous[t] += w_q;
-    st.vol[t] = ge.vol;
-
-    if (anp(mi)) {
-      // Failed cells are left out of the nodal averages: their neighbours' pressure must not
-      // depend on a loosened cell's volume (an intact cell beside spalled ones was crushed to
-      // V/V0 = 0.29 under an averaged pressure far below its own).
-      if (!options.fracture || st.damage[t] == Damage::intact)
-        for (Index n : k) {
-          scratch.vol[n] += 0.25 * ge.vol;
-          scratch.energy[n] += 0.25 * st.e_int[t];
-          if (options.fracture) scratch.vol0[n] += 0.25 * st.vol0[t];
+      // Edges at the end of the step and at mid-step (x^{n+1/2} = x^{n+1} − τ/2 U^{n+1}), and
+      // the velocity differences U_i − U_0.
+      const Vec3 &x0 = st.x[k[0]], &u0 = st.v[k[0]];
+      double ee[3][3], em[3][3], du[3][3];
+      for (int i = 0; i < 3; ++i) {
+        const Vec3 &xi = st.x[k[i + 1]], &ui = st.v[k[i + 1]];
+        for (int d = 0; d < 3; ++d) {
+          ee[i][d] = xi[d] - x0[d];
+          du[i][d] = ui[d] - u0[d];
+          em[i][d] = ee[i][d] - h * du[i][d];
         }
-      st.e_int[t] += w_dev + w_q;  // the pressure work follows in pass 3
-      scratch.tet_dvol[t] = dvol;
-      continue;
-    }
-    // Per-tet pressure: p^{n+1} = A(μ) + B E^{n+1}/V0 with
-    //   E^{n+1} = E^n + W_dev − ½ (p^n + p^{n+1}) ΔV + W_q, solved for E^{n+1}.
-    const double mu = st.vol0[t] / ge.vol - 1.0;
-    const EosTerms eos = eos_terms(mat, mu);
-    double e_new = implicit_energy(st.e_int[t] + w_dev, w_q, st.p[t], eos, dvol, st.vol0[t]);
-    double p_new = eos.a + eos.b * e_new / st.vol0[t];
-    if (options.fracture) {
-      const double carried = fail(mat, ti, ge.vol, p_new, st);
-      if (carried != p_new) {  // the energy with the pressure the cell carries
-        p_new = carried;
-        e_new = st.e_int[t] + w_dev - 0.5 * (st.p[t] + p_new) * dvol + w_q;
       }
-    }
-    st.e_int[t] = e_new;
-    st.p[t] = p_new;
-    st.sound2[t] = sound_speed2(mat, mu, st.p[t], eos);
-    scatter_forces(ti, k, ge, options, st, forces);
-  }
-  if (!any_anp) return finish_forces(forces);
+      tet_geometry(em, gm);
+      if (!(gm.vol > 0.0)) inverted(ti, "during the step", gm.vol, st.vol0[t]);
+      tet_geometry(ee, ge);
+      if (!std::isfinite(ge.vol)) throw InvertedElement(ti, "non-finite node position");
+      if (!(ge.vol > 0.0)) inverted(ti, "at the end of the step", ge.vol, st.vol0[t]);
 
-  // Pass 2: nodal pressures from nodal volumes and energies (per reference volume).
-  for (std::size_t n = 0; n < st.x.size(); ++n) {
-    const Index nm = scratch.node_material[n];
-    if (nm < 0) continue;
-    if (!(scratch.vol[n] > 0.0)) continue;  // every cell around it failed: not used
-    const double mu = scratch.vol0[n] / scratch.vol[n] - 1.0;
-    scratch.pressure[n] = eos_pressure(materials[nm], mu, scratch.energy[n] / scratch.vol0[n]);
+      // L = Σ_i (U_i − U_0) ⊗ ∇N_i, ∇N_i = −a_i / (3V) at mid-step.
+      double L[3][3];
+      const double inv3v = -1.0 / (3.0 * gm.vol);
+      for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 3; ++c)
+          L[r][c] = inv3v * (du[0][r] * gm.a[1][c] + du[1][r] * gm.a[2][c] + du[2][r] * gm.a[3][c]);
+      const Sym6 d{L[0][0],
+                   L[1][1],
+                   L[2][2],
+                   0.5 * (L[0][1] + L[1][0]),
+                   0.5 * (L[1][2] + L[2][1]),
+                   0.5 * (L[0][2] + L[2][0])};
+      const std::array<double, 3> w{0.5 * (L[2][1] - L[1][2]), 0.5 * (L[0][2] - L[2][0]),
+                                    0.5 * (L[1][0] - L[0][1])};
+      const double trD = d[0] + d[1] + d[2];
+
+      // Deviator (Jaumann rate, radial return) and its trapezoidal work τ V ½(sⁿ + sⁿ⁺¹) : D.
+      const Sym6 s_old = st.s[t];
+      const bool failed = options.fracture && st.damage[t] != Damage::intact;  // no deviator
+      const DeviatorIncrement inc =
+          failed ? DeviatorIncrement{} : update_deviator6(mat, st.s[t], d, w, tau, st.eps_p[t]);
+      const Sym6& s_new = st.s[t];
+      double sd = 0.0;
+      for (int c = 0; c < 6; ++c) sd += (c < 3 ? 1.0 : 2.0) * (s_old[c] + s_new[c]) * d[c];
+      const double w_dev = 0.5 * tau * gm.vol * sd;
+      if (inc.dplastic > 0.0) {
+        // Plastic work V σy Δε̄p, with σy at mid-increment (exact for linear hardening).
+        st.w_plastic[t] +=
+            gm.vol * (inc.yield - 0.5 * mat.hardening_modulus * inc.dplastic) * inc.dplastic;
+        st.eps_p[t] += inc.dplastic;
+      }
+
+      // Viscosity from the mid-step strain rate; its work is the trapezoid of the values at
+      // both ends of the step (q^{n+1/2} is what the forces at t^{n+1} carry), as for the
+      // pressure.
+      double q = 0.0;
+      if (trD < 0.0) {  // compression only: length, density and sound speed only then
+        const double l = 3.0 * gm.vol / std::sqrt(gm.amax2);
+        const double rho_mid = mat.density * st.vol0[t] / gm.vol;
+        q = bulk_viscosity(rho_mid, l, std::sqrt(st.sound2[t]), trD, options.viscosity_linear,
+                           options.viscosity_quadratic);
+      }
+      const double dvol = ge.vol - st.vol[t];
+      const double w_q = -0.5 * (st.q[t] + q) * dvol;
+      st.q[t] = q;
+      st.trace_d[t] = trD;
+      st.w_viscous[t] += w_q;
+      st.vol[t] = ge.vol;
+
+      if (anp(mi)) {
+        // Failed cells are left out of the nodal averages: their neighbours' pressure must not
+        // depend on a loosened cell's volume (an intact cell beside spalled ones was crushed to
+        // V/V0 = 0.29 under an averaged pressure far below its own).
+        scratch.tet_averaged[t] = !options.fracture || st.damage[t] == Damage::intact;
+        scratch.tet_energy[t] = st.e_int[t];
+        st.e_int[t] += w_dev + w_q;  // the pressure work follows in pass 3
+        scratch.tet_dvol[t] = dvol;
+        continue;
+      }
+      // Per-tet pressure: p^{n+1} = A(μ) + B E^{n+1}/V0 with
+      //   E^{n+1} = E^n + W_dev − ½ (p^n + p^{n+1}) ΔV + W_q, solved for E^{n+1}.
+      const double mu = st.vol0[t] / ge.vol - 1.0;
+      const EosTerms eos = eos_terms(mat, mu);
+      double e_new = implicit_energy(st.e_int[t] + w_dev, w_q, st.p[t], eos, dvol, st.vol0[t]);
+      double p_new = eos.a + eos.b * e_new / st.vol0[t];
+      if (options.fracture) {
+        const double carried = fail(mat, ti, ge.vol, p_new, st);
+        if (carried != p_new) {  // the energy with the pressure the cell carries
+          p_new = carried;
+          e_new = st.e_int[t] + w_dev - 0.5 * (st.p[t] + p_new) * dvol + w_q;
+        }
+      }
+      st.e_int[t] = e_new;
+      st.p[t] = p_new;
+      st.sound2[t] = sound_speed2(mat, mu, st.p[t], eos);
+      tet_forces(ti, ge, options, st, &scratch.tet_force[4 * t], blocks[blk]);
+    }
+  });
+  merge(forces, blocks);
+  if (!any_anp) {
+    gather_forces(mesh_nodes, scratch, st);
+    return finish_forces(forces);
   }
+
+  // Pass 2: nodal volumes and energies gathered from the cells in the averages (a quarter of
+  // each), then nodal pressures from them (per reference volume).
+  parallel::for_each(mesh_nodes, [&](std::size_t n) {
+    const Index nm = scratch.node_material[n];
+    if (nm < 0) return;
+    double vol = 0.0, energy = 0.0, vol0 = 0.0;
+    for (Index e = scratch.incidence_begin[n]; e < scratch.incidence_begin[n + 1]; ++e) {
+      const Index t = scratch.incidence[e] >> 2;
+      if (!scratch.tet_averaged[t] || st.damage[t] == Damage::particle) continue;
+      vol += 0.25 * st.vol[t];
+      energy += 0.25 * scratch.tet_energy[t];
+      vol0 += 0.25 * st.vol0[t];
+    }
+    scratch.vol[n] = vol;
+    scratch.energy[n] = energy;
+    if (options.fracture) scratch.vol0[n] = vol0;  // over the intact cells, each step
+    if (!(vol > 0.0)) return;                      // every cell around it failed: not used
+    const double mu = scratch.vol0[n] / vol - 1.0;
+    scratch.pressure[n] = eos_pressure(materials[nm], mu, energy / scratch.vol0[n]);
+  });
 
   // Pass 3: element pressure = mean of its nodes'; trapezoidal pressure work; forces.
-  for (std::size_t t = 0; t < tets.size(); ++t) {
-    const Index mi = st.tet_material[t];
-    if (!anp(mi) || st.damage[t] == Damage::particle) continue;
-    const Index ti = static_cast<Index>(t);
-    const Tet& k = tets[t];
-    const Material& mat = materials[mi];
-    const double mu = st.vol0[t] / st.vol[t] - 1.0, dvol = scratch.tet_dvol[t];
-    const EosTerms eos = eos_terms(mat, mu);
-    double p_new = 0.25 * (scratch.pressure[k[0]] + scratch.pressure[k[1]] +
-                           scratch.pressure[k[2]] + scratch.pressure[k[3]]);
-    if (options.fracture && st.damage[t] != Damage::intact) {
-      // A failed cell no longer averages its pressure with its neighbours' nodes (loosened
-      // neighbours in tension would leave it no resistance to compression): its own EOS,
-      // the energy solved implicitly as in the per-tet path.
-      p_new = eos.a + eos.b * implicit_energy(st.e_int[t], 0.0, st.p[t], eos, dvol, st.vol0[t]) /
-                          st.vol0[t];
+  blocks = block_results(tets.size());
+  parallel::for_blocks(tets.size(), [&](std::size_t blk, std::size_t begin, std::size_t end) {
+    for (std::size_t t = begin; t < end; ++t) {
+      const Index mi = st.tet_material[t];
+      if (!anp(mi) || st.damage[t] == Damage::particle) continue;
+      const Index ti = static_cast<Index>(t);
+      const Tet& k = tets[t];
+      const Material& mat = materials[mi];
+      const double mu = st.vol0[t] / st.vol[t] - 1.0, dvol = scratch.tet_dvol[t];
+      const EosTerms eos = eos_terms(mat, mu);
+      double p_new = 0.25 * (scratch.pressure[k[0]] + scratch.pressure[k[1]] +
+                             scratch.pressure[k[2]] + scratch.pressure[k[3]]);
+      if (options.fracture && st.damage[t] != Damage::intact) {
+        // A failed cell no longer averages its pressure with its neighbours' nodes (loosened
+        // neighbours in tension would leave it no resistance to compression): its own EOS,
+        // the energy solved implicitly as in the per-tet path.
+        p_new = eos.a + eos.b * implicit_energy(st.e_int[t], 0.0, st.p[t], eos, dvol, st.vol0[t]) /
+                            st.vol0[t];
+      }
+      if (options.fracture) p_new = fail(mat, ti, st.vol[t], p_new, st);
+      st.e_int[t] -= 0.5 * (st.p[t] + p_new) * dvol;
+      st.p[t] = p_new;
+      st.sound2[t] = sound_speed2(mat, mu, p_new, eos);
+      TetGeometry g;
+      end_geometry(ti, k, st, g, "at the end of the step");
+      tet_forces(ti, g, options, st, &scratch.tet_force[4 * t], blocks[blk]);
     }
-    if (options.fracture) p_new = fail(mat, ti, st.vol[t], p_new, st);
-    st.e_int[t] -= 0.5 * (st.p[t] + p_new) * dvol;
-    st.p[t] = p_new;
-    st.sound2[t] = sound_speed2(mat, mu, p_new, eos);
-    TetGeometry g;
-    end_geometry(ti, k, st, g, "at the end of the step");
-    scatter_forces(ti, k, g, options, st, forces);
-  }
+  });
+  merge(forces, blocks);
+  gather_forces(mesh_nodes, scratch, st);
   return finish_forces(forces);
 }
 

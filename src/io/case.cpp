@@ -518,7 +518,7 @@ namespace {
 // The case's solver section: CFL, step limit, viscosity, average nodal pressure.
 void read_solver(const Reader& r, const YAML::Node& root, Case& c) {
   if (const YAML::Node s = root["solver"]) {
-    r.keys(s, "solver", {"cfl", "max_steps", "viscosity", "average_nodal_pressure"});
+    r.keys(s, "solver", {"cfl", "max_steps", "threads", "viscosity", "average_nodal_pressure"});
     if (s["cfl"]) {
       c.cfl = r.number(s["cfl"], "solver.cfl");
       if (!(c.cfl > 0.0 && c.cfl <= 1.0))
@@ -527,6 +527,14 @@ void read_solver(const Reader& r, const YAML::Node& root, Case& c) {
     if (s["max_steps"]) {
       c.max_steps = r.integer(s["max_steps"], "solver.max_steps");
       if (c.max_steps < 1) r.fail(s["max_steps"], "solver.max_steps", "must be at least 1");
+    }
+    if (const YAML::Node t = s["threads"]) {
+      if (!(t.IsScalar() && t.Scalar() == "auto")) {
+        const long n = r.integer(t, "solver.threads");
+        if (n < 1 || n > 4096)
+          r.fail(t, "solver.threads", "expected auto or an integer in [1, 4096]");
+        c.threads = static_cast<int>(n);
+      }
     }
     if (const YAML::Node q = s["viscosity"]) {
       r.keys(q, "solver.viscosity", {"linear", "quadratic"});
@@ -801,7 +809,18 @@ void read_output(const Reader& r, const YAML::Node& root, Case& c) {
   c.output.interval = c.end_time / 20.0;
   c.output.fields = {"displacement", "velocity", "stress", "pressure", "body"};
   if (const YAML::Node o = root["output"]) {
-    r.keys(o, "output", {"interval", "fields", "history_every"});
+    r.keys(o, "output", {"interval", "fields", "history_every", "format"});
+    if (const YAML::Node f = o["format"]) {
+      const std::string v = f.IsScalar() ? f.Scalar() : "";
+      if (v == "ascii")
+        c.output.format = VtuFormat::ascii;
+      else if (v == "binary")
+        c.output.format = VtuFormat::binary;
+      else if (v == "compressed")
+        c.output.format = VtuFormat::compressed;
+      else
+        r.fail(f, "output.format", "expected ascii, binary or compressed");
+    }
     if (o["interval"]) c.output.interval = r.positive(o["interval"], "output.interval", "s");
     if (o["history_every"]) {
       c.output.history_every = r.integer(o["history_every"], "output.history_every");

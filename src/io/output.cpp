@@ -79,13 +79,13 @@ void OutputWriter::write_frame(const State& st, double t) {
     penetration_last_ = p;
     depth = std::move(p.node_depth);
   }
-  write_file_atomic(dir_ + "/" + name, vtu_frame(model_, st, spec_.fields, depth));
+  write_file_atomic(dir_ + "/" + name, vtu_frame(model_, st, spec_.fields, depth, spec_.format));
   frames_.emplace_back(t, name);
   // Keep the series current so that a run stopped midway still opens in ParaView.
   write_file_atomic(dir_ + "/case.pvd", pvd_series(frames_));
   if (model_.particles) {  // the particles: a point series of their own, frame for frame
     std::snprintf(name, sizeof name, "particles_%04zu.vtu", frames_.size() - 1);
-    write_file_atomic(dir_ + "/" + name, vtu_particles(model_, st));
+    write_file_atomic(dir_ + "/" + name, vtu_particles(model_, st, spec_.format));
     particle_frames_.emplace_back(t, name);
     write_file_atomic(dir_ + "/particles.pvd", pvd_series(particle_frames_));
   }

@@ -1,7 +1,12 @@
 #include "tetcontact/io/vtk.hpp"
 
+#include <zlib.h>
+
 #include <algorithm>
+#include <bit>
 #include <cmath>
+#include <cstdint>
+#include <stdexcept>
 #include <string>
 
 #include "tetcontact/diagnostics/balance.hpp"
@@ -15,52 +20,131 @@ bool wants(const std::vector<std::string>& fields, const char* name) {
   return std::find(fields.begin(), fields.end(), name) != fields.end();
 }
 
-// `count` lines of `per_line` values; the array declares `components` per tuple (the cell
-// connectivity is a flat array of one component, written four node ids a line).
-template <class F>
-void data_array(std::string& out, const char* type, const char* name, int per_line,
-                std::size_t count, F&& value, int components = 0) {
-  if (components == 0) components = per_line;
-  out += "        <DataArray type=\"";
-  out += type;
-  out += "\" Name=\"";
-  out += name;
-  out += "\" NumberOfComponents=\"" + std::to_string(components) + "\" format=\"ascii\">\n";
-  // Integer arrays as integers: the shortest double form of 100000 is "1e+05", which VTK's
-  // integer reader stops at (it then finds the offsets too short and reads no cells).
-  const bool integer = type[0] == 'I' || type[0] == 'U';
-  for (std::size_t i = 0; i < count; ++i) {
-    out += "          ";
-    for (int c = 0; c < per_line; ++c) {
-      if (c) out += ' ';
-      if (integer)
-        out += std::to_string(static_cast<long long>(value(i, c)));
-      else
-        out += format_double(value(i, c));
-    }
-    out += '\n';
-  }
-  out += "        </DataArray>\n";
+// The element type of a VTK type name.
+template <class Fn>
+void with_type(const char* type, Fn&& fn) {
+  const std::string t = type;
+  if (t == "Float64")
+    fn(double{});
+  else if (t == "Int32")
+    fn(std::int32_t{});
+  else if (t == "Int64")
+    fn(std::int64_t{});
+  else
+    fn(std::uint8_t{});  // UInt8
 }
 
-// The opening of a one-piece UnstructuredGrid file of n points and m cells.
-std::string piece_header(std::size_t n, std::size_t m) {
-  std::string out;
-  out.reserve(200 * (n + m + 1));
-  out +=
-      "<?xml version=\"1.0\"?>\n"
-      "<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" "
-      "header_type=\"UInt64\">\n"
-      "  <UnstructuredGrid>\n";
-  out += "    <Piece NumberOfPoints=\"" + std::to_string(n) + "\" NumberOfCells=\"" +
-         std::to_string(m) + "\">\n";
-  return out;
-}
+// One VTK XML UnstructuredGrid piece, its arrays written inline as text (ascii) or as raw
+// little-endian bytes in the file's appended section (binary: each array a UInt64 byte count,
+// then the bytes; compressed: each array zlib-compressed in one block behind VTK's header of
+// four UInt64 — blocks, block size, last block size, compressed size).
+class Piece {
+ public:
+  Piece(VtuFormat format, std::size_t n, std::size_t m) : format_(format) {
+    out_.reserve(format == VtuFormat::ascii ? 200 * (n + m + 1) : 4096);
+    out_ +=
+        "<?xml version=\"1.0\"?>\n"
+        "<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" "
+        "header_type=\"UInt64\"";
+    if (format == VtuFormat::compressed) out_ += " compressor=\"vtkZLibDataCompressor\"";
+    out_ += ">\n  <UnstructuredGrid>\n";
+    out_ += "    <Piece NumberOfPoints=\"" + std::to_string(n) + "\" NumberOfCells=\"" +
+            std::to_string(m) + "\">\n";
+  }
+
+  void text(const char* s) { out_ += s; }
+
+  // `count` tuples of `per_line` values; the array declares `components` per tuple (the cell
+  // connectivity is a flat array of one component, written four node ids a line).
+  template <class F>
+  void array(const char* type, const char* name, int per_line, std::size_t count, F&& value,
+             int components = 0) {
+    if (components == 0) components = per_line;
+    out_ += "        <DataArray type=\"";
+    out_ += type;
+    out_ += "\" Name=\"";
+    out_ += name;
+    out_ += "\" NumberOfComponents=\"" + std::to_string(components) + "\" format=\"";
+    if (format_ != VtuFormat::ascii) {
+      out_ += "appended\" offset=\"" + std::to_string(appended_.size()) + "\"/>\n";
+      with_type(type, [&](auto zero) { append_raw<decltype(zero)>(per_line, count, value); });
+      return;
+    }
+    out_ += "ascii\">\n";
+    // Integer arrays as integers: the shortest double form of 100000 is "1e+05", which VTK's
+    // integer reader stops at (it then finds the offsets too short and reads no cells).
+    const bool integer = type[0] == 'I' || type[0] == 'U';
+    for (std::size_t i = 0; i < count; ++i) {
+      out_ += "          ";
+      for (int c = 0; c < per_line; ++c) {
+        if (c) out_ += ' ';
+        if (integer)
+          out_ += std::to_string(static_cast<long long>(value(i, c)));
+        else
+          out_ += format_double(value(i, c));
+      }
+      out_ += '\n';
+    }
+    out_ += "        </DataArray>\n";
+  }
+
+  std::string finish() {
+    out_ += "    </Piece>\n  </UnstructuredGrid>\n";
+    if (format_ != VtuFormat::ascii) {
+      out_ += "  <AppendedData encoding=\"raw\">\n   _";
+      out_ += appended_;
+      out_ += "\n  </AppendedData>\n";
+    }
+    out_ += "</VTKFile>\n";
+    return std::move(out_);
+  }
+
+ private:
+  template <class T>
+  static void put(std::string& to, const T& v) {
+    static_assert(std::endian::native == std::endian::little,
+                  "VTK files are written little-endian");
+    to.append(reinterpret_cast<const char*>(&v), sizeof v);
+  }
+
+  template <class T, class F>
+  void append_raw(int per_line, std::size_t count, F&& value) {
+    std::string raw;
+    raw.reserve(count * per_line * sizeof(T));
+    for (std::size_t i = 0; i < count; ++i)
+      for (int c = 0; c < per_line; ++c) put(raw, static_cast<T>(value(i, c)));
+    if (format_ == VtuFormat::binary) {
+      put(appended_, static_cast<std::uint64_t>(raw.size()));
+      appended_ += raw;
+      return;
+    }
+    std::string packed = zlib_compress(raw);
+    const std::uint64_t blocks = raw.empty() ? 0 : 1;
+    put(appended_, blocks);
+    put(appended_, static_cast<std::uint64_t>(raw.size()));  // the block size
+    put(appended_, std::uint64_t{0});                        // the last block is full
+    if (blocks) put(appended_, static_cast<std::uint64_t>(packed.size()));
+    if (blocks) appended_ += packed;
+  }
+
+  static std::string zlib_compress(const std::string& raw) {
+    uLongf size = compressBound(raw.size());
+    std::string packed(size, '\0');
+    if (compress2(reinterpret_cast<Bytef*>(packed.data()), &size,
+                  reinterpret_cast<const Bytef*>(raw.data()), raw.size(), 1) != Z_OK)
+      throw std::runtime_error("zlib could not compress an output array");
+    packed.resize(size);
+    return packed;
+  }
+
+  VtuFormat format_;
+  std::string out_, appended_;
+};
 
 }  // namespace
 
 std::string vtu_frame(const Model& model, const State& st, const std::vector<std::string>& fields,
-                      const std::vector<double>& penetration_depth) {
+                      const std::vector<double>& penetration_depth, VtuFormat format) {
   const Mesh& mesh = model.mesh;
   // The mesh's nodes (particles are a series of their own) and its cells that are still cells.
   const std::size_t n = mesh.x.size();
@@ -70,96 +154,88 @@ std::string vtu_frame(const Model& model, const State& st, const std::vector<std
     if (st.damage.size() != mesh.tets.size() || st.damage[t] != Damage::particle)
       cells.push_back(t);
   const std::size_t m = cells.size();
-  std::string out = piece_header(n, m);
+  Piece out(format, n, m);
 
-  out += "      <PointData>\n";
+  out.text("      <PointData>\n");
   if (wants(fields, "displacement"))
-    data_array(out, "Float64", "displacement", 3, n,
-               [&](std::size_t i, int c) { return st.x[i][c] - mesh.x[i][c]; });
+    out.array("Float64", "displacement", 3, n,
+              [&](std::size_t i, int c) { return st.x[i][c] - mesh.x[i][c]; });
   if (wants(fields, "velocity"))
-    data_array(out, "Float64", "velocity", 3, n, [&](std::size_t i, int c) {
-      return centred_velocity(st, static_cast<Index>(i))[c];
-    });
+    out.array("Float64", "velocity", 3, n,
+              [&](std::size_t i, int c) { return centred_velocity(st, static_cast<Index>(i))[c]; });
   if (!penetration_depth.empty())
-    data_array(out, "Float64", "penetration_depth", 1, n,
-               [&](std::size_t i, int) { return penetration_depth[i]; });
+    out.array("Float64", "penetration_depth", 1, n,
+              [&](std::size_t i, int) { return penetration_depth[i]; });
   if (wants(fields, "body"))
-    data_array(out, "Int32", "body", 1, n,
-               [&](std::size_t i, int) { return static_cast<double>(mesh.node_body[i]); });
-  out += "      </PointData>\n";
+    out.array("Int32", "body", 1, n,
+              [&](std::size_t i, int) { return static_cast<double>(mesh.node_body[i]); });
+  out.text("      </PointData>\n");
 
-  out += "      <CellData>\n";
+  out.text("      <CellData>\n");
   if (wants(fields, "stress"))
-    data_array(out, "Float64", "stress", 6, m, [&](std::size_t i, int c) {
+    out.array("Float64", "stress", 6, m, [&](std::size_t i, int c) {
       const Index t = cells[i];
       return st.s[t][c] - (c < 3 ? st.p[t] : 0.0);
     });
   if (wants(fields, "pressure"))
-    data_array(out, "Float64", "pressure", 1, m,
-               [&](std::size_t i, int) { return st.p[cells[i]]; });
+    out.array("Float64", "pressure", 1, m, [&](std::size_t i, int) { return st.p[cells[i]]; });
   if (wants(fields, "von_mises"))
-    data_array(out, "Float64", "von_mises", 1, m,
-               [&](std::size_t i, int) { return von_mises(st.s[cells[i]]); });
+    out.array("Float64", "von_mises", 1, m,
+              [&](std::size_t i, int) { return von_mises(st.s[cells[i]]); });
   if (wants(fields, "plastic_strain"))
-    data_array(out, "Float64", "plastic_strain", 1, m,
-               [&](std::size_t i, int) { return st.eps_p[cells[i]]; });
+    out.array("Float64", "plastic_strain", 1, m,
+              [&](std::size_t i, int) { return st.eps_p[cells[i]]; });
   if (wants(fields, "internal_energy"))  // J/m³ of reference volume
-    data_array(out, "Float64", "internal_energy", 1, m,
-               [&](std::size_t i, int) { return st.e_int[cells[i]] / st.vol0[cells[i]]; });
+    out.array("Float64", "internal_energy", 1, m,
+              [&](std::size_t i, int) { return st.e_int[cells[i]] / st.vol0[cells[i]]; });
   if (wants(fields, "viscosity"))
-    data_array(out, "Float64", "viscosity", 1, m,
-               [&](std::size_t i, int) { return st.q[cells[i]]; });
+    out.array("Float64", "viscosity", 1, m, [&](std::size_t i, int) { return st.q[cells[i]]; });
   // 0 intact, 1 damaged, 2 destroyed
   if (wants(fields, "damage") && st.damage.size() == mesh.tets.size())
-    data_array(out, "Int32", "damage", 1, m,
-               [&](std::size_t i, int) { return static_cast<double>(st.damage[cells[i]]); });
+    out.array("Int32", "damage", 1, m,
+              [&](std::size_t i, int) { return static_cast<double>(st.damage[cells[i]]); });
   if (wants(fields, "body"))
-    data_array(out, "Int32", "body", 1, m,
-               [&](std::size_t i, int) { return static_cast<double>(mesh.tet_body[cells[i]]); });
-  out += "      </CellData>\n";
+    out.array("Int32", "body", 1, m,
+              [&](std::size_t i, int) { return static_cast<double>(mesh.tet_body[cells[i]]); });
+  out.text("      </CellData>\n");
 
-  out += "      <Points>\n";
-  data_array(out, "Float64", "Points", 3, n, [&](std::size_t i, int c) { return st.x[i][c]; });
-  out += "      </Points>\n";
-  out += "      <Cells>\n";
-  data_array(
-      out, "Int64", "connectivity", 4, m,
+  out.text("      <Points>\n");
+  out.array("Float64", "Points", 3, n, [&](std::size_t i, int c) { return st.x[i][c]; });
+  out.text("      </Points>\n");
+  out.text("      <Cells>\n");
+  out.array(
+      "Int64", "connectivity", 4, m,
       [&](std::size_t i, int c) { return static_cast<double>(mesh.tets[cells[i]][c]); }, 1);
-  data_array(out, "Int64", "offsets", 1, m,
-             [&](std::size_t t, int) { return static_cast<double>(4 * (t + 1)); });
-  data_array(out, "UInt8", "types", 1, m, [](std::size_t, int) { return 10.0; });  // VTK_TETRA
-  out += "      </Cells>\n";
-  out += "    </Piece>\n  </UnstructuredGrid>\n</VTKFile>\n";
-  return out;
+  out.array("Int64", "offsets", 1, m,
+            [&](std::size_t t, int) { return static_cast<double>(4 * (t + 1)); });
+  out.array("UInt8", "types", 1, m, [](std::size_t, int) { return 10.0; });  // VTK_TETRA
+  out.text("      </Cells>\n");
+  return out.finish();
 }
 
-std::string vtu_particles(const Model& model, const State& st) {
+std::string vtu_particles(const Model& model, const State& st, VtuFormat format) {
   const std::size_t n = static_cast<std::size_t>(st.particle_count());
   const auto node = [&](std::size_t i) { return st.first_particle + static_cast<Index>(i); };
-  std::string out = piece_header(n, n);
-  out += "      <PointData>\n";
-  data_array(out, "Float64", "radius", 1, n,
-             [&](std::size_t i, int) { return st.particle_radius[i]; });
-  data_array(out, "Float64", "mass", 1, n, [&](std::size_t i, int) { return st.m[node(i)]; });
-  data_array(out, "Float64", "velocity", 3, n,
-             [&](std::size_t i, int c) { return centred_velocity(st, node(i))[c]; });
-  data_array(out, "Float64", "energy", 1, n,
-             [&](std::size_t i, int) { return st.particle_energy[i]; });
-  data_array(out, "Int32", "body", 1, n, [&](std::size_t i, int) {
+  Piece out(format, n, n);
+  out.text("      <PointData>\n");
+  out.array("Float64", "radius", 1, n, [&](std::size_t i, int) { return st.particle_radius[i]; });
+  out.array("Float64", "mass", 1, n, [&](std::size_t i, int) { return st.m[node(i)]; });
+  out.array("Float64", "velocity", 3, n,
+            [&](std::size_t i, int c) { return centred_velocity(st, node(i))[c]; });
+  out.array("Float64", "energy", 1, n, [&](std::size_t i, int) { return st.particle_energy[i]; });
+  out.array("Int32", "body", 1, n, [&](std::size_t i, int) {
     return static_cast<double>(model.mesh.tet_body[st.particle_tet[i]]);
   });
-  out += "      </PointData>\n";
-  out += "      <Points>\n";
-  data_array(out, "Float64", "Points", 3, n,
-             [&](std::size_t i, int c) { return st.x[node(i)][c]; });
-  out += "      </Points>\n";
-  out += "      <Cells>\n";
-  data_array(out, "Int64", "connectivity", 1, n, [](std::size_t i, int) { return double(i); });
-  data_array(out, "Int64", "offsets", 1, n, [](std::size_t i, int) { return double(i + 1); });
-  data_array(out, "UInt8", "types", 1, n, [](std::size_t, int) { return 1.0; });  // VTK_VERTEX
-  out += "      </Cells>\n";
-  out += "    </Piece>\n  </UnstructuredGrid>\n</VTKFile>\n";
-  return out;
+  out.text("      </PointData>\n");
+  out.text("      <Points>\n");
+  out.array("Float64", "Points", 3, n, [&](std::size_t i, int c) { return st.x[node(i)][c]; });
+  out.text("      </Points>\n");
+  out.text("      <Cells>\n");
+  out.array("Int64", "connectivity", 1, n, [](std::size_t i, int) { return double(i); });
+  out.array("Int64", "offsets", 1, n, [](std::size_t i, int) { return double(i + 1); });
+  out.array("UInt8", "types", 1, n, [](std::size_t, int) { return 1.0; });  // VTK_VERTEX
+  out.text("      </Cells>\n");
+  return out.finish();
 }
 
 std::string pvd_series(const std::vector<std::pair<double, std::string>>& frames) {

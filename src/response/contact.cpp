@@ -9,6 +9,7 @@
 #include "tetcontact/mesh/surface.hpp"
 #include "tetcontact/narrowphase/exact_ccd.hpp"
 #include "tetcontact/narrowphase/vertex_face.hpp"
+#include "tetcontact/parallel/parallel.hpp"
 
 namespace tc {
 
@@ -156,6 +157,11 @@ void NodeFaceContact::refresh_lists(const State& st, ContactStepStats& stats) {
       input_.edge_box[e] = swept_box({&x0[k[0]], &x0[k[1]], &x1[k[0]], &x1[k[1]]}, margin);
     }
     candidates_ = broadphase_->find(input_);
+    listed_faces_.clear();
+    for (const auto& [ni, fi] : candidates_.node_face) listed_faces_.push_back(fi);
+    std::sort(listed_faces_.begin(), listed_faces_.end());
+    listed_faces_.erase(std::unique(listed_faces_.begin(), listed_faces_.end()),
+                        listed_faces_.end());
     anchor_.resize(nodes_.size());
     for (std::size_t i = 0; i < nodes_.size(); ++i) anchor_[i] = x0[nodes_[i]];
     have_lists_ = true;
@@ -164,7 +170,8 @@ void NodeFaceContact::refresh_lists(const State& st, ContactStepStats& stats) {
   }
 }
 
-// Node–face contacts of the listed pairs (seed 001 §3), in the lists' order.
+// Node–face contacts of the listed pairs (seed 001 §3), in the lists' order (the pairs are
+// tested on the threads, block by block; the blocks' contacts are joined in block order).
 void NodeFaceContact::node_face_contacts(const State& st, std::vector<ContactPoint>& contacts) {
   const std::vector<Vec3>& x0 = st.x;
   const std::vector<Vec3>& x1 = st.x_star;
@@ -180,59 +187,63 @@ void NodeFaceContact::node_face_contacts(const State& st, std::vector<ContactPoi
   // lists; the Hertz spheres' narrowphase takes a third of the time.
   if (settings_.binding_lists) {
     step_face_box_.resize(faces_.size());
-    have_step_box_.assign(faces_.size(), 0);
+    parallel::for_each(listed_faces_.size(), [&](std::size_t k) {
+      step_face_box_[listed_faces_[k]] = layer_box(listed_faces_[k], st, settings_.margin);
+    });
   }
-  for (const auto& [ni, fi] : cand.node_face) {
-    const Index node = nodes_[ni];
-    const Face& f = faces_[fi];
-    if (settings_.binding_lists) {
-      if (!have_step_box_[fi]) {
-        step_face_box_[fi] = layer_box(fi, st, settings_.margin);
-        have_step_box_[fi] = 1;
-      }
-      if (!boxes_overlap(swept_box({&x0[node], &x1[node]}, settings_.margin), step_face_box_[fi]))
+  std::vector<std::vector<ContactPoint>> found(parallel::block_count(cand.node_face.size()));
+  parallel::for_blocks(cand.node_face.size(), [&](std::size_t blk, std::size_t begin,
+                                                  std::size_t end) {
+    for (std::size_t k = begin; k < end; ++k) {
+      const auto& [ni, fi] = cand.node_face[k];
+      const Index node = nodes_[ni];
+      const Face& f = faces_[fi];
+      if (settings_.binding_lists &&
+          !boxes_overlap(swept_box({&x0[node], &x1[node]}, settings_.margin), step_face_box_[fi]))
         continue;
-    }
-    // The layer a node may enter: the face's tet, its altitude over the face at x*.
-    const Tet& tet = mesh_.tets[face_tet_[fi]];
-    const double vol = tet_signed_volume(x1[tet[0]], x1[tet[1]], x1[tet[2]], x1[tet[3]]);
-    const double area = 0.5 * (x1[f[1]] - x1[f[0]]).cross(x1[f[2]] - x1[f[0]]).norm();
-    const double depth = area > 0.0 ? 3.0 * vol / area : 0.0;
-    const bool inside = behind_face(x1[node], x1[f[0]], x1[f[1]], x1[f[2]], depth);
-    // The swept test is the exact one (issue 5): the floating-point test missed or invented
-    // contacts on coplanar and degenerate configurations (the `stress` table).
-    if (!inside && !exact_vertex_face_ccd({x0[node], x0[f[0]], x0[f[1]], x0[f[2]], x1[node],
-                                           x1[f[0]], x1[f[1]], x1[f[2]]}))
-      continue;
-    ContactPoint c;
-    c.a_nodes[0] = node;
-    c.a_w[0] = 1.0;
-    c.a_count = 1;
-    const TrianglePoint tp = closest_point_on_triangle(x0[node], x0[f[0]], x0[f[1]], x0[f[2]]);
-    for (int k = 0; k < 3; ++k) {
-      c.b_nodes[k] = f[k];
-      c.b_w[k] = tp.w[k];
-    }
-    c.b_count = 3;
-    const Vec3 face_n = face_normal(f, x0);  // outward of the face's body: from B to A
-    if (settings_.normal == ContactSettings::Normal::node) {
-      const Vec3 nn = -normals[node_surface_[ni]][node_slot_[ni]];
-      c.normal = nn.squaredNorm() > 0 ? nn : face_n;
-    } else {
-      c.normal = face_n;
-    }
-    c.gap = (x0[node] - x0[f[0]]).dot(face_n);
-    // Friction of the body pair.
-    c.mode = settings_.mode;
-    c.friction = settings_.coefficient;
-    const Index ba = node_body_[ni], bb = face_body_[fi];
-    for (const PairFriction& p : settings_.pairs)
-      if ((p.body_a == ba && p.body_b == bb) || (p.body_a == bb && p.body_b == ba)) {
-        c.mode = p.mode;
-        c.friction = p.coefficient;
+      // The layer a node may enter: the face's tet, its altitude over the face at x*.
+      const Tet& tet = mesh_.tets[face_tet_[fi]];
+      const double vol = tet_signed_volume(x1[tet[0]], x1[tet[1]], x1[tet[2]], x1[tet[3]]);
+      const double area = 0.5 * (x1[f[1]] - x1[f[0]]).cross(x1[f[2]] - x1[f[0]]).norm();
+      const double depth = area > 0.0 ? 3.0 * vol / area : 0.0;
+      const bool inside = behind_face(x1[node], x1[f[0]], x1[f[1]], x1[f[2]], depth);
+      // The swept test is the exact one (issue 5): the floating-point test missed or invented
+      // contacts on coplanar and degenerate configurations (the `stress` table).
+      if (!inside && !exact_vertex_face_ccd({x0[node], x0[f[0]], x0[f[1]], x0[f[2]], x1[node],
+                                             x1[f[0]], x1[f[1]], x1[f[2]]}))
+        continue;
+      ContactPoint c;
+      c.a_nodes[0] = node;
+      c.a_w[0] = 1.0;
+      c.a_count = 1;
+      const TrianglePoint tp = closest_point_on_triangle(x0[node], x0[f[0]], x0[f[1]], x0[f[2]]);
+      for (int k = 0; k < 3; ++k) {
+        c.b_nodes[k] = f[k];
+        c.b_w[k] = tp.w[k];
       }
-    contacts.push_back(c);
-  }
+      c.b_count = 3;
+      const Vec3 face_n = face_normal(f, x0);  // outward of the face's body: from B to A
+      if (settings_.normal == ContactSettings::Normal::node) {
+        const Vec3 nn = -normals[node_surface_[ni]][node_slot_[ni]];
+        c.normal = nn.squaredNorm() > 0 ? nn : face_n;
+      } else {
+        c.normal = face_n;
+      }
+      c.gap = (x0[node] - x0[f[0]]).dot(face_n);
+      // Friction of the body pair.
+      c.mode = settings_.mode;
+      c.friction = settings_.coefficient;
+      const Index ba = node_body_[ni], bb = face_body_[fi];
+      for (const PairFriction& p : settings_.pairs)
+        if ((p.body_a == ba && p.body_b == bb) || (p.body_a == bb && p.body_b == ba)) {
+          c.mode = p.mode;
+          c.friction = p.coefficient;
+        }
+      found[blk].push_back(c);
+    }
+  });
+  for (const std::vector<ContactPoint>& block : found)
+    contacts.insert(contacts.end(), block.begin(), block.end());
 }
 
 // Edge–edge contacts (seed 000): the pairs in contact last step that are still close, then
@@ -347,15 +358,22 @@ void NodeFaceContact::edge_edge_contacts(const State& st, ContactStepStats& stat
     }
   }
   std::sort(kept_pairs.begin(), kept_pairs.end());
-  // Then the candidates that cross during the step (exact CCD).
-  for (const auto& [ea, eb] : cand.edge_edge) {
-    if (std::binary_search(kept_pairs.begin(), kept_pairs.end(), std::make_pair(ea, eb))) continue;
+  // Then the candidates that cross during the step (exact CCD, on the threads; the contacts
+  // are then made in the lists' order).
+  std::vector<char> crosses(cand.edge_edge.size(), 0);
+  parallel::for_each(cand.edge_edge.size(), [&](std::size_t k) {
+    const auto& [ea, eb] = cand.edge_edge[k];
+    if (std::binary_search(kept_pairs.begin(), kept_pairs.end(), std::make_pair(ea, eb))) return;
     const Edge& e1 = edges_[ea];
     const Edge& e2 = edges_[eb];
-    if (exact_edge_edge_ccd({x0[e1[0]], x0[e1[1]], x0[e2[0]], x0[e2[1]], x1[e1[0]], x1[e1[1]],
-                             x1[e2[0]], x1[e2[1]]}))
+    crosses[k] = exact_edge_edge_ccd(
+        {x0[e1[0]], x0[e1[1]], x0[e2[0]], x0[e2[1]], x1[e1[0]], x1[e1[1]], x1[e2[0]], x1[e2[1]]});
+  });
+  for (std::size_t k = 0; k < cand.edge_edge.size(); ++k)
+    if (crosses[k]) {
+      const auto& [ea, eb] = cand.edge_edge[k];
       add_edge_contact(ea, eb, closest_at_start(ea, eb), nullptr);
-  }
+    }
   active_edges_ = std::move(active);
 }
 

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "tetcontact/parallel/parallel.hpp"
 #include "tetcontact/solver/integrator.hpp"
 
 namespace tc {
@@ -59,6 +60,7 @@ Simulation::Simulation(Model model, SolverSettings settings)
       settings_(settings),
       state_(initial_state(model_)),
       element_(model_.element) {
+  parallel::set_threads(settings_.threads);
   State& st = state_;
   // The modules this case needs, and nothing else.
   modules_ = {"integrator:central_difference", "elements:linear_tet"};
@@ -199,13 +201,18 @@ void Simulation::corrections() {
   StageTimer timer(profile_["response"]);
   for (Vec3& j : st.wall_impulse) j.setZero();
   for (Vec3& j : st.contact_impulse) j.setZero();
+  // The sequential passes over walls, contacts and particle contacts, in that order, island
+  // by island (response/islands.hpp: the same result as one thread going through the lists).
   const int passes = contact_ ? model_.contact->passes : 1;
-  for (int pass = 0; pass < passes; ++pass) {
-    for (auto& list : walls)
-      for (ContactPoint& c : list) apply_contact(c, st, st.dt, st.wall_impulse);
-    for (ContactPoint& c : contacts_) apply_contact(c, st, st.dt, st.contact_impulse);
-    for (ContactPoint& c : particle_contacts_) apply_contact(c, st, st.dt, st.contact_impulse);
-  }
+  std::vector<ContactList> lists;
+  for (auto& list : walls) lists.push_back({&list, &st.wall_impulse});
+  lists.push_back({&contacts_, &st.contact_impulse});
+  lists.push_back({&particle_contacts_, &st.contact_impulse});
+  const Islands islands = contact_islands(lists, st.x.size(), island_slot_);
+  correct_in_islands(lists, islands, passes, st);
+  contact_totals_.islands += static_cast<long>(islands.count());
+  contact_totals_.island_points += static_cast<long>(islands.refs.size());
+  contact_totals_.largest_island_points += static_cast<long>(islands.largest());
   for (const ContactPoint& c : particle_contacts_)
     contact_totals_.particle_contacts += c.lambda > 0.0;
   wall_results_ = wall_results(walls);
@@ -299,7 +306,7 @@ void Simulation::elements_stage() {
   try {
     const ForceResult r = st.step > 0 ? update_material(model_.mesh.tets, model_.materials,
                                                         element_, st.dt_prev, st, scratch_)
-                                      : compute_forces(model_.mesh.tets, element_, st);
+                                      : compute_forces(model_.mesh.tets, element_, st, scratch_);
     critical_tet_ = r.critical_tet;
     if (fragmentation_ && model_.erosion_step_ratio > 0.0) {
       if (st.step == 0)  // the limit: a fraction of the first stable step

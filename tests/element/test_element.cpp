@@ -57,7 +57,7 @@ TEST_P(Patch, UniformStrainGivesUniformStress) {
   State st = initial_state(model);
   const double tau = 1e-3;                  // strain 1e-6: μ = V0/V − 1 well above round-off
   for (Vec3& p : st.x) p += tau * (L * p);  // x^{n+1} = x^n + τ U
-  NodalScratch scratch;
+  ElementScratch scratch;
   update_material(model.mesh.tets, model.materials, model.element, tau, st, scratch);
   // Exact: the velocity gradient over the mid-step geometry (I + τL/2)X is
   // L_mid = L (I + τL/2)⁻¹ (symmetric: no spin); s = 2G τ dev L_mid; p = K μ with
@@ -73,7 +73,7 @@ TEST_P(Patch, UniformStrainGivesUniformStress) {
   }
   // The forces of the fused pass equal those of compute_forces on the same state.
   const std::vector<Vec3> fused = st.f;
-  compute_forces(model.mesh.tets, model.element, st);
+  compute_forces(model.mesh.tets, model.element, st, scratch);
   for (std::size_t i = 0; i < st.x.size(); ++i)
     EXPECT_NEAR((fused[i] - st.f[i]).norm(), 0.0, 1e-12 * (1.0 + st.f[i].norm())) << "node " << i;
   const Surface& s = model.surfaces.front();
@@ -98,7 +98,8 @@ TEST(Element, ForcesOfUniformPressureBalanceTractions) {
   Model model = test::single_body_model(make_box(Vec3(2, 2, 2), {2, 2, 2}, HexSplit::twelve), mat);
   State st = initial_state(model);
   for (double& p : st.p) p = 1e6;
-  const ForceResult r = compute_forces(model.mesh.tets, model.element, st);
+  ElementScratch scratch;
+  const ForceResult r = compute_forces(model.mesh.tets, model.element, st, scratch);
   Vec3 on_right = Vec3::Zero(), total = Vec3::Zero();
   for (std::size_t i = 0; i < st.x.size(); ++i) {
     total += st.f[i];
@@ -147,7 +148,7 @@ TEST(Element, SpinningStressedCubeKeepsPrincipalValues) {
   const double omega = 2e4, tau = 2.0 * M_PI / omega / steps;  // one turn
   const Vec3 axis = Vec3(1, 2, 3).normalized();
   const Mat3 R = Eigen::AngleAxisd(omega * tau, axis).toRotationMatrix();
-  NodalScratch scratch;
+  ElementScratch scratch;
   for (int n = 0; n < steps; ++n) {
     for (std::size_t i = 0; i < st.x.size(); ++i) {
       const Vec3 next = R * st.x[i];
@@ -181,7 +182,7 @@ TEST(Element, ViscosityZeroInExpansionPositiveInCompression) {
       st.v[i] = rate * st.x[i];
       st.x[i] += tau * st.v[i];
     }
-    NodalScratch scratch;
+    ElementScratch scratch;
     update_material(model.mesh.tets, model.materials, model.element, tau, st, scratch);
     for (std::size_t t = 0; t < st.q.size(); ++t) {
       if (sign > 0) {
@@ -230,7 +231,7 @@ TEST_P(Failure, SpallDamagesAndLooseningDestroys) {
     m.element.fracture = true;
     return m;
   };
-  NodalScratch scratch;
+  ElementScratch scratch;
   const auto stretch = [&](const Model& m, State& st, double strain) {  // one step, uniform
     const double tau = 1e-8;
     for (std::size_t i = 0; i < st.x.size(); ++i) {

@@ -36,11 +36,21 @@ struct InvertedElement : RunFailure {
   return a;
 }
 
-/// Scratch arrays of the average-nodal-pressure passes, sized on first use.
-struct NodalScratch {
+/// The kernel's working arrays, sized on first use. Each tet writes only its own entries
+/// (its four corner forces, its shares of the nodal averages); the nodes then gather them over
+/// the node–tet incidence in ascending tet order, which is the order a serial scatter adds
+/// them in: the same sums, bit for bit, on any number of threads.
+struct ElementScratch {
+  // Node → (tet, corner) incidence: entries 4t + corner of node a in
+  // incidence[incidence_begin[a] .. incidence_begin[a + 1]), ascending in t.
+  std::vector<Index> incidence_begin, incidence;
+  std::vector<Vec3> tet_force;  // per tet corner (4 per tet): its share of the nodal force
+  // Average nodal pressure.
   std::vector<double> vol0, vol, energy, pressure;  // per node
   std::vector<Index> node_material;                 // per node: material if averaged, else −1
   std::vector<double> tet_dvol;                     // per tet: ΔV of the step
+  std::vector<double> tet_energy;                   // per tet: Eⁿ, its share of the nodal energy
+  std::vector<char> tet_averaged;                   // per tet: in the nodal averages this step
 };
 
 struct ForceResult {
@@ -55,7 +65,8 @@ struct ForceResult {
 /// and the CFL limit of a tet with smallest altitude l = 3V / max|a_i|, sound speed c and
 /// viscosity Q = C1 c + C2 l |ε̇v| (compression) is l / (Q + sqrt(Q² + c²)).
 /// Throws InvertedElement for a tet with V ≤ 0.
-ForceResult compute_forces(const std::vector<Tet>& tets, const ElementOptions& options, State& st);
+ForceResult compute_forces(const std::vector<Tet>& tets, const ElementOptions& options, State& st,
+                           ElementScratch& scratch);
 
 /// Material update over the step from the committed velocities U^{n+1} (st.v):
 ///   L = Σ_i U_i ⊗ ∇N_i at the mid-step geometry x^{n+1/2} = x^{n+1} − τ/2 U^{n+1};
@@ -72,7 +83,7 @@ ForceResult compute_forces(const std::vector<Tet>& tets, const ElementOptions& o
 /// (as compute_forces, which the tests hold it to).
 ForceResult update_material(const std::vector<Tet>& tets, const std::vector<Material>& materials,
                             const ElementOptions& options, double tau, State& st,
-                            NodalScratch& scratch);
+                            ElementScratch& scratch);
 
 /// Sets the per-tet sound speed from the current state (needed before the first forces).
 void init_sound_speed(const std::vector<Material>& materials, State& st);

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "tetcontact/diagnostics/reference.hpp"
+#include "tetcontact/io/vtk.hpp"
 #include "tetcontact/material/material.hpp"
 #include "tetcontact/mesh/mesh.hpp"
 #include "tetcontact/response/contact.hpp"
@@ -83,7 +84,8 @@ struct BoundarySpec {
 struct OutputSpec {
   double interval = 0.0;  // simulated seconds between frames
   std::vector<std::string> fields;
-  long history_every = 1;  // steps between history rows
+  long history_every = 1;                // steps between history rows
+  VtuFormat format = VtuFormat::binary;  // how the frames' arrays are stored
 };
 
 /// Average nodal pressure (anti-locking): on for plastic materials (auto), all, or none.
@@ -96,6 +98,7 @@ struct Case {
   double end_time = 0.0;
   double cfl = 0.5;
   long max_steps = 10'000'000;
+  int threads = 0;  // solver.threads; 0: all cores (auto)
   double viscosity_linear = 0.06;
   double viscosity_quadratic = 1.5;
   AnpMode average_nodal_pressure = AnpMode::automatic;

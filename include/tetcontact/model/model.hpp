@@ -95,6 +95,7 @@ struct SolverSettings {
   double end_time = 0.0;
   double cfl = 0.5;
   long max_steps = 10'000'000;
+  int threads = 0;  // threads of the parallel loops; 0: all cores (results do not depend on it)
 };
 
 }  // namespace tc

@@ -79,9 +79,9 @@ class NodeFaceContact {
   std::vector<Vec3> anchor_;
   double reach_ = 0.0;
   bool have_lists_ = false;
-  // This step's layer boxes of the faces the lists name, made when first needed.
+  // This step's layer boxes of the faces the lists name (binding lists).
+  std::vector<Index> listed_faces_;
   std::vector<Box> step_face_box_;
-  std::vector<char> have_step_box_;
 };
 
 }  // namespace tc

@@ -15,6 +15,7 @@
 #include "tetcontact/model/sample.hpp"
 #include "tetcontact/model/state.hpp"
 #include "tetcontact/response/contact.hpp"
+#include "tetcontact/response/islands.hpp"
 #include "tetcontact/response/wall.hpp"
 
 namespace tc {
@@ -63,6 +64,8 @@ class Simulation {
     long particle_contacts = 0;      // particle–face and particle–particle contacts that pushed
     long particles_moved_out = 0;    // particle centres found inside a body and moved out
     double particle_move_max = 0.0;  // the largest such move, m
+    // Islands of the correction passes (response/islands.hpp), summed over the steps.
+    long islands = 0, island_points = 0, largest_island_points = 0;
   };
   /// The figures of the run that references measure (diagnostics/reference).
   RunFigures run_figures() const;
@@ -93,7 +96,7 @@ class Simulation {
   SolverSettings settings_;
   State state_;
   ElementOptions element_;  // the model's, with the erosion limit of the first step
-  NodalScratch scratch_;
+  ElementScratch scratch_;
   std::vector<Index> surface_nodes_;
   std::vector<WallResult> wall_results_;
   std::unique_ptr<NodeFaceContact> contact_;
@@ -101,6 +104,7 @@ class Simulation {
   std::unique_ptr<Fragmentation> fragmentation_;
   std::unique_ptr<ParticleContact> particle_contact_;
   std::vector<ContactPoint> particle_contacts_;
+  std::vector<Index> island_slot_;  // contact_islands' scratch
   ContactStepStats contact_stats_;
   ContactTotals contact_totals_;
   std::vector<double> wall_force_max_;
