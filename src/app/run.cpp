@@ -288,6 +288,8 @@ Json summary_json(const Case& c, const Simulation& sim, const OutputWriter& writ
   j["mesh"] = mesh_json(model, sim.state().surfaces);
   Json timings = Json::object();
   for (const auto& [name, seconds] : sim.profile().stages) timings[name] = seconds;
+  // The part of `output` the penetration measures took (the rest is writing the files).
+  if (writer.measured_penetration()) timings["output_penetration"] = writer.probe_seconds();
   j["timings"] = timings;
   j["threads"] = parallel::threads();
   j["energy"] = energy_json(sim);

@@ -6,6 +6,8 @@
 #include <stdexcept>
 #include <unordered_map>
 
+#include "tetcontact/parallel/parallel.hpp"
+
 namespace tc {
 
 Box swept_box(std::initializer_list<const Vec3*> points, double margin) {
@@ -45,7 +47,8 @@ double since(Clock::time_point t0) {
 }
 
 void finish(Candidates& c) {
-  std::sort(c.node_face.begin(), c.node_face.end());
+  if (!std::is_sorted(c.node_face.begin(), c.node_face.end()))  // the grid's come sorted
+    std::sort(c.node_face.begin(), c.node_face.end());
   c.node_face.erase(std::unique(c.node_face.begin(), c.node_face.end()), c.node_face.end());
   for (auto& p : c.edge_edge)
     if (p.first > p.second) std::swap(p.first, p.second);
@@ -134,74 +137,113 @@ class Sweep : public Broadphase {
   }
 };
 
-// Seed 001's spatial index: a virtual uniform grid of cubes keyed by (i, j, k) in a hash map;
-// each box is entered in every cube it overlaps, candidates share a cube.
+// Seed 001's spatial index: a virtual uniform grid of cubes keyed by (i, j, k), hashed into a
+// flat table of buckets; each box is entered in every cube it overlaps, candidates share a
+// bucket and pass the exact box test. Queries run on the threads.
 class Grid : public Broadphase {
  public:
   explicit Grid(double cell) : cell_(cell) {}
   std::string name() const override { return "grid"; }
   Candidates find(const BroadphaseInput& in) override {
     auto t0 = Clock::now();
-    double h = cell_;
-    if (!(h > 0.0)) {  // twice the mean box size
+    // Cells of twice the mean box size, for the faces and for the edges apart: the boxes of
+    // particles (degenerate edges) are far smaller than faces', and a cell sized by the faces
+    // put thousands of particles in one cell, all paired with each other.
+    const auto cell_size = [this](const std::vector<Box>& boxes) {
+      if (cell_ > 0.0) return cell_;
       double sum = 0.0;
-      std::size_t n = 0;
-      for (const auto* set : {&in.face_box, &in.edge_box})
-        for (const Box& b : *set) sum += (b.hi - b.lo).maxCoeff(), ++n;
-      h = n ? 2.0 * sum / static_cast<double>(n) : 1.0;
-      if (!(h > 0.0)) h = 1.0;
-    }
-    struct Key {
-      long i, j, k;
-      bool operator==(const Key& o) const { return i == o.i && j == o.j && k == o.k; }
+      for (const Box& b : boxes) sum += (b.hi - b.lo).maxCoeff();
+      const double h = boxes.empty() ? 1.0 : 2.0 * sum / static_cast<double>(boxes.size());
+      return h > 0.0 ? h : 1.0;
     };
-    struct Hash {
-      std::size_t operator()(const Key& k) const {
-        return static_cast<std::size_t>(k.i * 73856093L ^ k.j * 19349663L ^ k.k * 83492791L);
-      }
+    const double hf = cell_size(in.face_box), he = cell_size(in.edge_box);
+    // The cells a box covers, each hashed to a bucket of a flat table (a power of two, at
+    // least twice the entries): a bucket may hold boxes of several cells, whose extra pairs
+    // the exact box test drops, as it drops those of boxes sharing a cell without overlapping.
+    const auto cells_of = [](double h) {
+      return [h](const Box& b, auto&& visit) {
+        const long i0 = static_cast<long>(std::floor(b.lo.x() / h)),
+                   i1 = static_cast<long>(std::floor(b.hi.x() / h));
+        const long j0 = static_cast<long>(std::floor(b.lo.y() / h)),
+                   j1 = static_cast<long>(std::floor(b.hi.y() / h));
+        const long k0 = static_cast<long>(std::floor(b.lo.z() / h)),
+                   k1 = static_cast<long>(std::floor(b.hi.z() / h));
+        for (long i = i0; i <= i1; ++i)
+          for (long j = j0; j <= j1; ++j)
+            for (long k = k0; k <= k1; ++k)
+              visit(static_cast<std::size_t>(i * 73856093L ^ j * 19349663L ^ k * 83492791L));
+      };
     };
-    const auto cells = [h](const Box& b, auto&& visit) {
-      const long i0 = static_cast<long>(std::floor(b.lo.x() / h)),
-                 i1 = static_cast<long>(std::floor(b.hi.x() / h));
-      const long j0 = static_cast<long>(std::floor(b.lo.y() / h)),
-                 j1 = static_cast<long>(std::floor(b.hi.y() / h));
-      const long k0 = static_cast<long>(std::floor(b.lo.z() / h)),
-                 k1 = static_cast<long>(std::floor(b.hi.z() / h));
-      for (long i = i0; i <= i1; ++i)
-        for (long j = j0; j <= j1; ++j)
-          for (long k = k0; k <= k1; ++k) visit(Key{i, j, k});
-    };
-    std::unordered_map<Key, std::vector<Index>, Hash> face_cells, edge_cells;
-    face_cells.reserve(2 * in.face_box.size());
-    edge_cells.reserve(2 * in.edge_box.size());
-    for (Index f = 0; f < static_cast<Index>(in.face_box.size()); ++f)
-      cells(in.face_box[f], [&](const Key& key) { face_cells[key].push_back(f); });
-    for (Index e = 0; e < static_cast<Index>(in.edge_box.size()); ++e)
-      cells(in.edge_box[e], [&](const Key& key) { edge_cells[key].push_back(e); });
+    const auto cells = cells_of(hf);
+    const Buckets faces = buckets(in.face_box, cells);
+    const Buckets edges = buckets(in.edge_box, cells_of(he));
     build_seconds = since(t0);
     t0 = Clock::now();
+    // Queries on the threads, block by block; finish() sorts the union, so the result does
+    // not depend on the blocks.
+    const std::size_t nodes = in.node_box.size();
+    std::vector<std::vector<std::pair<Index, Index>>> nf(parallel::block_count(nodes));
+    parallel::for_blocks(nodes, [&](std::size_t blk, std::size_t begin, std::size_t end) {
+      std::vector<Index> near;  // one node's faces, sorted and unique before they are kept
+      for (std::size_t un = begin; un < end; ++un) {
+        const Index n = static_cast<Index>(un);
+        near.clear();
+        cells(in.node_box[n], [&](std::size_t key) {
+          const std::size_t bk = key & faces.mask;
+          for (Index i = faces.begin[bk]; i < faces.begin[bk + 1]; ++i) {
+            const Index f = faces.items[i];
+            if (admissible_node_face(in, n, f) && boxes_overlap(in.node_box[n], in.face_box[f]))
+              near.push_back(f);
+          }
+        });
+        std::sort(near.begin(), near.end());
+        near.erase(std::unique(near.begin(), near.end()), near.end());
+        for (const Index f : near) nf[blk].emplace_back(n, f);
+      }
+    });
+    const std::size_t bn = edges.begin.empty() ? 0 : edges.begin.size() - 1;
+    std::vector<std::vector<std::pair<Index, Index>>> ee(parallel::block_count(bn));
+    parallel::for_blocks(bn, [&](std::size_t blk, std::size_t begin, std::size_t end) {
+      for (std::size_t bk = begin; bk < end; ++bk)
+        for (Index p = edges.begin[bk]; p < edges.begin[bk + 1]; ++p)
+          for (Index q = p + 1; q < edges.begin[bk + 1]; ++q) {
+            const Index a = edges.items[p], b = edges.items[q];
+            if (a != b && admissible_edge_edge(in, a, b) &&
+                boxes_overlap(in.edge_box[a], in.edge_box[b]))
+              ee[blk].emplace_back(std::min(a, b), std::max(a, b));
+          }
+    });
     Candidates c;
-    for (Index n = 0; n < static_cast<Index>(in.node_box.size()); ++n)
-      cells(in.node_box[n], [&](const Key& key) {
-        auto it = face_cells.find(key);
-        if (it == face_cells.end()) return;
-        for (Index f : it->second)
-          if (admissible_node_face(in, n, f) && boxes_overlap(in.node_box[n], in.face_box[f]))
-            c.node_face.emplace_back(n, f);
-      });
-    for (const auto& [key, list] : edge_cells)
-      for (std::size_t p = 0; p < list.size(); ++p)
-        for (std::size_t q = p + 1; q < list.size(); ++q) {
-          const Index a = list[p], b = list[q];
-          if (admissible_edge_edge(in, a, b) && boxes_overlap(in.edge_box[a], in.edge_box[b]))
-            c.edge_edge.emplace_back(std::min(a, b), std::max(a, b));
-        }
+    for (const auto& v : nf) c.node_face.insert(c.node_face.end(), v.begin(), v.end());
+    for (const auto& v : ee) c.edge_edge.insert(c.edge_edge.end(), v.begin(), v.end());
     query_seconds = since(t0);
     finish(c);
     return c;
   }
 
  private:
+  // Boxes by bucket: those of bucket b are items[begin[b] .. begin[b + 1]).
+  struct Buckets {
+    std::vector<Index> begin, items;
+    std::size_t mask = 0;
+  };
+  template <class Cells>
+  static Buckets buckets(const std::vector<Box>& boxes, const Cells& cells) {
+    std::size_t entries = 0;
+    for (const Box& b : boxes) cells(b, [&](std::size_t) { ++entries; });
+    Buckets g;
+    std::size_t size = 64;
+    while (size < 2 * entries) size *= 2;
+    g.mask = size - 1;
+    g.begin.assign(size + 1, 0);
+    for (const Box& b : boxes) cells(b, [&](std::size_t key) { ++g.begin[(key & g.mask) + 1]; });
+    for (std::size_t k = 0; k < size; ++k) g.begin[k + 1] += g.begin[k];
+    g.items.resize(entries);
+    std::vector<Index> next(g.begin.begin(), g.begin.end() - 1);
+    for (Index i = 0; i < static_cast<Index>(boxes.size()); ++i)
+      cells(boxes[i], [&](std::size_t key) { g.items[next[key & g.mask]++] = i; });
+    return g;
+  }
   double cell_;
 };
 

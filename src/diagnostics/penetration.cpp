@@ -3,11 +3,12 @@
 #include <algorithm>
 
 #include "tetcontact/narrowphase/vertex_face.hpp"
+#include "tetcontact/parallel/parallel.hpp"
 
 namespace tc {
 
 PenetrationProbe::PenetrationProbe(const Model& model)
-    : model_(model), broadphase_(make_broadphase("sweep")) {}
+    : model_(model), broadphase_(make_broadphase("grid")) {}
 
 Penetration PenetrationProbe::measure(const State& st) {
   return measure(st.x, st.surfaces, st.damage, st.first_particle);
@@ -54,14 +55,20 @@ Penetration PenetrationProbe::measure(const std::vector<Vec3>& x,
     in.face_body.push_back(mesh.tet_body[t]);
     in_tet.push_back(t);
   }
+  // The exact tests of the pairs on the threads; each node takes the body of the first tet in
+  // the pairs' (sorted) order that holds it.
   const Candidates inside = broadphase_->find(in);
+  std::vector<char> holds(inside.node_face.size());
+  parallel::for_each(inside.node_face.size(), [&](std::size_t k) {
+    const auto& [ni, ti] = inside.node_face[k];
+    const Tet& t = mesh.tets[in_tet[ti]];
+    holds[k] = exact_point_in_tet(x[nodes_[ni]], x[t[0]], x[t[1]], x[t[2]], x[t[3]]);
+  });
   std::vector<Index> inside_body(x.size(), -1);
-  for (const auto& [ni, ti] : inside.node_face) {
-    const Index node = nodes_[ni], t = in_tet[ti];
-    if (inside_body[node] >= 0) continue;
-    const Tet& k = mesh.tets[t];
-    if (exact_point_in_tet(x[node], x[k[0]], x[k[1]], x[k[2]], x[k[3]]))
-      inside_body[node] = mesh.tet_body[t];
+  for (std::size_t k = 0; k < holds.size(); ++k) {
+    const Index node = nodes_[inside.node_face[k].first];
+    if (holds[k] && inside_body[node] < 0)
+      inside_body[node] = mesh.tet_body[in_tet[inside.node_face[k].second]];
   }
 
   // Depth: distance to the nearest boundary face of the body the node is in, within 2h.
@@ -82,12 +89,18 @@ Penetration PenetrationProbe::measure(const std::vector<Vec3>& x,
     }
     for (std::size_t i = 0; i < near.node_id.size(); ++i)
       r.node_depth[near.node_id[i]] = 2.0 * body_h_[inside_body[near.node_id[i]]];
-    for (const auto& [ni, f] : broadphase_->find(near).node_face) {
+    const Candidates close = broadphase_->find(near);
+    std::vector<double> distance(close.node_face.size(), -1.0);  // −1: another body's face
+    parallel::for_each(close.node_face.size(), [&](std::size_t p) {
+      const auto& [ni, f] = close.node_face[p];
       const Index node = near.node_id[ni];
-      if (face_body_[f] != inside_body[node]) continue;
+      if (face_body_[f] != inside_body[node]) return;
       const Face& k = faces_[f];
-      const double d = closest_point_on_triangle(x[node], x[k[0]], x[k[1]], x[k[2]]).distance;
-      r.node_depth[node] = std::min(r.node_depth[node], d);
+      distance[p] = closest_point_on_triangle(x[node], x[k[0]], x[k[1]], x[k[2]]).distance;
+    });
+    for (std::size_t p = 0; p < distance.size(); ++p) {
+      const Index node = near.node_id[close.node_face[p].first];
+      if (distance[p] >= 0.0) r.node_depth[node] = std::min(r.node_depth[node], distance[p]);
     }
     for (std::size_t i = 0; i < near.node_id.size(); ++i) {
       const Index node = near.node_id[i];
@@ -116,11 +129,15 @@ Penetration PenetrationProbe::measure(const std::vector<Vec3>& x,
     cross.face_nodes.push_back(k);
     cross.face_body.push_back(face_body_[f]);
   }
-  for (const auto& [e, f] : broadphase_->find(cross).node_face) {
+  // Each pair on the threads: −1 when the edge does not cross the face, else the crossing's
+  // depth; then counted and maximised in order.
+  const Candidates pairs = broadphase_->find(cross);
+  std::vector<double> crossing(pairs.node_face.size(), -1.0);
+  parallel::for_each(pairs.node_face.size(), [&](std::size_t pair) {
+    const auto& [e, f] = pairs.node_face[pair];
     const Face& k = faces_[f];
     if (exact_segment_crosses_triangle(x[edges_[e][0]], x[edges_[e][1]], x[k[0]], x[k[1]],
                                        x[k[2]])) {
-      ++r.crossings;
       // Depth of the crossing: the shorter of the two moves that undo it, sliding the edge out
       // of the face (the crossing point's distance to the face's boundary: small for an edge
       // grazing the face's rim) or pulling the edge's nearer end back to the face's plane
@@ -134,9 +151,14 @@ Penetration PenetrationProbe::measure(const std::vector<Vec3>& x,
         const SegmentPoints sp = closest_points_on_segments(at, at, x[k[s]], x[k[(s + 1) % 3]]);
         inside = std::min(inside, (sp.on_a - sp.on_b).norm());
       }
+      crossing[pair] = inside;
+    }
+  });
+  for (const double inside : crossing)
+    if (inside >= 0.0) {
+      ++r.crossings;
       r.max_crossing_depth = std::max(r.max_crossing_depth, inside);
     }
-  }
   return r;
 }
 

@@ -5,6 +5,7 @@
 
 #include "tetcontact/element/element.hpp"
 #include "tetcontact/narrowphase/vertex_face.hpp"
+#include "tetcontact/parallel/parallel.hpp"
 
 namespace tc {
 
@@ -201,6 +202,10 @@ void ParticleContact::build_lists(const std::vector<Surface>& surfaces, const St
   // Sorted by (particle, broadphase face), hence by (particle, face number).
   particle_face_ = std::move(c.node_face);
   for (auto& [i, f] : particle_face_) f = number[f];
+  listed_faces_.clear();
+  for (const auto& [i, f] : particle_face_) listed_faces_.push_back(f);
+  std::sort(listed_faces_.begin(), listed_faces_.end());
+  listed_faces_.erase(std::unique(listed_faces_.begin(), listed_faces_.end()), listed_faces_.end());
   particle_pairs_ = std::move(c.edge_edge);
   particle_anchor_.resize(count);
   for (Index i = 0; i < count; ++i) particle_anchor_[i] = st.x[st.first_particle + i];
@@ -221,58 +226,78 @@ std::vector<ContactPoint> ParticleContact::detect(const std::vector<Surface>& su
   if (!lists_valid(surfaces, st)) build_lists(surfaces, st);
   // The boxes of this step: a kept pair goes on when they overlap.
   std::vector<Box> pbox(count);
-  for (Index i = 0; i < count; ++i) pbox[i] = particle_box(st, i, 0.0);
+  parallel::for_each(
+      count, [&](std::size_t i) { pbox[i] = particle_box(st, static_cast<Index>(i), 0.0); });
   step_face_box_.resize(face_at_.size());
-  have_step_box_.assign(face_at_.size(), 0);
+  parallel::for_each(listed_faces_.size(), [&](std::size_t k) {
+    const auto& [si, f] = face_at_[listed_faces_[k]];
+    step_face_box_[listed_faces_[k]] = face_box(surfaces[si].faces[f], st, 0.0);
+  });
+
+  // The pairs are tested on the threads, block by block; the contacts (with the depth of a
+  // centre found behind its face, 0 otherwise) are joined in the lists' order.
+  struct Found {
+    ContactPoint cp;
+    double behind = 0.0;
+  };
+  std::vector<std::vector<Found>> found(parallel::block_count(particle_face_.size()));
+  parallel::for_blocks(
+      particle_face_.size(), [&](std::size_t blk, std::size_t begin, std::size_t end) {
+        for (std::size_t pair = begin; pair < end; ++pair) {
+          const auto& [i, fi] = particle_face_[pair];
+          const Index p = first + i;
+          const Surface& s = surfaces[face_at_[fi].first];
+          const Index f = face_at_[fi].second;
+          const Face& k = s.faces[f];
+          if (!boxes_overlap(pbox[i], step_face_box_[fi])) continue;
+          const Vec3 &centre = st.x[p], &a = st.x[k[0]], &b = st.x[k[1]], &d = st.x[k[2]];
+          const TrianglePoint tp = closest_point_on_triangle(centre, a, b, d);
+          const Vec3 q = tp.w[0] * a + tp.w[1] * b + tp.w[2] * d;
+          const Vec3 nf = face_normal(k, st.x);
+          const double side = nf.dot(centre - a);
+          ContactPoint cp;
+          double behind = 0.0;
+          if (side > 0.0 && tp.distance > 0.0) {
+            cp.normal = (centre - q) / tp.distance;  // from the face's closest point to the centre
+            cp.gap = tp.distance - st.particle_radius[i];
+          } else {
+            // On or behind the face's plane: inside the body when it is inside the face's own cell
+            // (a point behind the face but outside that cell is outside the body beyond a thin part
+            // of it, or inside elsewhere, where another face answers).
+            const Tet& t = mesh.tets[s.face_tet[f]];
+            if (nf.squaredNorm() == 0.0 ||
+                !point_in_tet(centre, st.x[t[0]], st.x[t[1]], st.x[t[2]], st.x[t[3]]))
+              continue;
+            // Inside: the centre is moved back onto the face's plane (a point mass has no energy of
+            // position, so momentum and energy are untouched), and held there.
+            cp.normal = nf;
+            cp.gap = -st.particle_radius[i];
+            behind = -side;
+          }
+          cp.a_nodes[0] = p;
+          cp.a_w[0] = 1.0;
+          cp.a_count = 1;
+          for (int v = 0; v < 3; ++v) {
+            cp.b_nodes[v] = k[v];
+            cp.b_w[v] = tp.w[v];
+          }
+          cp.b_count = 3;
+          found[blk].push_back({cp, behind});
+        }
+      });
+  // Each centre found inside goes onto the plane of the face it is deepest behind (the first
+  // such face in the lists' order).
   std::vector<double> deepest(count, 0.0);
   std::vector<Vec3> move(count, Vec3::Zero());
-
-  for (const auto& [i, fi] : particle_face_) {
-    const Index p = first + i;
-    const Surface& s = surfaces[face_at_[fi].first];
-    const Index f = face_at_[fi].second;
-    const Face& k = s.faces[f];
-    if (!have_step_box_[fi]) {
-      step_face_box_[fi] = face_box(k, st, 0.0);
-      have_step_box_[fi] = 1;
-    }
-    if (!boxes_overlap(pbox[i], step_face_box_[fi])) continue;
-    const Vec3 &centre = st.x[p], &a = st.x[k[0]], &b = st.x[k[1]], &d = st.x[k[2]];
-    const TrianglePoint tp = closest_point_on_triangle(centre, a, b, d);
-    const Vec3 q = tp.w[0] * a + tp.w[1] * b + tp.w[2] * d;
-    const Vec3 nf = face_normal(k, st.x);
-    const double side = nf.dot(centre - a);
-    ContactPoint cp;
-    if (side > 0.0 && tp.distance > 0.0) {
-      cp.normal = (centre - q) / tp.distance;  // from the face's closest point to the centre
-      cp.gap = tp.distance - st.particle_radius[i];
-    } else {
-      // On or behind the face's plane: inside the body when it is inside the face's own cell
-      // (a point behind the face but outside that cell is outside the body beyond a thin part
-      // of it, or inside elsewhere, where another face answers).
-      const Tet& t = mesh.tets[s.face_tet[f]];
-      if (nf.squaredNorm() == 0.0 ||
-          !point_in_tet(centre, st.x[t[0]], st.x[t[1]], st.x[t[2]], st.x[t[3]]))
-        continue;
-      // Inside: the centre is moved back onto the face's plane (a point mass has no energy of
-      // position, so momentum and energy are untouched), and held there.
-      cp.normal = nf;
-      cp.gap = -st.particle_radius[i];
-      if (-side > deepest[i]) {
-        deepest[i] = -side;
-        move[i] = -side * nf;
+  for (const std::vector<Found>& block : found)
+    for (const Found& c : block) {
+      const Index i = c.cp.a_nodes[0] - first;
+      if (c.behind > deepest[i]) {
+        deepest[i] = c.behind;
+        move[i] = c.behind * c.cp.normal;
       }
+      out.push_back(c.cp);
     }
-    cp.a_nodes[0] = p;
-    cp.a_w[0] = 1.0;
-    cp.a_count = 1;
-    for (int v = 0; v < 3; ++v) {
-      cp.b_nodes[v] = k[v];
-      cp.b_w[v] = tp.w[v];
-    }
-    cp.b_count = 3;
-    out.push_back(cp);
-  }
   for (Index i = 0; i < count; ++i)
     if (deepest[i] > 0.0) moves_.emplace_back(first + i, move[i]);
   for (const auto& [i, j] : particle_pairs_) {

@@ -1,5 +1,6 @@
 #include "tetcontact/io/output.hpp"
 
+#include <chrono>
 #include <cstdio>
 
 #include "tetcontact/io/vtk.hpp"
@@ -64,7 +65,9 @@ void OutputWriter::write_frame(const State& st, double t) {
   std::snprintf(name, sizeof name, "frame_%04zu.vtu", frames_.size());
   std::vector<double> depth;
   if (probe_) {
+    const auto t0 = std::chrono::steady_clock::now();
     Penetration p = probe_->measure(st);
+    probe_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     penetration_max_.nodes_inside = std::max(penetration_max_.nodes_inside, p.nodes_inside);
     penetration_max_.max_depth = std::max(penetration_max_.max_depth, p.max_depth);
     penetration_max_.max_depth_over_h =

@@ -109,9 +109,9 @@ class ParticleContact {
   std::vector<std::pair<Index, Index>> face_at_;  // (surface, face) of each face number
   std::vector<Vec3> particle_anchor_, node_anchor_;
   std::vector<Index> anchor_nodes_;  // every surface node
-  // This step's boxes of the faces the lists name, made when first needed.
+  // This step's boxes of the faces the lists name.
+  std::vector<Index> listed_faces_;
   std::vector<Box> step_face_box_;
-  std::vector<char> have_step_box_;
 };
 
 }  // namespace tc

@@ -34,10 +34,13 @@ class OutputWriter : public Observer {
   /// The measure at the last frame (the run's end).
   const Penetration& penetration_last() const { return penetration_last_; }
   bool measured_penetration() const { return probe_ != nullptr && !frames_.empty(); }
+  /// Seconds the penetration measures took (part of the output stage).
+  double probe_seconds() const { return probe_seconds_; }
 
  private:
   void write_frame(const State& st, double t);
 
+  double probe_seconds_ = 0.0;
   const Model& model_;
   OutputSpec spec_;
   std::string dir_;
