@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdint>
 #include <stdexcept>
 #include <unordered_map>
 
@@ -42,6 +43,18 @@ bool admissible_edge_edge(const BroadphaseInput& in, Index a, Index b) {
 namespace {
 
 using Clock = std::chrono::steady_clock;
+
+// A cell's hash: the classic spatial-hash primes, then mixed (splitmix64's finaliser) so that
+// the low bits that pick a bucket depend on all of i, j and k.
+inline std::size_t cell_hash(long i, long j, long k) {
+  std::uint64_t h = static_cast<std::uint64_t>(i * 73856093L ^ j * 19349663L ^ k * 83492791L);
+  h ^= h >> 30;
+  h *= 0xbf58476d1ce4e5b9ULL;
+  h ^= h >> 27;
+  h *= 0x94d049bb133111ebULL;
+  h ^= h >> 31;
+  return static_cast<std::size_t>(h);
+}
 double since(Clock::time_point t0) {
   return std::chrono::duration<double>(Clock::now() - t0).count();
 }
@@ -137,9 +150,11 @@ class Sweep : public Broadphase {
   }
 };
 
-// Seed 001's spatial index: a virtual uniform grid of cubes keyed by (i, j, k), hashed into a
-// flat table of buckets; each box is entered in every cube it overlaps, candidates share a
-// bucket and pass the exact box test. Queries run on the threads.
+// Seed 001's spatial index: a virtual uniform grid of cubes (i, j, k), hashed into a flat
+// table of buckets; each box is entered in every cube it overlaps with that cube's
+// coordinates. A node finds the faces in its cubes; two edges pair in the one cube that holds
+// the lower corner of their boxes' intersection (both boxes cover it), so each pair comes
+// once. Queries run on the threads; the candidates come out sorted.
 class Grid : public Broadphase {
  public:
   explicit Grid(double cell) : cell_(cell) {}
@@ -156,43 +171,25 @@ class Grid : public Broadphase {
       const double h = boxes.empty() ? 1.0 : 2.0 * sum / static_cast<double>(boxes.size());
       return h > 0.0 ? h : 1.0;
     };
-    const double hf = cell_size(in.face_box), he = cell_size(in.edge_box);
-    // The cells a box covers, each hashed to a bucket of a flat table (a power of two, at
-    // least twice the entries): a bucket may hold boxes of several cells, whose extra pairs
-    // the exact box test drops, as it drops those of boxes sharing a cell without overlapping.
-    const auto cells_of = [](double h) {
-      return [h](const Box& b, auto&& visit) {
-        const long i0 = static_cast<long>(std::floor(b.lo.x() / h)),
-                   i1 = static_cast<long>(std::floor(b.hi.x() / h));
-        const long j0 = static_cast<long>(std::floor(b.lo.y() / h)),
-                   j1 = static_cast<long>(std::floor(b.hi.y() / h));
-        const long k0 = static_cast<long>(std::floor(b.lo.z() / h)),
-                   k1 = static_cast<long>(std::floor(b.hi.z() / h));
-        for (long i = i0; i <= i1; ++i)
-          for (long j = j0; j <= j1; ++j)
-            for (long k = k0; k <= k1; ++k)
-              visit(static_cast<std::size_t>(i * 73856093L ^ j * 19349663L ^ k * 83492791L));
-      };
-    };
-    const auto cells = cells_of(hf);
-    const Buckets faces = buckets(in.face_box, cells);
-    const Buckets edges = buckets(in.edge_box, cells_of(he));
+    const Cells fc{cell_size(in.face_box)}, ec{cell_size(in.edge_box)};
+    const Buckets faces = buckets(in.face_box, fc);
+    const Buckets edges = buckets(in.edge_box, ec);
     build_seconds = since(t0);
     t0 = Clock::now();
-    // Queries on the threads, block by block; finish() sorts the union, so the result does
-    // not depend on the blocks.
+    Candidates c;
+    // Node–face: each node's faces sorted and unique, the nodes in order.
     const std::size_t nodes = in.node_box.size();
     std::vector<std::vector<std::pair<Index, Index>>> nf(parallel::block_count(nodes));
     parallel::for_blocks(nodes, [&](std::size_t blk, std::size_t begin, std::size_t end) {
-      std::vector<Index> near;  // one node's faces, sorted and unique before they are kept
+      std::vector<Index> near;
       for (std::size_t un = begin; un < end; ++un) {
         const Index n = static_cast<Index>(un);
         near.clear();
-        cells(in.node_box[n], [&](std::size_t key) {
-          const std::size_t bk = key & faces.mask;
+        fc.visit(in.node_box[n], [&](const Cell& cell) {
+          const std::size_t bk = cell.hash() & faces.mask;
           for (Index i = faces.begin[bk]; i < faces.begin[bk + 1]; ++i) {
             const Index f = faces.items[i];
-            if (admissible_node_face(in, n, f) && boxes_overlap(in.node_box[n], in.face_box[f]))
+            if (boxes_overlap(in.node_box[n], faces.boxes[i]) && admissible_node_face(in, n, f))
               near.push_back(f);
           }
         });
@@ -201,48 +198,101 @@ class Grid : public Broadphase {
         for (const Index f : near) nf[blk].emplace_back(n, f);
       }
     });
-    const std::size_t bn = edges.begin.empty() ? 0 : edges.begin.size() - 1;
+    join(nf, c.node_face);
+    // Edge–edge: the pairs of each bucket, kept in their reference cube only; sorted after.
+    const std::size_t bn = edges.begin.size() - 1;
     std::vector<std::vector<std::pair<Index, Index>>> ee(parallel::block_count(bn));
     parallel::for_blocks(bn, [&](std::size_t blk, std::size_t begin, std::size_t end) {
       for (std::size_t bk = begin; bk < end; ++bk)
         for (Index p = edges.begin[bk]; p < edges.begin[bk + 1]; ++p)
           for (Index q = p + 1; q < edges.begin[bk + 1]; ++q) {
+            if (!(edges.cells[p] == edges.cells[q])) continue;  // another cube in the bucket
+            const Box &ba = edges.boxes[p], &bb = edges.boxes[q];
+            if (!boxes_overlap(ba, bb)) continue;
             const Index a = edges.items[p], b = edges.items[q];
-            if (a != b && admissible_edge_edge(in, a, b) &&
-                boxes_overlap(in.edge_box[a], in.edge_box[b]))
-              ee[blk].emplace_back(std::min(a, b), std::max(a, b));
+            if (!admissible_edge_edge(in, a, b)) continue;
+            if (!(ec.of(ba.lo.cwiseMax(bb.lo)) == edges.cells[p])) continue;  // counted there
+            ee[blk].emplace_back(std::min(a, b), std::max(a, b));
           }
     });
-    Candidates c;
-    for (const auto& v : nf) c.node_face.insert(c.node_face.end(), v.begin(), v.end());
-    for (const auto& v : ee) c.edge_edge.insert(c.edge_edge.end(), v.begin(), v.end());
+    join(ee, c.edge_edge);
+    parallel::sort_pairs(c.edge_edge);
     query_seconds = since(t0);
     finish(c);
     return c;
   }
 
  private:
-  // Boxes by bucket: those of bucket b are items[begin[b] .. begin[b + 1]).
+  struct Cell {
+    long i, j, k;
+    bool operator==(const Cell& o) const { return i == o.i && j == o.j && k == o.k; }
+    // The classic spatial-hash primes, then splitmix64's finaliser, so that the low bits
+    // that pick a bucket depend on all of i, j and k.
+    std::size_t hash() const {
+      std::uint64_t h = static_cast<std::uint64_t>(i * 73856093L ^ j * 19349663L ^ k * 83492791L);
+      h ^= h >> 30;
+      h *= 0xbf58476d1ce4e5b9ULL;
+      h ^= h >> 27;
+      h *= 0x94d049bb133111ebULL;
+      h ^= h >> 31;
+      return static_cast<std::size_t>(h);
+    }
+  };
+  struct Cells {
+    double h;
+    static long floor_of(double v) {  // std::floor without the call, for finite v
+      const long t = static_cast<long>(v);
+      return v < static_cast<double>(t) ? t - 1 : t;
+    }
+    Cell of(const Vec3& p) const {
+      return {floor_of(p.x() / h), floor_of(p.y() / h), floor_of(p.z() / h)};
+    }
+    template <class Visit>
+    void visit(const Box& b, Visit&& v) const {
+      const Cell lo = of(b.lo), hi = of(b.hi);
+      for (long i = lo.i; i <= hi.i; ++i)
+        for (long j = lo.j; j <= hi.j; ++j)
+          for (long k = lo.k; k <= hi.k; ++k) v(Cell{i, j, k});
+    }
+  };
+  // Boxes by bucket: entry e of bucket b (begin[b] <= e < begin[b + 1]) is box items[e],
+  // entered for cube cells[e]; a copy of the box beside it (the tests read them in order).
   struct Buckets {
     std::vector<Index> begin, items;
+    std::vector<Cell> cells;
+    std::vector<Box> boxes;
     std::size_t mask = 0;
   };
-  template <class Cells>
-  static Buckets buckets(const std::vector<Box>& boxes, const Cells& cells) {
+  static Buckets buckets(const std::vector<Box>& boxes, const Cells& grid) {
     std::size_t entries = 0;
-    for (const Box& b : boxes) cells(b, [&](std::size_t) { ++entries; });
+    for (const Box& b : boxes) grid.visit(b, [&](const Cell&) { ++entries; });
     Buckets g;
     std::size_t size = 64;
     while (size < 2 * entries) size *= 2;
     g.mask = size - 1;
     g.begin.assign(size + 1, 0);
-    for (const Box& b : boxes) cells(b, [&](std::size_t key) { ++g.begin[(key & g.mask) + 1]; });
+    for (const Box& b : boxes)
+      grid.visit(b, [&](const Cell& c) { ++g.begin[(c.hash() & g.mask) + 1]; });
     for (std::size_t k = 0; k < size; ++k) g.begin[k + 1] += g.begin[k];
     g.items.resize(entries);
+    g.cells.resize(entries);
+    g.boxes.resize(entries);
     std::vector<Index> next(g.begin.begin(), g.begin.end() - 1);
     for (Index i = 0; i < static_cast<Index>(boxes.size()); ++i)
-      cells(boxes[i], [&](std::size_t key) { g.items[next[key & g.mask]++] = i; });
+      grid.visit(boxes[i], [&](const Cell& c) {
+        const Index e = next[c.hash() & g.mask]++;
+        g.items[e] = i;
+        g.cells[e] = c;
+        g.boxes[e] = boxes[i];
+      });
     return g;
+  }
+  static void join(const std::vector<std::vector<std::pair<Index, Index>>>& blocks,
+                   std::vector<std::pair<Index, Index>>& out) {
+    std::size_t n = 0;
+    for (const auto& v : blocks) n += v.size();
+    out.reserve(n);
+    for (const auto& v : blocks) out.insert(out.end(), v.begin(), v.end());
   }
   double cell_;
 };

@@ -5,6 +5,7 @@
 #include <tbb/global_control.h>
 #include <tbb/info.h>
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_sort.h>
 #include <tbb/task_arena.h>
 
 #include <algorithm>
@@ -54,6 +55,14 @@ void run_blocks(std::size_t blocks, const std::function<void(std::size_t)>& bloc
         },
         tbb::simple_partitioner());
   });
+}
+
+void sort_pairs(std::vector<std::pair<int, int>>& pairs) {
+  if (threads() == 1 || pairs.size() < 100'000) {
+    std::sort(pairs.begin(), pairs.end());
+    return;
+  }
+  arena().execute([&] { tbb::parallel_sort(pairs.begin(), pairs.end()); });
 }
 
 }  // namespace tc::parallel

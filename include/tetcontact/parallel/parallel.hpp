@@ -12,6 +12,7 @@
 #include <cstddef>
 #include <exception>
 #include <functional>
+#include <utility>
 #include <vector>
 
 namespace tc::parallel {
@@ -34,6 +35,9 @@ inline std::size_t block_count(std::size_t n, std::size_t block = k_block) {
 /// work-stealing scheduler, whose idle workers sleep: several runs on one machine share its
 /// cores instead of spinning against each other).
 void run_blocks(std::size_t blocks, const std::function<void(std::size_t)>& block);
+
+/// Sorts pairs ascending on the threads (a sort's result does not depend on the schedule).
+void sort_pairs(std::vector<std::pair<int, int>>& pairs);
 
 /// Runs body(block, begin, end) for every block of [0, n), blocks spread over the threads.
 /// An exception thrown in a block is rethrown after the loop: the one of the lowest block, which
