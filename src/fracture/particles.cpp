@@ -227,12 +227,16 @@ std::vector<ContactPoint> ParticleContact::detect(const std::vector<Surface>& su
   // The boxes of this step: a kept pair goes on when they overlap.
   std::vector<Box> pbox(count);
   parallel::for_each(
-      count, [&](std::size_t i) { pbox[i] = particle_box(st, static_cast<Index>(i), 0.0); });
+      count, [&](std::size_t i) { pbox[i] = particle_box(st, static_cast<Index>(i), 0.0); },
+      parallel::k_light_block);
   step_face_box_.resize(face_at_.size());
-  parallel::for_each(listed_faces_.size(), [&](std::size_t k) {
-    const auto& [si, f] = face_at_[listed_faces_[k]];
-    step_face_box_[listed_faces_[k]] = face_box(surfaces[si].faces[f], st, 0.0);
-  });
+  parallel::for_each(
+      listed_faces_.size(),
+      [&](std::size_t k) {
+        const auto& [si, f] = face_at_[listed_faces_[k]];
+        step_face_box_[listed_faces_[k]] = face_box(surfaces[si].faces[f], st, 0.0);
+      },
+      parallel::k_light_block);
 
   // The pairs are tested on the threads, block by block; the contacts (with the depth of a
   // centre found behind its face, 0 otherwise) are joined in the lists' order.

@@ -187,9 +187,12 @@ void NodeFaceContact::node_face_contacts(const State& st, std::vector<ContactPoi
   // lists; the Hertz spheres' narrowphase takes a third of the time.
   if (settings_.binding_lists) {
     step_face_box_.resize(faces_.size());
-    parallel::for_each(listed_faces_.size(), [&](std::size_t k) {
-      step_face_box_[listed_faces_[k]] = layer_box(listed_faces_[k], st, settings_.margin);
-    });
+    parallel::for_each(
+        listed_faces_.size(),
+        [&](std::size_t k) {
+          step_face_box_[listed_faces_[k]] = layer_box(listed_faces_[k], st, settings_.margin);
+        },
+        parallel::k_light_block);
   }
   std::vector<std::vector<ContactPoint>> found(parallel::block_count(cand.node_face.size()));
   parallel::for_blocks(cand.node_face.size(), [&](std::size_t blk, std::size_t begin,
