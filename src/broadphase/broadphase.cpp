@@ -5,7 +5,6 @@
 #include <cmath>
 #include <cstdint>
 #include <stdexcept>
-#include <unordered_map>
 
 #include "tetcontact/parallel/parallel.hpp"
 
@@ -40,21 +39,19 @@ bool admissible_edge_edge(const BroadphaseInput& in, Index a, Index b) {
   return ea[0] != eb[0] && ea[0] != eb[1] && ea[1] != eb[0] && ea[1] != eb[1];
 }
 
+std::vector<Index> listed_faces(const std::vector<std::pair<Index, Index>>& node_face) {
+  std::vector<Index> faces;
+  faces.reserve(node_face.size());
+  for (const auto& [node, face] : node_face) faces.push_back(face);
+  std::sort(faces.begin(), faces.end());
+  faces.erase(std::unique(faces.begin(), faces.end()), faces.end());
+  return faces;
+}
+
 namespace {
 
 using Clock = std::chrono::steady_clock;
 
-// A cell's hash: the classic spatial-hash primes, then mixed (splitmix64's finaliser) so that
-// the low bits that pick a bucket depend on all of i, j and k.
-inline std::size_t cell_hash(long i, long j, long k) {
-  std::uint64_t h = static_cast<std::uint64_t>(i * 73856093L ^ j * 19349663L ^ k * 83492791L);
-  h ^= h >> 30;
-  h *= 0xbf58476d1ce4e5b9ULL;
-  h ^= h >> 27;
-  h *= 0x94d049bb133111ebULL;
-  h ^= h >> 31;
-  return static_cast<std::size_t>(h);
-}
 double since(Clock::time_point t0) {
   return std::chrono::duration<double>(Clock::now() - t0).count();
 }

@@ -257,8 +257,6 @@ ForceResult update_material(const std::vector<Tet>& tets, const std::vector<Mate
           if (anp(st.tet_material[t])) scratch.node_material[k] = st.tet_material[t];
         }
     }
-    scratch.vol.assign(n, 0.0);
-    scratch.energy.assign(n, 0.0);
     scratch.pressure.assign(n, 0.0);
     scratch.tet_dvol.assign(tets.size(), 0.0);
     scratch.tet_energy.assign(tets.size(), 0.0);
@@ -388,13 +386,11 @@ ForceResult update_material(const std::vector<Tet>& tets, const std::vector<Mate
     double vol = 0.0, energy = 0.0, vol0 = 0.0;
     for (Index e = scratch.incidence_begin[n]; e < scratch.incidence_begin[n + 1]; ++e) {
       const Index t = scratch.incidence[e] >> 2;
-      if (!scratch.tet_averaged[t] || st.damage[t] == Damage::particle) continue;
+      if (!scratch.tet_averaged[t]) continue;  // failed, a particle, or another material
       vol += 0.25 * st.vol[t];
       energy += 0.25 * scratch.tet_energy[t];
       vol0 += 0.25 * st.vol0[t];
     }
-    scratch.vol[n] = vol;
-    scratch.energy[n] = energy;
     if (options.fracture) scratch.vol0[n] = vol0;  // over the intact cells, each step
     if (!(vol > 0.0)) return;                      // every cell around it failed: not used
     const double mu = scratch.vol0[n] / vol - 1.0;

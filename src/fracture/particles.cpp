@@ -202,10 +202,7 @@ void ParticleContact::build_lists(const std::vector<Surface>& surfaces, const St
   // Sorted by (particle, broadphase face), hence by (particle, face number).
   particle_face_ = std::move(c.node_face);
   for (auto& [i, f] : particle_face_) f = number[f];
-  listed_faces_.clear();
-  for (const auto& [i, f] : particle_face_) listed_faces_.push_back(f);
-  std::sort(listed_faces_.begin(), listed_faces_.end());
-  listed_faces_.erase(std::unique(listed_faces_.begin(), listed_faces_.end()), listed_faces_.end());
+  listed_faces_ = listed_faces(particle_face_);
   particle_pairs_ = std::move(c.edge_edge);
   particle_anchor_.resize(count);
   for (Index i = 0; i < count; ++i) particle_anchor_[i] = st.x[st.first_particle + i];

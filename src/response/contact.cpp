@@ -157,11 +157,7 @@ void NodeFaceContact::refresh_lists(const State& st, ContactStepStats& stats) {
       input_.edge_box[e] = swept_box({&x0[k[0]], &x0[k[1]], &x1[k[0]], &x1[k[1]]}, margin);
     }
     candidates_ = broadphase_->find(input_);
-    listed_faces_.clear();
-    for (const auto& [ni, fi] : candidates_.node_face) listed_faces_.push_back(fi);
-    std::sort(listed_faces_.begin(), listed_faces_.end());
-    listed_faces_.erase(std::unique(listed_faces_.begin(), listed_faces_.end()),
-                        listed_faces_.end());
+    listed_faces_ = listed_faces(candidates_.node_face);
     anchor_.resize(nodes_.size());
     for (std::size_t i = 0; i < nodes_.size(); ++i) anchor_[i] = x0[nodes_[i]];
     have_lists_ = true;

@@ -49,6 +49,9 @@ struct Candidates {
   std::vector<std::pair<Index, Index>> edge_edge;
 };
 
+/// The faces that (node, face) pairs name, sorted, each once.
+std::vector<Index> listed_faces(const std::vector<std::pair<Index, Index>>& node_face);
+
 /// Whether a pair of primitives is admissible (different bodies, or self pairs without a
 /// shared vertex).
 bool admissible_node_face(const BroadphaseInput& in, Index node, Index face);

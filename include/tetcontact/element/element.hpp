@@ -46,11 +46,11 @@ struct ElementScratch {
   std::vector<Index> incidence_begin, incidence;
   std::vector<Vec3> tet_force;  // per tet corner (4 per tet): its share of the nodal force
   // Average nodal pressure.
-  std::vector<double> vol0, vol, energy, pressure;  // per node
-  std::vector<Index> node_material;                 // per node: material if averaged, else −1
-  std::vector<double> tet_dvol;                     // per tet: ΔV of the step
-  std::vector<double> tet_energy;                   // per tet: Eⁿ, its share of the nodal energy
-  std::vector<char> tet_averaged;                   // per tet: in the nodal averages this step
+  std::vector<double> vol0, pressure;  // per node
+  std::vector<Index> node_material;    // per node: material if averaged, else −1
+  std::vector<double> tet_dvol;        // per tet: ΔV of the step
+  std::vector<double> tet_energy;      // per tet: Eⁿ, its share of the nodal energy
+  std::vector<char> tet_averaged;      // per tet: in the nodal averages this step
 };
 
 struct ForceResult {

@@ -12,7 +12,7 @@ namespace tc {
 
 /// How the arrays of a .vtu are stored: text; raw little-endian bytes in the file's appended
 /// section; or those bytes zlib-compressed (VTK's vtkZLibDataCompressor). All three open in
-/// ParaView; binary is about 3× smaller than text and an order of magnitude faster to write.
+/// ParaView. The spall plate's frames: binary 57 % of the text's bytes, compressed 19 %.
 enum class VtuFormat { ascii, binary, compressed };
 
 /// The .vtu text of the state at t^n (the mesh's nodes, and its cells not turned into

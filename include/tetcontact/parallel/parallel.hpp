@@ -28,7 +28,7 @@ int hardware_threads();
 inline constexpr std::size_t k_block = 1024;
 /// Blocks for loops of a few nanoseconds an item (the nodes' updates, the boxes of a step):
 /// a task of a thousand such items costs more to hand out than to run (the commit of bars'
-/// 3,000 nodes took 3× longer on 2 threads than on one).
+/// 4,050 nodes took 3× longer on 2 threads than on one).
 inline constexpr std::size_t k_light_block = 16384;
 
 inline std::size_t block_count(std::size_t n, std::size_t block = k_block) {
