@@ -5,6 +5,7 @@ never retyped).
     tools/readme_tables.py stability BINARY [--work DIR]   the stability suite's table
     tools/readme_tables.py micro BINARY                     the micro-scene table
     tools/readme_tables.py profile BINARY                   the broadphase profile (bars)
+    tools/readme_tables.py verify BINARY                    the step verification's table
     tools/readme_tables.py threads BINARY [--cases NAME...] the thread-scaling table: bars,
                                                             cylinders (edge–edge on), Hertz and
                                                             ball-plate in full on 1 and 2 threads
@@ -178,9 +179,59 @@ def threads(binary, work, only):
               f"{stage_shares(two)} |", flush=True)
 
 
+VERIFY_ROWS = [  # (what, case, --set values)
+    ("cubes-edge, every step", "data/cases/cubes-edge.yaml",
+     ["contact.verify=true", "diagnostics.every_step=true"]),
+    ("cubes-edge, edge–edge off, every step", "data/cases/cubes-edge.yaml",
+     ["contact.verify=false", "contact.edge_edge=false", "diagnostics.every_step=true"]),
+    ("cubes-edge, edge–edge off, every step", "data/cases/cubes-edge.yaml",
+     ["contact.verify=true", "contact.edge_edge=false", "diagnostics.every_step=true"]),
+    ("micro coincident-faces, every step", "data/cases/micro/coincident-faces.yaml",
+     ["contact.verify=true", "diagnostics.every_step=true"]),
+    ("bars-impact", "data/cases/bars-impact.yaml", ["contact.verify=false"]),
+    ("bars-impact", "data/cases/bars-impact.yaml", ["contact.verify=true"]),
+    ("bars-impact, edge–edge on", "data/cases/bars-impact.yaml",
+     ["contact.verify=true", "contact.edge_edge=true"]),
+    ("staggered-patch, edge–edge on", "data/cases/staggered-patch.yaml",
+     ["contact.verify=true", "contact.edge_edge=true"]),
+    ("touching-gap0, edge–edge on", "data/cases/stability/touching-gap0.yaml",
+     ["contact.verify=true", "contact.edge_edge=true"]),
+]
+
+
+def verify(binary, work):
+    """The step verification's table: each row run with --check."""
+    print("| case | verify | crossings / nodes inside | checks | failing pairs (steps) | "
+          "zones (frozen) | verify stage / run |")
+    print("|---|---|---|---|---|---|---|")
+    for k, (what, case, sets) in enumerate(VERIFY_ROWS):
+        extra = ["--check"]
+        for kv in sets:
+            extra += ["--set", kv]
+        s, _ = run(binary, os.path.join(ROOT, case), os.path.join(work, f"row{k}"), extra)
+        p = s["penetration"]
+        where = (f"at all {p['samples']} steps" if p.get("measured_at") == "every step"
+                 else "at the frames")
+        pen = f"{p['max_crossings']} / {p['max_nodes_inside']} {where}"
+        missed = [f"{e['name']} {g(e['measured'])} > {g(e['bound'])}"
+                  for e in s.get("expect", []) if not e["pass"]]
+        missed += [f"{r['name']} {g(r['measured'])}" for r in s.get("references", [])
+                   if r.get("pass") is False]
+        checks = "pass" if not missed else "**" + "; ".join(missed) + "**"
+        v = s["contact"].get("verification")
+        on = v is not None
+        fails = f"{v['failed_after_passes']:,} ({v['steps_failed']} of {s['steps']})" if on else "—"
+        zones = f"{v['impact_zones']} ({v['frozen_zones']})" if on else "—"
+        stage = s["timings"].get("verify")
+        cost = (f"{stage:.3g} s / {s['wall_seconds']:.3g} s" if on
+                else f"— / {s['wall_seconds']:.3g} s")
+        print(f"| {what} | {'on' if on else 'off'} | {pen} | {checks} | {fails} | {zones} | "
+              f"{cost} |", flush=True)
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawTextHelpFormatter)
-    ap.add_argument("table", choices=["stability", "micro", "profile", "threads"])
+    ap.add_argument("table", choices=["stability", "micro", "profile", "threads", "verify"])
     ap.add_argument("binary")
     ap.add_argument("--work", help="keep the runs here (default: a temporary folder)")
     ap.add_argument("--cases", nargs="*", help="threads: only the cases whose file names "
@@ -190,6 +241,8 @@ def main():
         stability(os.path.abspath(a.binary), a.work or tempfile.mkdtemp(prefix="stability-"))
     elif a.table == "micro":
         micro(os.path.abspath(a.binary))
+    elif a.table == "verify":
+        verify(os.path.abspath(a.binary), a.work or tempfile.mkdtemp(prefix="verify-"))
     elif a.table == "threads":
         threads(os.path.abspath(a.binary), a.work or tempfile.mkdtemp(prefix="threads-"), a.cases)
     else:

@@ -93,9 +93,14 @@ CLI::App* add_stress(CLI::App& app, tc::StressOptions& s) {
   cmd->add_flag_callback(
          "--no-scenes", [&s] { s.scenes = false; }, "skip the micro-scenes")
       ->excludes(scenes);
+  cmd->add_option("--solver-scenes", s.solver_scenes,
+                  "generated whole-solver scenes to run (random angles, touching, sliding, 0.1 "
+                  "to 7 km/s, verification on): any crossing or node inside fails (default 0)")
+      ->check(CLI::Range(0, 100000));
   add_overrides(cmd, s.overrides);
   cmd->add_flag("--json", s.json,
-                "one object with `families`, `disagreements`, `scenes` and `scenes_failed`");
+                "one object with `families`, `disagreements`, `scenes`, `scenes_failed` and "
+                "`solver_scenes`");
   cmd->footer(
       "Generates --count queries per degenerate family (parallel, collinear and crossing edges,\n"
       "zero-length edges, edges a few ulps from parallel, coplanar vertex-face, vertex on a\n"

@@ -191,6 +191,26 @@ Json contact_json(const Simulation& sim) {
   contact["work"] = sim.last_sample().contact.work;
   contact["broadphase"] = sim.model().contact->broadphase;
   contact["broadphase_runs"] = ct.rebuilds;
+  // Every step's motion checked with the exact CCD (null when contact.verify is off).
+  if (sim.model().contact->verify) {
+    Json v = Json::object();
+    v["pairs_checked"] = ct.verified_pairs;
+    v["failed_after_passes"] = ct.failed_pairs;
+    v["failed_from_touching"] = ct.failed_touching;
+    v["failed_edge_edge"] = ct.failed_edge_edge;
+    v["extra_pass_rounds"] = ct.extra_rounds;
+    v["failed_after_extra_passes"] = ct.failed_after_extra;
+    v["steps_failed"] = ct.steps_failed;
+    v["impact_zones"] = ct.impact_zones;
+    v["largest_zone_nodes"] = ct.largest_zone_nodes;
+    v["steps_with_zones"] = ct.steps_with_zones;
+    v["frozen_zones"] = ct.frozen_zones;
+    v["zone_rounds"] = ct.zone_rounds;
+    v["unresolved_steps"] = ct.unresolved_steps;
+    contact["verification"] = v;
+  } else {
+    contact["verification"] = nullptr;
+  }
   return contact;
 }
 
@@ -250,7 +270,7 @@ Json safeguards_json(const Simulation& sim) {
 }
 
 // Penetration at the output frames (null where it was not measured).
-Json penetration_json(const Simulation& sim, const OutputWriter& writer) {
+Json penetration_json(const Case& c, const Simulation& sim, const OutputWriter& writer) {
   Json pen = Json::object();
   for (const char* k : {"max_depth", "max_depth_over_h", "max_crossings"}) pen[k] = nullptr;
   const bool one_body = sim.model().mesh.bodies.size() < 2 && !sim.model().particles;
@@ -267,7 +287,8 @@ Json penetration_json(const Simulation& sim, const OutputWriter& writer) {
     pen["max_particle_depth"] = pm.max_particle_depth;
     pen["particles_inside_at_end"] = writer.penetration_last().particles_inside;
   }
-  pen["measured_at"] = "output frames";
+  pen["measured_at"] = c.output.penetration_every_step ? "every step" : "output frames";
+  pen["samples"] = writer.penetration_samples();
   return pen;
 }
 
@@ -301,7 +322,7 @@ Json summary_json(const Case& c, const Simulation& sim, const OutputWriter& writ
   j["material_library"] = c.material_library.empty() ? Json() : Json(c.material_library);
   j["time_step"] = time_step_json(c, sim);
   j["contact"] = contact_json(sim);
-  j["penetration"] = penetration_json(sim, writer);
+  j["penetration"] = penetration_json(c, sim, writer);
   j["fracture"] = fracture_json(c, sim);
   j["safeguards"] = safeguards_json(sim);
   return j;

@@ -2,6 +2,9 @@
 
 #include <cmath>
 #include <cstdio>
+#include <sstream>
+
+#include "tetcontact/diagnostics/penetration.hpp"
 
 #include "tetcontact/mesh/delaunay.hpp"
 #include "tetcontact/mesh/generators.hpp"
@@ -176,7 +179,34 @@ Model build_model(const Case& c, std::vector<std::string>* notes) {
     model.element.average_nodal_pressure.push_back(
         c.average_nodal_pressure == AnpMode::on ||
         (c.average_nodal_pressure == AnpMode::automatic && m.plastic()));
+  if (!c.allow_initial_overlap) check_initial_overlap(c, model);
   return model;
+}
+
+// Bodies that overlap at t = 0 (a boundary node strictly inside another body, or a boundary
+// edge through another body's face, decided exactly: touching is not overlap) are bad input:
+// contact holds an overlap, it never pushes it out, so a run would start from a state it
+// cannot mean.
+void check_initial_overlap(const Case& c, const Model& model) {
+  if (model.mesh.bodies.size() < 2) return;
+  PenetrationProbe probe(model);
+  const Penetration p = probe.measure(model.mesh.x);
+  if (p.nodes_inside == 0 && p.crossings == 0) return;
+  const auto name = [&](Index b) { return "'" + model.mesh.bodies[b].name + "'"; };
+  std::ostringstream os;
+  os.precision(3);
+  os << c.file << ": bodies overlap at t = 0: ";
+  if (p.nodes_inside > 0)
+    os << p.nodes_inside << " boundary nodes inside another body, the deepest a node of "
+       << name(p.deepest_node_body) << " " << p.max_depth << " m inside " << name(p.deepest_in_body)
+       << "; ";
+  if (p.crossings > 0)
+    os << p.crossings << " boundary edges through another body's faces, the deepest an edge of "
+       << name(p.crossing_edge_body) << " " << p.max_crossing_depth << " m through a face of "
+       << name(p.crossing_face_body) << "; ";
+  os << "move the bodies apart (touching is allowed), or set contact.initial_overlap: allow to "
+        "run from the overlap (contact holds it, never pushes it out)";
+  throw SetupError(os.str());
 }
 
 std::vector<std::string> mach_warnings(const Case& c, const Model& model) {

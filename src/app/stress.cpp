@@ -10,6 +10,8 @@
 #include <random>
 #include <stdexcept>
 
+#include <unistd.h>
+
 #include "tetcontact/app/float_ccd.hpp"
 #include "tetcontact/app/setup.hpp"
 #include "tetcontact/diagnostics/balance.hpp"
@@ -228,6 +230,158 @@ std::string default_scenes_dir() {
   return data_dir() + "/cases/micro";
 }
 
+namespace {
+
+// One scene through the solver, its penetration measured after every step.
+SceneResult run_scene(const std::string& name, const std::string& file,
+                      const std::vector<std::string>& overrides) {
+  SceneResult r;
+  r.name = name;
+  const Case c = load_case(file, overrides);  // bad input is the caller's, not a scene's
+  try {
+    Simulation sim(build_model(c), solver_settings(c));
+    PenetrationProbe probe(sim.model());
+    while (!sim.done()) {
+      sim.step();
+      ++r.steps;
+      const Penetration p = probe.measure(sim.state().x);
+      Penetration& m = r.penetration;
+      m.max_depth = std::max(m.max_depth, p.max_depth);
+      m.max_depth_over_h = std::max(m.max_depth_over_h, p.max_depth_over_h);
+      m.nodes_inside = std::max(m.nodes_inside, p.nodes_inside);
+      m.crossings = std::max(m.crossings, p.crossings);
+      m.max_crossing_depth = std::max(m.max_crossing_depth, p.max_crossing_depth);
+    }
+    sim.finish();
+    r.momentum_error = momentum_error(sim.first_sample(), sim.last_sample());
+    r.balance_error = sim.balance_error_max();
+    r.impact_zones = sim.contact_totals().impact_zones;
+    if (!std::isfinite(r.momentum_error) || !std::isfinite(r.balance_error))
+      r.status = "non-finite balance";
+  } catch (const std::exception& e) {  // RunFailure, InvertedElement: the scene failed
+    r.status = std::string("failed: ") + e.what();
+  }
+  ExpectFigures figures;
+  figures.momentum_error = r.momentum_error;
+  figures.energy_balance = r.balance_error;
+  figures.penetration = r.penetration;
+  r.expect = judge_expect(c.expect, figures);
+  r.pass = r.status == "ok" && r.momentum_error <= 1e-12;
+  for (const ExpectResult& e : r.expect) r.pass = r.pass && e.pass;
+  return r;
+}
+
+double uniform(Rng& r, double lo, double hi) {
+  return std::uniform_real_distribution<double>(lo, hi)(r);
+}
+
+std::string vec(const Vec3& v) {
+  char b[128];
+  std::snprintf(b, sizeof b, "[%.17g, %.17g, %.17g]", v.x(), v.y(), v.z());
+  return b;
+}
+
+Vec3 unit(Rng& r) {
+  for (;;) {
+    const Vec3 v(uniform(r, -1, 1), uniform(r, -1, 1), uniform(r, -1, 1));
+    if (v.squaredNorm() > 0.01 && v.squaredNorm() <= 1.0) return v.normalized();
+  }
+}
+
+}  // namespace
+
+std::vector<std::string> solver_scene_cases(std::uint64_t seed, int count) {
+  std::vector<std::string> out;
+  for (int i = 0; i < count; ++i) {
+    Rng r(seed * 7919ULL + static_cast<std::uint64_t>(i));
+    const int kind = i % 3;  // apart at an angle, touching face on face, touching and sliding
+    const double speed = 100.0 * std::pow(70.0, uniform(r, 0, 1));  // 0.1 to 7 km/s
+    const bool ball = kind == 0 && std::uniform_int_distribution<int>(0, 1)(r);
+    std::string a_rot, b_rot, b_mesh, b_move;
+    Vec3 velocity, spin = Vec3::Zero();
+    double travel;  // m the projectile must close before contact, about
+    if (kind == 0) {
+      // Both turned at random; B on a random side, its bounding sphere 0 to 0.5 mm off A's.
+      const Vec3 axis_a = unit(r), axis_b = unit(r), side = unit(r);
+      a_rot = "{rotate: {axis: " + vec(axis_a) +
+              ", degrees: " + std::to_string(uniform(r, 0, 180)) + "}}";
+      b_rot = "{rotate: {axis: " + vec(axis_b) +
+              ", degrees: " + std::to_string(uniform(r, 0, 180)) + "}}";
+      const double ra = 0.005 * std::sqrt(3.0), rb = ball ? 0.003 : 0.003 * std::sqrt(3.0);
+      const double gap = uniform(r, 0, 5e-4);
+      b_move = "{translate: " + vec((ra + rb + gap) * side) + "}";
+      velocity = -speed * (side + 0.3 * unit(r)).normalized();
+      spin = uniform(r, 0, 2e4) * unit(r);
+      travel = ra + rb + gap - 0.006;
+    } else {
+      // A axis-aligned, B on its top face (z = 0.005, exactly), turned about z, shifted.
+      a_rot = "{translate: [0, 0, 0]}";
+      b_rot = "{rotate: {axis: [0, 0, 1], degrees: " + std::to_string(uniform(r, 0, 90)) + "}}";
+      const double dx = std::ldexp(std::floor(uniform(r, -16, 16)), -13);  // dyadic: exact
+      const double dy = std::ldexp(std::floor(uniform(r, -16, 16)), -13);
+      b_move = "{translate: " + vec(Vec3(dx, dy, 0.008)) + "}";
+      const Vec3 slide(uniform(r, -1, 1), uniform(r, -1, 1), 0);
+      velocity = kind == 1 ? Vec3(speed * (0.3 * slide + Vec3(0, 0, -1)))
+                           : Vec3(speed * (slide.normalized() + Vec3(0, 0, -0.05)));
+      travel = 0.0;
+    }
+    b_mesh = ball ? "{sphere: {radius: 0.003, cells_across: 4}}"
+                  : "{box: {size: [0.006, 0.006, 0.006], cells: [2, 2, 2]}}";
+    // Long enough to close the gap and press 1.5 mm on, at most 2e-4 s.
+    const double end = std::min(2e-4, (std::max(travel, 0.0) + 1.5e-3) / speed);
+    char name[64];
+    std::snprintf(name, sizeof name, "scene-%04d-%s", i,
+                  kind == 0   ? "apart"
+                  : kind == 1 ? "touching"
+                              : "sliding");
+    std::string text;
+    text += "name: " + std::string(name) + "\n";
+    char end_time[64];
+    std::snprintf(end_time, sizeof end_time, "end_time: %.17g\n", end);
+    text += end_time;
+    text += "solver: {max_steps: 2000}\n";  // a scene that crushes its cells stops there
+    text += "materials:\n  al: {from: al6061-t6}\n";
+    text += "bodies:\n";
+    text += "  - name: target\n    material: al\n";
+    text += "    mesh: {box: {size: [0.01, 0.01, 0.01], cells: [2, 2, 2]}}\n";
+    text += "    transform: [" + a_rot + "]\n";
+    text += "  - name: projectile\n    material: al\n";
+    text += "    mesh: " + b_mesh + "\n";
+    text += "    transform: [" + b_rot + ", " + b_move + "]\n";
+    text += "    velocity: " + vec(velocity) + "\n";
+    text += "    angular_velocity: " + vec(spin) + "\n";
+    text += "contact: {enabled: true, edge_edge: true, verify: true}\n";
+    out.push_back(text);
+  }
+  return out;
+}
+
+std::vector<SceneResult> run_solver_scenes(std::uint64_t seed, int count,
+                                           const std::vector<std::string>& overrides) {
+  namespace fs = std::filesystem;
+  const fs::path dir =
+      fs::temp_directory_path() / ("tetcontact-scenes-" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  std::vector<SceneResult> out;
+  const std::vector<std::string> cases = solver_scene_cases(seed, count);
+  for (std::size_t i = 0; i < cases.size(); ++i) {
+    const fs::path file = dir / ("scene.yaml");
+    write_file_atomic(file.string(), cases[i]);
+    const std::string text = cases[i];
+    const std::string name = text.substr(6, text.find('\n') - 6);
+    try {
+      out.push_back(run_scene(name, file.string(), overrides));
+    } catch (const std::exception& e) {  // a scene the setup refuses (it overlaps at t = 0)
+      SceneResult r;
+      r.name = name;
+      r.status = std::string("refused: ") + e.what();
+      out.push_back(r);
+    }
+  }
+  fs::remove_all(dir);
+  return out;
+}
+
 std::vector<SceneResult> run_micro_scenes(const std::string& dir,
                                           const std::vector<std::string>& overrides) {
   namespace fs = std::filesystem;
@@ -238,41 +392,8 @@ std::vector<SceneResult> run_micro_scenes(const std::string& dir,
   if (files.empty()) throw std::runtime_error(dir + ": no micro-scene case (*.yaml) found");
   std::sort(files.begin(), files.end());
   std::vector<SceneResult> out;
-  for (const fs::path& f : files) {
-    SceneResult r;
-    r.name = f.stem().string();
-    const Case c = load_case(f.string(), overrides);  // bad input is the caller's, not a scene's
-    try {
-      Simulation sim(build_model(c), solver_settings(c));
-      PenetrationProbe probe(sim.model());
-      while (!sim.done()) {
-        sim.step();
-        ++r.steps;
-        const Penetration p = probe.measure(sim.state().x);
-        Penetration& m = r.penetration;
-        m.max_depth = std::max(m.max_depth, p.max_depth);
-        m.max_depth_over_h = std::max(m.max_depth_over_h, p.max_depth_over_h);
-        m.nodes_inside = std::max(m.nodes_inside, p.nodes_inside);
-        m.crossings = std::max(m.crossings, p.crossings);
-        m.max_crossing_depth = std::max(m.max_crossing_depth, p.max_crossing_depth);
-      }
-      sim.finish();
-      r.momentum_error = momentum_error(sim.first_sample(), sim.last_sample());
-      r.balance_error = sim.balance_error_max();
-      if (!std::isfinite(r.momentum_error) || !std::isfinite(r.balance_error))
-        r.status = "non-finite balance";
-    } catch (const std::exception& e) {  // RunFailure, InvertedElement: the scene failed
-      r.status = std::string("failed: ") + e.what();
-    }
-    ExpectFigures figures;
-    figures.momentum_error = r.momentum_error;
-    figures.energy_balance = r.balance_error;
-    figures.penetration = r.penetration;
-    r.expect = judge_expect(c.expect, figures);
-    r.pass = r.status == "ok" && r.momentum_error <= 1e-12;
-    for (const ExpectResult& e : r.expect) r.pass = r.pass && e.pass;
-    out.push_back(r);
-  }
+  for (const fs::path& f : files)
+    out.push_back(run_scene(f.stem().string(), f.string(), overrides));
   return out;
 }
 
@@ -379,8 +500,52 @@ int stress_command(const StressOptions& o) {
           failed, scenes.size());
   }
   j["scenes_failed"] = failed;
+  long crossed = 0;
+  if (o.solver_scenes > 0) {
+    const std::vector<SceneResult> scenes = run_solver_scenes(o.seed, o.solver_scenes, o.overrides);
+    long runs_failed = 0, zones = 0, with_zones = 0, max_crossings = 0, max_inside = 0;
+    Json& js = j["solver_scenes"] = Json::object();
+    Json list = Json::array();
+    for (const SceneResult& r : scenes) {
+      const bool bad = r.penetration.crossings > 0 || r.penetration.nodes_inside > 0;
+      crossed += bad;
+      runs_failed += r.status != "ok";
+      zones += r.impact_zones;
+      with_zones += r.impact_zones > 0;
+      max_crossings = std::max(max_crossings, r.penetration.crossings);
+      max_inside = std::max(max_inside, r.penetration.nodes_inside);
+      Json x = Json::object();
+      x["name"] = r.name;
+      x["steps"] = r.steps;
+      x["status"] = r.status;
+      x["crossings"] = r.penetration.crossings;
+      x["nodes_inside"] = r.penetration.nodes_inside;
+      x["max_depth"] = r.penetration.max_depth;
+      x["momentum_error"] = r.momentum_error;
+      x["balance_error"] = r.balance_error;
+      x["impact_zones"] = r.impact_zones;
+      list.push_back(x);
+      if (!o.json && (bad || r.status != "ok"))
+        std::printf("  %-24s %5ld steps  crossings %ld  nodes inside %ld  %s\n", r.name.c_str(),
+                    r.steps, r.penetration.crossings, r.penetration.nodes_inside, r.status.c_str());
+    }
+    js["scenes"] = list;
+    js["count"] = static_cast<long>(scenes.size());
+    js["with_crossings"] = crossed;
+    js["runs_failed"] = runs_failed;
+    js["max_crossings"] = max_crossings;
+    js["max_nodes_inside"] = max_inside;
+    js["scenes_with_zones"] = with_zones;
+    js["impact_zones"] = zones;
+    if (!o.json)
+      std::printf(
+          "\n%zu generated solver scenes (apart at random angles, touching, sliding; 0.1 to 7 "
+          "km/s): %ld with a crossing or a node inside (penetration after every step), %ld runs "
+          "failed, %ld needed impact zones (%ld zones)\n",
+          scenes.size(), crossed, runs_failed, with_zones, zones);
+  }
   if (o.json) std::cout << j.dump(2) << "\n";
-  return total == 0 && failed == 0 ? 0 : 1;
+  return total == 0 && failed == 0 && crossed == 0 ? 0 : 1;
 }
 
 }  // namespace tc

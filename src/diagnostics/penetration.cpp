@@ -73,9 +73,11 @@ Penetration PenetrationProbe::measure(const std::vector<Vec3>& x,
 
   // Depth: distance to the nearest boundary face of the body the node is in, within 2h.
   BroadphaseInput near;
+  std::vector<std::size_t> near_index;  // into nodes_
   for (std::size_t i = 0; i < nodes_.size(); ++i) {
     const Index node = nodes_[i];
     if (inside_body[node] < 0) continue;
+    near_index.push_back(i);
     near.node_box.push_back(swept_box({&x[node]}, 2.0 * body_h_[inside_body[node]]));
     near.node_id.push_back(node);
     near.node_body.push_back(node_body_[i]);
@@ -96,7 +98,9 @@ Penetration PenetrationProbe::measure(const std::vector<Vec3>& x,
       const Index node = near.node_id[ni];
       if (face_body_[f] != inside_body[node]) return;
       const Face& k = faces_[f];
-      distance[p] = closest_point_on_triangle(x[node], x[k[0]], x[k[1]], x[k[2]]).distance;
+      distance[p] = exact_point_on_triangle(x[node], x[k[0]], x[k[1]], x[k[2]])
+                        ? 0.0
+                        : closest_point_on_triangle(x[node], x[k[0]], x[k[1]], x[k[2]]).distance;
     });
     for (std::size_t p = 0; p < distance.size(); ++p) {
       const Index node = near.node_id[close.node_face[p].first];
@@ -110,6 +114,10 @@ Penetration PenetrationProbe::measure(const std::vector<Vec3>& x,
         continue;
       }
       r.nodes_inside += r.node_depth[node] > 0.0;
+      if (r.node_depth[node] > r.max_depth) {
+        r.deepest_node_body = node_body_[near_index[i]];
+        r.deepest_in_body = inside_body[node];
+      }
       r.max_depth = std::max(r.max_depth, r.node_depth[node]);
       r.max_depth_over_h =
           std::max(r.max_depth_over_h, r.node_depth[node] / body_h_[inside_body[node]]);
@@ -154,10 +162,14 @@ Penetration PenetrationProbe::measure(const std::vector<Vec3>& x,
       crossing[pair] = inside;
     }
   });
-  for (const double inside : crossing)
-    if (inside >= 0.0) {
+  for (std::size_t pair = 0; pair < crossing.size(); ++pair)
+    if (crossing[pair] >= 0.0) {
       ++r.crossings;
-      r.max_crossing_depth = std::max(r.max_crossing_depth, inside);
+      if (r.crossing_edge_body < 0 || crossing[pair] > r.max_crossing_depth) {
+        r.crossing_edge_body = edge_body_[pairs.node_face[pair].first];
+        r.crossing_face_body = face_body_[pairs.node_face[pair].second];
+      }
+      r.max_crossing_depth = std::max(r.max_crossing_depth, crossing[pair]);
     }
   return r;
 }

@@ -19,6 +19,19 @@ bool exact_point_in_tet(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3&
   return tet.bounded_side(pt(p)) != CGAL::ON_UNBOUNDED_SIDE;
 }
 
+bool exact_point_strictly_in_tet(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c,
+                                 const Vec3& d) {
+  const K::Tetrahedron_3 tet(pt(a), pt(b), pt(c), pt(d));
+  if (tet.is_degenerate()) return false;
+  return tet.bounded_side(pt(p)) == CGAL::ON_BOUNDED_SIDE;
+}
+
+bool exact_point_on_triangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
+  const K::Triangle_3 tri(pt(a), pt(b), pt(c));
+  if (tri.is_degenerate()) return false;
+  return tri.has_on(pt(p));
+}
+
 bool exact_segment_crosses_triangle(const Vec3& p, const Vec3& q, const Vec3& a, const Vec3& b,
                                     const Vec3& c) {
   const K::Point_3 P = pt(p), Q = pt(q), A = pt(a), B = pt(b), C = pt(c);

@@ -851,10 +851,17 @@ void read_contact(const Reader& r, const YAML::Node& root, Case& c) {
   if (const YAML::Node s = root["contact"]) {
     r.keys(s, "contact",
            {"enabled", "broadphase", "margin", "passes", "order", "normal", "friction", "pairs",
-            "binding_lists", "edge_edge"});
+            "binding_lists", "edge_edge", "initial_overlap", "verify"});
     c.contact = s["enabled"] ? r.boolean(s["enabled"], "contact.enabled") : true;
     ContactSettings& cs = c.contact_settings;
+    if (const YAML::Node o = s["initial_overlap"]) {
+      const std::string v = r.string(o, "contact.initial_overlap");
+      if (v != "error" && v != "allow")
+        r.fail(o, "contact.initial_overlap", "initial_overlap must be error or allow");
+      c.allow_initial_overlap = v == "allow";
+    }
     if (s["edge_edge"]) cs.edge_edge = r.boolean(s["edge_edge"], "contact.edge_edge");
+    if (s["verify"]) cs.verify = r.boolean(s["verify"], "contact.verify");
     if (s["binding_lists"])
       cs.binding_lists = r.boolean(s["binding_lists"], "contact.binding_lists");
     if (s["broadphase"]) {
@@ -983,7 +990,8 @@ Case load_case(const std::string& path, const std::vector<std::string>& override
   c.file = path;
   r.keys(root, "",
          {"name", "description", "end_time", "solver", "material_library", "materials", "bodies",
-          "boundary_conditions", "walls", "output", "reference", "contact", "fracture", "expect"});
+          "boundary_conditions", "walls", "output", "reference", "contact", "fracture", "expect",
+          "diagnostics"});
   c.name = root["name"] ? r.string(root["name"], "name") : fs::path(path).stem().string();
   if (root["description"]) c.description = r.string(root["description"], "description");
   c.end_time = r.positive(r.require(root, "", "end_time"), "end_time", "s");
@@ -996,6 +1004,11 @@ Case load_case(const std::string& path, const std::vector<std::string>& override
   read_references(r, root, c);
   read_output(r, root, c);
   read_contact(r, root, c);
+  if (const YAML::Node d = root["diagnostics"]) {
+    r.keys(d, "diagnostics", {"every_step"});
+    if (d["every_step"])
+      c.output.penetration_every_step = r.boolean(d["every_step"], "diagnostics.every_step");
+  }
   read_fracture(r, root, c);
   read_expect(r, root, c);
   if (c.fracture &&

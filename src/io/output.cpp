@@ -22,6 +22,7 @@ OutputWriter::OutputWriter(const Model& model, const OutputSpec& spec, std::stri
   if (model_.contact) h << ",contact_work,contact_force,contacts";
   if (model_.element.fracture) h << ",damaged,destroyed";
   if (model_.particles) h << ",particles,particle_mass";
+  if (spec_.penetration_every_step) h << ",nodes_inside,crossings";
   for (const auto& [name, seconds] : profile_->stages) {
     h << ",seconds_" << name;
     stage_seconds_.push_back(seconds);
@@ -31,6 +32,8 @@ OutputWriter::OutputWriter(const Model& model, const OutputSpec& spec, std::stri
 
 void OutputWriter::observe(const State& st, const Sample& s) {
   const bool final = s.t >= end_time_;
+  std::vector<double> depth;
+  if (probe_ && spec_.penetration_every_step) depth = measure_penetration(st);
   if (s.step % spec_.history_every == 0 || final) {
     auto& h = history_.stream();
     h << s.step;
@@ -44,6 +47,8 @@ void OutputWriter::observe(const State& st, const Sample& s) {
         << s.contacts;
     if (model_.element.fracture) h << ',' << s.damaged << ',' << s.destroyed;
     if (model_.particles) h << ',' << s.particles << ',' << format_double(s.particle_mass);
+    if (probe_ && spec_.penetration_every_step)
+      h << ',' << penetration_last_.nodes_inside << ',' << penetration_last_.crossings;
     for (std::size_t k = 0; k < profile_->stages.size(); ++k) {
       const double now = profile_->stages[k].second;
       h << ',' << format_double(now - stage_seconds_[k]);
@@ -54,34 +59,44 @@ void OutputWriter::observe(const State& st, const Sample& s) {
   }
   // A frame at the first sample at or after each multiple of the interval, and at the end.
   if (s.t >= next_frame_ - 1e-9 * spec_.interval || final) {
-    write_frame(st, s.t);
+    write_frame(st, s.t, probe_ && spec_.penetration_every_step ? &depth : nullptr);
     while (next_frame_ <= s.t + 1e-9 * spec_.interval) next_frame_ += spec_.interval;
   }
 }
 
-void OutputWriter::write_frame(const State& st, double t) {
+// The penetration at a time level: the run's maxima and last measure updated; the per-node
+// depth returned for the frame.
+std::vector<double> OutputWriter::measure_penetration(const State& st) {
+  const auto t0 = std::chrono::steady_clock::now();
+  Penetration p = probe_->measure(st);
+  probe_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  ++penetration_samples_;
+  penetration_max_.nodes_inside = std::max(penetration_max_.nodes_inside, p.nodes_inside);
+  penetration_max_.max_depth = std::max(penetration_max_.max_depth, p.max_depth);
+  penetration_max_.max_depth_over_h =
+      std::max(penetration_max_.max_depth_over_h, p.max_depth_over_h);
+  penetration_max_.crossings = std::max(penetration_max_.crossings, p.crossings);
+  penetration_max_.max_crossing_depth =
+      std::max(penetration_max_.max_crossing_depth, p.max_crossing_depth);
+  penetration_max_.particles_inside =
+      std::max(penetration_max_.particles_inside, p.particles_inside);
+  penetration_max_.max_particle_depth =
+      std::max(penetration_max_.max_particle_depth, p.max_particle_depth);
+  std::vector<double> depth = std::move(p.node_depth);
+  penetration_last_ = std::move(p);
+  return depth;
+}
+
+// `depth`: this time level's penetration depths when already measured (every_step), else null.
+void OutputWriter::write_frame(const State& st, double t, std::vector<double>* depth_measured) {
   if (!frames_.empty() && frames_.back().first == t) return;
   char name[32];
   std::snprintf(name, sizeof name, "frame_%04zu.vtu", frames_.size());
   std::vector<double> depth;
-  if (probe_) {
-    const auto t0 = std::chrono::steady_clock::now();
-    Penetration p = probe_->measure(st);
-    probe_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    penetration_max_.nodes_inside = std::max(penetration_max_.nodes_inside, p.nodes_inside);
-    penetration_max_.max_depth = std::max(penetration_max_.max_depth, p.max_depth);
-    penetration_max_.max_depth_over_h =
-        std::max(penetration_max_.max_depth_over_h, p.max_depth_over_h);
-    penetration_max_.crossings = std::max(penetration_max_.crossings, p.crossings);
-    penetration_max_.max_crossing_depth =
-        std::max(penetration_max_.max_crossing_depth, p.max_crossing_depth);
-    penetration_max_.particles_inside =
-        std::max(penetration_max_.particles_inside, p.particles_inside);
-    penetration_max_.max_particle_depth =
-        std::max(penetration_max_.max_particle_depth, p.max_particle_depth);
-    penetration_last_ = p;
-    depth = std::move(p.node_depth);
-  }
+  if (depth_measured)
+    depth = std::move(*depth_measured);
+  else if (probe_)
+    depth = measure_penetration(st);
   write_file_atomic(dir_ + "/" + name, vtu_frame(model_, st, spec_.fields, depth, spec_.format));
   frames_.emplace_back(t, name);
   // Keep the series current so that a run stopped midway still opens in ParaView.

@@ -229,6 +229,7 @@ void NodeFaceContact::node_face_contacts(const State& st, std::vector<ContactPoi
         c.normal = face_n;
       }
       c.gap = (x0[node] - x0[f[0]]).dot(face_n);
+      c.separation = rounding_margin({&x1[node], &x1[f[0]], &x1[f[1]], &x1[f[2]]});
       // Friction of the body pair.
       c.mode = settings_.mode;
       c.friction = settings_.coefficient;
@@ -317,15 +318,7 @@ void NodeFaceContact::edge_edge_contacts(const State& st, ContactStepStats& stat
         alpha = cp1.alpha;
         beta = cp1.beta;
         n = n1;
-        // Aim a few units of rounding beyond touching: positions land on doubles, and a
-        // target of exactly 0 leaves touching edges through each other by an ulp half the
-        // time (crossings of 5e-18 m in the cubes case).
-        double size = 0.0;
-        for (const Index k : {e1[0], e1[1], e2[0], e2[1]})
-          size = std::max(size, x1[k].cwiseAbs().maxCoeff());
-        const double margin =
-            16.0 * std::ldexp(std::numeric_limits<double>::epsilon(), std::ilogb(size));
-        gap = (cp1.on_a - cp1.on_b).dot(n1) - st.dt * rel1.dot(n1) - margin;
+        gap = (cp1.on_a - cp1.on_b).dot(n1) - st.dt * rel1.dot(n1);
       }
     }
     ContactPoint c;  // side A: edge e1 (a, b) at α; side B: edge e2 (e, f) at β
@@ -337,6 +330,10 @@ void NodeFaceContact::edge_edge_contacts(const State& st, ContactStepStats& stat
     c.b_count = 2;
     c.normal = n;
     c.gap = gap;
+    // Aim a few units of rounding beyond touching: positions land on doubles, and a target of
+    // exactly 0 leaves touching edges through each other by an ulp half the time (crossings
+    // of 5e-18 m in the cubes case).
+    c.separation = rounding_margin({&x1[e1[0]], &x1[e1[1]], &x1[e2[0]], &x1[e2[1]]});
     c.restore = true;
     c.mode = settings_.mode;
     c.friction = settings_.coefficient;

@@ -1,6 +1,8 @@
 #include "tetcontact/response/impulse.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
 
 namespace tc {
 
@@ -28,6 +30,13 @@ void push(ContactPoint& c, const Vec3& impulse_on_a, State& st, std::vector<Vec3
 
 }  // namespace
 
+double rounding_margin(std::initializer_list<const Vec3*> points) {
+  double size = 0.0;
+  for (const Vec3* p : points) size = std::max(size, p->cwiseAbs().maxCoeff());
+  if (size == 0.0) return 0.0;
+  return 16.0 * std::ldexp(std::numeric_limits<double>::epsilon(), std::ilogb(size));
+}
+
 double apply_contact(ContactPoint& c, State& st, double tau, std::vector<Vec3>& ledger) {
   double inv_mass = 0.0;  // Σ w²/m over both sides
   for (int i = 0; i < c.a_count; ++i) inv_mass += c.a_w[i] * c.a_w[i] / st.m[c.a_nodes[i]];
@@ -36,7 +45,7 @@ double apply_contact(ContactPoint& c, State& st, double tau, std::vector<Vec3>& 
   const Vec3& n = c.normal;
   const Vec3 v_rel = point_velocity(c.a_nodes, c.a_w, c.a_count, st) -
                      point_velocity(c.b_nodes, c.b_w, c.b_count, st);
-  const double target = (c.gap >= 0.0 || c.restore) ? -c.gap / tau : 0.0;
+  const double target = (c.gap >= -c.separation || c.restore) ? (c.separation - c.gap) / tau : 0.0;
   // The accumulated impulse of the step pushes, never pulls: an increment may take back what
   // earlier passes over-pushed (the corrections of neighbouring contacts move shared nodes),
   // but the total stays ≥ 0 (projected Gauss–Seidel).

@@ -19,6 +19,25 @@ Index find(std::vector<Index>& parent, Index a) {
 
 }  // namespace
 
+Islands islands_with(const std::vector<ContactList>& lists, const Islands& islands,
+                     const std::vector<char>& marked) {
+  Islands out;
+  out.begin.push_back(0);
+  for (std::size_t i = 0; i < islands.count(); ++i) {
+    bool any = false;
+    for (Index r = islands.begin[i]; r < islands.begin[i + 1] && !any; ++r) {
+      const ContactPoint& c = (*lists[islands.refs[r].list].points)[islands.refs[r].point];
+      for (int k = 0; k < c.a_count; ++k) any = any || marked[c.a_nodes[k]];
+      for (int k = 0; k < c.b_count; ++k) any = any || marked[c.b_nodes[k]];
+    }
+    if (!any) continue;
+    out.refs.insert(out.refs.end(), islands.refs.begin() + islands.begin[i],
+                    islands.refs.begin() + islands.begin[i + 1]);
+    out.begin.push_back(static_cast<Index>(out.refs.size()));
+  }
+  return out;
+}
+
 std::size_t Islands::largest() const {
   std::size_t most = 0;
   for (std::size_t i = 0; i + 1 < begin.size(); ++i)

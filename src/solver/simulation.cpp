@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <sstream>
 
 #include "tetcontact/parallel/parallel.hpp"
@@ -97,13 +98,18 @@ Simulation::Simulation(Model model, SolverSettings settings)
     modules_.push_back("narrowphase:node_face");
     modules_.push_back("response:node_face");
     if (model_.contact->edge_edge) modules_.push_back("narrowphase:edge_edge");
+    if (model_.contact->verify) {
+      verifier_ = std::make_unique<StepVerifier>(model_.mesh);
+      modules_.push_back("contact:verify");
+    }
   }
   modules_.push_back("diagnostics:balance");
 
   for (const char* stage : {"predict", "broadphase", "narrowphase", "particles", "response",
-                            "balance", "output", "commit", "fracture", "elements"}) {
+                            "verify", "balance", "output", "commit", "fracture", "elements"}) {
     const std::string s = stage;
     const bool contact_stage = s == "broadphase" || s == "narrowphase";
+    if (s == "verify" && !verifier_) continue;
     if (contact_stage && !contact_) continue;
     if (s == "response" && !contact_ && model_.walls.empty() && !fragmentation_) continue;
     if ((s == "fracture" || s == "particles") && !fragmentation_) continue;
@@ -198,7 +204,7 @@ void Simulation::corrections() {
       contact_totals_.particle_move_max = std::max(contact_totals_.particle_move_max, d.norm());
     }
   }
-  StageTimer timer(profile_["response"]);
+  std::optional<StageTimer> timer(std::in_place, profile_["response"]);
   for (Vec3& j : st.wall_impulse) j.setZero();
   for (Vec3& j : st.contact_impulse) j.setZero();
   // The sequential passes over walls, contacts and particle contacts, in that order, island
@@ -216,6 +222,89 @@ void Simulation::corrections() {
   for (const ContactPoint& c : particle_contacts_)
     contact_totals_.particle_contacts += c.lambda > 0.0;
   wall_results_ = wall_results(walls);
+  timer.reset();
+  if (verifier_) {
+    StageTimer t(profile_["verify"]);
+    verify_stage(lists, islands, passes);
+  }
+}
+
+// The step's motion verified (diagnostics/verify.hpp): xⁿ⁺¹ = xⁿ + τ U*, the same doubles the
+// commit will write (commit_stage: x += τ U with U = U*). Where pairs fail, the islands of
+// contact points that move their nodes get further passes (up to k_extra_rounds rounds of
+// `passes`), verified after each; what still fails goes into rigid impact zones
+// (response/impact_zones.hpp), verified again until none fails: a failure across zones
+// merges them, one inside a zone that moved rigidly freezes it.
+void Simulation::verify_stage(const std::vector<ContactList>& lists, const Islands& islands,
+                              int passes) {
+  State& st = state_;
+  ContactTotals& ct = contact_totals_;
+  const std::size_t n = st.x.size();
+  x_end_.resize(n);
+  frozen_x_.clear();
+  const auto end_positions = [&] {
+    parallel::for_each(
+        n, [&](std::size_t i) { x_end_[i] = st.x[i] + st.dt * st.v_star[i]; },
+        parallel::k_light_block);
+    for (const auto& [node, x] : frozen_x_) x_end_[node] = x;
+  };
+  end_positions();
+  Verification v = verifier_->verify(st.surfaces, st.x, x_end_, st.first_particle);
+  // Again after a round: only the pairs that read a node whose end position changed.
+  const auto verify_again = [&] {
+    end_positions();
+    changed_.assign(n, 0);
+    for (std::size_t i = 0; i < n; ++i)
+      if (x_end_[i] != x_tested_[i]) changed_[i] = 1, x_tested_[i] = x_end_[i];
+    v = verifier_->verify_again(st.surfaces, st.x, x_end_, st.first_particle, changed_);
+  };
+  ct.verified_pairs += v.pairs_checked;
+  if (v.failed.empty()) return;
+  ct.failed_pairs += static_cast<long>(v.failed.size());
+  for (const FailedPair& p : v.failed) {
+    ct.failed_touching += p.touching_at_start;
+    ct.failed_edge_edge += p.edge_edge;
+  }
+  ++ct.steps_failed;
+  x_tested_ = x_end_;
+  // Further passes where the failures are.
+  marked_.assign(n, 0);
+  for (int extra = 0; extra < k_extra_rounds && !v.failed.empty(); ++extra) {
+    for (const FailedPair& p : v.failed)
+      for (int k = 0; k < p.count; ++k) marked_[p.nodes[k]] = 1;
+    const Islands failing = islands_with(lists, islands, marked_);
+    if (failing.count() == 0) break;  // no contact point moves them: only zones can
+    correct_in_islands(lists, failing, passes, st);
+    ++ct.extra_rounds;
+    verify_again();
+  }
+  if (v.failed.empty()) return;
+  ct.failed_after_extra += static_cast<long>(v.failed.size());
+  ++ct.steps_with_zones;
+  zones_.reset(n);
+  u_passes_ = st.v_star;
+  int round = 0;
+  for (; round < k_zone_rounds && !v.failed.empty(); ++round) {
+    // A failure inside one zone that moved rigidly: rounding, the zone is frozen.
+    std::vector<Index> freeze;
+    for (const FailedPair& p : v.failed)
+      if (zones_.same_zone(p.nodes.data(), p.count)) freeze.push_back(p.nodes[0]);
+    for (const FailedPair& p : v.failed) zones_.merge(p.nodes.data(), p.count);
+    for (const Index node : freeze) zones_.freeze(node);
+    zones_.apply(u_passes_, st, st.contact_impulse);
+    frozen_x_.clear();
+    for (const ImpactZones::Zone& z : zones_.zones())
+      if (z.frozen)
+        for (const Index node : z.nodes) frozen_x_.push_back({node, st.x[node]});
+    verify_again();
+  }
+  ct.zone_rounds += round;
+  ct.unresolved_steps += !v.failed.empty();
+  for (const ImpactZones::Zone& z : zones_.zones()) {
+    ++ct.impact_zones;
+    ct.frozen_zones += z.frozen;
+    ct.largest_zone_nodes = std::max(ct.largest_zone_nodes, static_cast<long>(z.nodes.size()));
+  }
 }
 
 void Simulation::predict_stage() {
@@ -287,6 +376,8 @@ void Simulation::output_stage() {
 
 void Simulation::commit_stage() {
   commit(state_);
+  // Frozen impact zones keep xⁿ this step (their velocities are the zone's rigid ones).
+  for (const auto& [node, x] : frozen_x_) state_.x[node] = x;
 }
 
 // Destroyed boundary cells of the last element pass become particles before this one, which
@@ -299,6 +390,7 @@ void Simulation::fracture_stage() {
   particle_contact_->reset();
   if (!model_.walls.empty()) surface_nodes_ = all_surface_nodes(state_.surfaces);
   if (contact_) contact_->surfaces_changed();
+  if (verifier_) verifier_->surfaces_changed();
 }
 
 void Simulation::elements_stage() {

@@ -214,3 +214,30 @@ TEST(Cli, CheckFailsWhenAnExpectedBoundIsMissed) {
   EXPECT_EQ(r.code, 2);
   EXPECT_NE(r.err.find("expect"), std::string::npos) << r.err;
 }
+
+TEST(Cli, BodiesOverlappingAtStartAreBadInputUnlessAllowed) {
+  test::TempDir dir("cli-overlap");
+  const std::string micro = quote(test::source_path("data/cases/micro/coincident-faces.yaml"));
+  // The upper box 1 mm into the lower one (they touch exactly as shipped).
+  const std::string sunk = " --set 'bodies.1.transform=[{translate: [0, 0, 0.004]}]'";
+  auto r = test::run_cli("run " + micro + sunk + " --out " + quote(dir / "out"), dir.str());
+  EXPECT_EQ(r.code, 2) << r.err;
+  EXPECT_NE(r.err.find("bodies overlap at t = 0"), std::string::npos) << r.err;
+  // Node on node: each box's nodes are as deep in the other; the message names one pair.
+  EXPECT_TRUE(std::regex_search(r.err, std::regex("a node of '(upper|lower)' 0.001 m inside "
+                                                  "'(lower|upper)'")))
+      << r.err;
+  EXPECT_NE(r.err.find("contact.initial_overlap: allow"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(dir / "out"));
+  // As shipped (touching), and sunk but allowed, it runs.
+  r = test::run_cli("check " + micro, dir.str());
+  EXPECT_EQ(r.code, 0) << r.err;
+  r = test::run_cli("run " + micro + sunk +
+                        " --set contact.initial_overlap=allow --set end_time=1e-7 --quiet --out " +
+                        quote(dir / "allowed"),
+                    dir.str());
+  EXPECT_EQ(r.code, 0) << r.err;
+  r = test::run_cli("check " + micro + " --set contact.initial_overlap=sometimes", dir.str());
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("initial_overlap must be error or allow"), std::string::npos) << r.err;
+}

@@ -1,6 +1,8 @@
 // The penetration diagnostics against configurations of known overlap.
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "../solver/solver_fixture.hpp"
 #include "tetcontact/diagnostics/penetration.hpp"
 
@@ -56,7 +58,49 @@ TEST(Penetration, TouchingAndSeparatedCubesHaveNone) {
   }
 }
 
+TEST(Penetration, NodesOnAnotherBodysFaceTouchAndOneUlpBelowAreInside) {
+  // A 5 × 5 mesh on a 4 × 4 one, faces coincident at z = 0: the upper nodes lie on the lower
+  // triangles, where the floating-point distance to the face is ~1e-19 m, not 0.
+  Model m;
+  TetMesh lower = make_box(Vec3(0.01, 0.01, 0.01), {4, 4, 4}, HexSplit::six);
+  translate(lower, Vec3(0, 0, -0.005));
+  TetMesh upper = make_box(Vec3(0.01, 0.01, 0.01), {5, 5, 4}, HexSplit::six);
+  translate(upper, Vec3(0, 0, 0.005));
+  add_body(m.mesh, "lower", lower);
+  add_body(m.mesh, "upper", upper);
+  m.materials = {test::aluminium()};
+  m.body_material = {0, 0};
+  m.surfaces = build_surfaces(m.mesh);
+  PenetrationProbe probe(m);
+  Penetration p = probe.measure(m.mesh.x);
+  EXPECT_EQ(p.nodes_inside, 0);
+  EXPECT_EQ(p.max_depth, 0.0);
+  EXPECT_EQ(p.crossings, 0);
+  // One upper node moved down by 2^-60 m (8.7e-19) is inside.
+  std::vector<Vec3> x = m.mesh.x;
+  Index moved = -1;
+  for (Index i = m.mesh.bodies[1].node_begin; i < m.mesh.bodies[1].node_end && moved < 0; ++i)
+    if (x[i].z() == 0.0 && std::abs(x[i].x() - 0.001) < 1e-12 && std::abs(x[i].y() - 0.001) < 1e-12)
+      moved = i;
+  ASSERT_GE(moved, 0);
+  x[moved].z() = -std::ldexp(1.0, -60);
+  p = probe.measure(x);
+  // It is inside; so are the lower nodes under the faces it pulled down with it.
+  EXPECT_GT(p.node_depth[moved], 0.0);
+  EXPECT_LT(p.node_depth[moved], 1e-18);
+  EXPECT_GE(p.nodes_inside, 1);
+  EXPECT_EQ(p.deepest_node_body + p.deepest_in_body, 1);  // one body's node in the other
+}
+
 TEST(Penetration, ExactPredicatesOnTheBoundary) {
+  EXPECT_TRUE(
+      exact_point_on_triangle(Vec3(0.3, 0.3, 0), Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0)));
+  EXPECT_TRUE(
+      exact_point_on_triangle(Vec3(0.5, 0.5, 0), Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0)));
+  EXPECT_FALSE(
+      exact_point_on_triangle(Vec3(0.3, 0.3, 1e-300), Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0)));
+  EXPECT_FALSE(
+      exact_point_on_triangle(Vec3(0.6, 0.6, 0), Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0)));
   const Vec3 a(0, 0, 0), b(1, 0, 0), c(0, 1, 0), d(0, 0, 1);
   EXPECT_TRUE(exact_point_in_tet(Vec3(0.25, 0.25, 0.25), a, b, c, d));
   EXPECT_TRUE(exact_point_in_tet(Vec3(0.5, 0.5, 0.0), a, b, c, d));  // on a face

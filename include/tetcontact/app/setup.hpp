@@ -21,6 +21,11 @@ Model build_model(const Case& c, std::vector<std::string>* notes = nullptr);
 
 SolverSettings solver_settings(const Case& c);
 
+/// Bodies that overlap at t = 0 (a boundary node strictly inside another body, a boundary edge
+/// through another's face; exact, touching allowed) throw SetupError naming the bodies and the
+/// depth. build_model calls it unless the case sets contact.initial_overlap: allow.
+void check_initial_overlap(const Case& c, const Model& model);
+
 /// Impact Mach numbers M0 = U0 / C0 outside the range of the model a body uses (seed 000:
 /// elastic-plastic flow with a linear EOS for M0 ≤ 0.75, a hydrodynamic model with a richer
 /// EOS for 0.75 < M0 < 1.5). U0 is the closing speed of each pair of bodies (difference of

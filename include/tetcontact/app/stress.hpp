@@ -44,12 +44,24 @@ struct SceneResult {
   std::vector<ExpectResult> expect;  // the scene's `expect:` bounds, against those maxima
   /// Status ok, momentum conserved to 1e-12 and every bound of the scene's `expect:` held.
   bool pass = false;
+  long impact_zones = 0;  // made by the step verification (contact.verify)
 };
 
 /// Runs every `*.yaml` in `dir` (sorted by name), with `overrides` (--set) applied to each,
 /// measuring penetration after every step. Throws std::runtime_error when `dir` holds no case.
 std::vector<SceneResult> run_micro_scenes(const std::string& dir,
                                           const std::vector<std::string>& overrides = {});
+
+/// Generated whole-solver scenes (issue 15): a 1 cm box of 2 × 2 × 2 cells and a 6 mm box or
+/// ball, `count` of them from `seed`, in turn (a) both turned at random, the projectile on a
+/// random side 0 to 0.5 mm beyond the bounding spheres, with a sideways component and spin;
+/// (b) touching face on face at t = 0 (z = 0.005 exactly), the projectile turned about z and
+/// pressing down while sliding; (c) touching and sliding, barely pressing. Speeds 0.1 to
+/// 7 km/s (log-uniform); edge–edge contact and the step verification on. Case-file texts.
+std::vector<std::string> solver_scene_cases(std::uint64_t seed, int count);
+/// Runs them (with `overrides`), measuring the penetration after every step.
+std::vector<SceneResult> run_solver_scenes(std::uint64_t seed, int count,
+                                           const std::vector<std::string>& overrides = {});
 
 /// Where the shipped micro-scenes are (data/cases/micro).
 std::string default_scenes_dir();
@@ -61,6 +73,7 @@ struct StressOptions {
   bool scenes = true;
   std::string scenes_dir;              // empty: default_scenes_dir()
   std::vector<std::string> overrides;  // --set, applied to every micro-scene
+  int solver_scenes = 0;               // generated whole-solver scenes to run (0: none)
 };
 
 /// Prints a table (or JSON) per family and per micro-scene; exit code 0 when no query

@@ -23,6 +23,10 @@ struct Penetration {
   long particles_inside = 0;        // particles whose centre is inside a body
   double max_particle_depth = 0.0;  // m: such a centre's distance to that body's surface
   std::vector<double> node_depth;   // per node (0 unless inside another body), m
+  // The bodies of the deepest node inside (its own, the one it is in) and of the deepest
+  // crossing (the edge's, the face's); −1 when there is none.
+  Index deepest_node_body = -1, deepest_in_body = -1;
+  Index crossing_edge_body = -1, crossing_face_body = -1;
 };
 
 /// Exact predicates (CGAL's, in penetration_cgal.cpp): p in the closed tet (a, b, c, d);
@@ -32,13 +36,19 @@ struct Penetration {
 bool exact_point_in_tet(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d);
 bool exact_segment_crosses_triangle(const Vec3& p, const Vec3& q, const Vec3& a, const Vec3& b,
                                     const Vec3& c);
+/// p lies in the open tet (a, b, c, d): not on its boundary.
+bool exact_point_strictly_in_tet(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c,
+                                 const Vec3& d);
+/// p lies on the closed, non-degenerate triangle (a, b, c).
+bool exact_point_on_triangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c);
 
 class PenetrationProbe {
  public:
   explicit PenetrationProbe(const Model& model);
   /// Measures at positions x. A node's depth is its distance to the nearest boundary face of
   /// the body it is inside, searched within two mean edge lengths (a deeper node reports
-  /// that bound).
+  /// that bound); a node exactly on one of those faces touches and is not inside (its
+  /// floating-point distance, ~1e-19 m, is not a depth).
   Penetration measure(const std::vector<Vec3>& x);
   /// At a state, with its surfaces (State::surfaces): cells turned into particles are left
   /// out, and particle centres inside any body are measured as nodes are (particles_inside,

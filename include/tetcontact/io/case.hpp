@@ -86,6 +86,9 @@ struct OutputSpec {
   std::vector<std::string> fields;
   long history_every = 1;                // steps between history rows
   VtuFormat format = VtuFormat::binary;  // how the frames' arrays are stored
+  /// diagnostics.every_step: the penetration measured at every step (history columns
+  /// nodes_inside, crossings), not only at the frames.
+  bool penetration_every_step = false;
 };
 
 /// Average nodal pressure (anti-locking): on for plastic materials (auto), all, or none.
@@ -110,6 +113,9 @@ struct Case {
   OutputSpec output;
   std::vector<ReferenceSpec> references;
   bool contact = false;
+  /// contact.initial_overlap: bodies that overlap at t = 0 stop the setup (error, the
+  /// default) or run as given (allow).
+  bool allow_initial_overlap = false;
   ContactSettings contact_settings;  // pairs' body indices are resolved by the setup
   std::vector<std::array<std::string, 2>> contact_pair_bodies;  // parallel to its pairs
   bool fracture = false;

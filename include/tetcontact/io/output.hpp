@@ -36,9 +36,14 @@ class OutputWriter : public Observer {
   bool measured_penetration() const { return probe_ != nullptr && !frames_.empty(); }
   /// Seconds the penetration measures took (part of the output stage).
   double probe_seconds() const { return probe_seconds_; }
+  /// Time levels the penetration was measured at (every frame, or every step with
+  /// diagnostics.every_step).
+  long penetration_samples() const { return penetration_samples_; }
 
  private:
-  void write_frame(const State& st, double t);
+  void write_frame(const State& st, double t, std::vector<double>* depth);
+  std::vector<double> measure_penetration(const State& st);
+  long penetration_samples_ = 0;
 
   double probe_seconds_ = 0.0;
   const Model& model_;

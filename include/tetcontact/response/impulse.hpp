@@ -5,6 +5,7 @@
 #pragma once
 
 #include <array>
+#include <initializer_list>
 #include <vector>
 
 #include "tetcontact/model/model.hpp"
@@ -21,6 +22,10 @@ struct ContactPoint {
   int b_count = 0;              // 0: side B is a rigid wall at rest
   Vec3 normal = Vec3::UnitZ();  // unit, from B to A
   double gap = 0.0;             // signed normal distance at tⁿ (≥ 0: apart)
+  /// The separation aimed at (m): a few units of rounding beyond touching, so that positions
+  /// rounded to doubles do not end a touching pair an ulp through (rounding_margin); 0 for
+  /// walls.
+  double separation = 0.0;
   FrictionMode mode = FrictionMode::slip;
   double friction = 0.0;  // Coulomb coefficient k
   /// Close a negative gap within the step too (target −g/τ for g < 0): for edge–edge pairs,
@@ -32,9 +37,14 @@ struct ContactPoint {
   Vec3 tangential = Vec3::Zero();  // tangential impulse on A, N s
 };
 
+/// Sixteen units of rounding at the largest coordinate of the points: the separation a contact
+/// aims at, beyond touching (issue 15's verification finds a pair an ulp through otherwise).
+double rounding_margin(std::initializer_list<const Vec3*> points);
+
 /// One correction of a contact (seed 001 §4, seed 000 eqs. 11–12). With v_n the relative
 /// normal velocity of the two points, v_n = (Σ w_A U_A − Σ w_B U_B)·n, and the target
-/// v* = −g/τ (close the gap within the step; 0 when already penetrated: no pushing back),
+/// v* = (s − g)/τ (close the gap within the step, to the separation s of rounding; 0 when
+/// penetrated deeper than s: no pushing back),
 ///   Λ ← max(0, Λ + (v* − v_n) / (Σ w_A²/m_A + Σ w_B²/m_B)),   λ = change of Λ,
 /// with Λ the contact's accumulated normal impulse of the step: contacts push, never pull
 /// (Λ ≥ 0), while a later pass may take back what earlier ones over-pushed;

@@ -37,6 +37,11 @@ struct Islands {
 Islands contact_islands(const std::vector<ContactList>& lists, std::size_t node_count,
                         std::vector<Index>& node_slot);
 
+/// The islands among `islands` whose points move a node marked in `marked` (one entry per
+/// node), in their order: where a step's verification failed, further passes go.
+Islands islands_with(const std::vector<ContactList>& lists, const Islands& islands,
+                     const std::vector<char>& marked);
+
 /// `passes` sequential passes of apply_contact over every list, island by island (islands on
 /// the threads): equal to the serial passes over the lists in order.
 void correct_in_islands(const std::vector<ContactList>& lists, const Islands& islands, int passes,

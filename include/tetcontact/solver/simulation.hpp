@@ -9,12 +9,14 @@
 
 #include "tetcontact/diagnostics/balance.hpp"
 #include "tetcontact/diagnostics/reference.hpp"
+#include "tetcontact/diagnostics/verify.hpp"
 #include "tetcontact/element/element.hpp"
 #include "tetcontact/fracture/particles.hpp"
 #include "tetcontact/model/model.hpp"
 #include "tetcontact/model/sample.hpp"
 #include "tetcontact/model/state.hpp"
 #include "tetcontact/response/contact.hpp"
+#include "tetcontact/response/impact_zones.hpp"
 #include "tetcontact/response/islands.hpp"
 #include "tetcontact/response/wall.hpp"
 
@@ -26,6 +28,14 @@ State initial_state(const Model& model);
 
 class Simulation {
  public:
+  /// Rounds of impact zones a step may take before its failures are reported unresolved
+  /// (each round merges, grows or freezes a zone, so a start state free of overlap never
+  /// needs this many).
+  static constexpr int k_zone_rounds = 64;
+  /// Rounds of further passes (each `contact.passes` passes) over the islands where a step's
+  /// verification failed, before impact zones.
+  static constexpr int k_extra_rounds = 8;
+
   Simulation(Model model, SolverSettings settings);
   // The stages hold references into the model and the state: a Simulation stays where it is.
   Simulation(const Simulation&) = delete;
@@ -66,6 +76,18 @@ class Simulation {
     double particle_move_max = 0.0;  // the largest such move, m
     // Islands of the correction passes (response/islands.hpp), summed over the steps.
     long islands = 0, island_points = 0, largest_island_points = 0;
+    // The verification of each step's motion (diagnostics/verify.hpp), summed over the steps:
+    // pairs checked, pairs failing after the passes (from apart, from touching), steps with any.
+    long verified_pairs = 0, failed_pairs = 0, failed_touching = 0, steps_failed = 0;
+    long failed_edge_edge = 0;    // of failed_pairs, edge–edge pairs
+    long extra_rounds = 0;        // rounds of further passes
+    long failed_after_extra = 0;  // pairs still failing after them: the zones' work
+    // The rigid impact zones that removed them (response/impact_zones.hpp): zones made, the
+    // largest (nodes), steps that needed zones, zones frozen, rounds of verification after
+    // the first, and steps whose failures outlasted k_zone_rounds (0 unless the start state
+    // overlapped).
+    long impact_zones = 0, largest_zone_nodes = 0, steps_with_zones = 0, frozen_zones = 0;
+    long zone_rounds = 0, unresolved_steps = 0;
   };
   /// The figures of the run that references measure (diagnostics/reference).
   RunFigures run_figures() const;
@@ -90,6 +112,7 @@ class Simulation {
   void elements_stage();
   void fracture_stage();
   void corrections();
+  void verify_stage(const std::vector<ContactList>& lists, const Islands& islands, int passes);
   [[noreturn]] void rethrow_with_body(const InvertedElement& e) const;
 
   const Model model_;  // as set up: never changed during the run
@@ -105,6 +128,14 @@ class Simulation {
   std::unique_ptr<ParticleContact> particle_contact_;
   std::vector<ContactPoint> particle_contacts_;
   std::vector<Index> island_slot_;  // contact_islands' scratch
+  std::unique_ptr<StepVerifier> verifier_;
+  std::vector<Vec3> x_end_;  // xⁿ⁺¹ as the commit will write it, for the verification
+  ImpactZones zones_;
+  std::vector<Vec3> u_passes_;  // U* as the passes left it (zone steps)
+  std::vector<char> marked_;    // nodes of failing pairs (verify_stage)
+  std::vector<char> changed_;   // nodes whose end position changed since the last verification
+  std::vector<Vec3> x_tested_;  // the end positions last verified
+  std::vector<std::pair<Index, Vec3>> frozen_x_;  // nodes of frozen zones and their xⁿ
   ContactStepStats contact_stats_;
   ContactTotals contact_totals_;
   std::vector<double> wall_force_max_;

@@ -1,0 +1,267 @@
+#include "tetcontact/diagnostics/verify.hpp"
+
+#include <algorithm>
+
+#include "tetcontact/diagnostics/penetration.hpp"
+#include "tetcontact/narrowphase/exact_ccd.hpp"
+#include "tetcontact/parallel/parallel.hpp"
+
+namespace tc {
+
+StepVerifier::StepVerifier(const Mesh& mesh) : mesh_(mesh), broadphase_(make_broadphase("grid")) {}
+
+// The primitives of the surfaces as they are now, and the particles as vertices of no body.
+void StepVerifier::build(const std::vector<Surface>& surfaces, Index first_particle,
+                         std::size_t nodes) {
+  BroadphaseInput& in = input_;
+  in = BroadphaseInput{};
+  face_tet_.clear();
+  edge_faces_.clear();
+  for (const Surface& s : surfaces) {
+    const Index face0 = static_cast<Index>(in.face_nodes.size());
+    const Index edge0 = static_cast<Index>(in.edge_nodes.size());
+    for (Index n : s.nodes) in.node_id.push_back(n), in.node_body.push_back(s.body);
+    for (std::size_t f = 0; f < s.faces.size(); ++f) {
+      in.face_nodes.push_back(s.faces[f]);
+      in.face_body.push_back(s.body);
+      face_tet_.push_back(s.face_tet[f]);
+    }
+    for (const Edge& e : s.edges) in.edge_nodes.push_back(e), in.edge_body.push_back(s.body);
+    edge_faces_.resize(in.edge_nodes.size(), {-1, -1});
+    for (std::size_t f = 0; f < s.faces.size(); ++f)
+      for (int k = 0; k < 3; ++k) {
+        Edge e{s.faces[f][k], s.faces[f][(k + 1) % 3]};
+        if (e[0] > e[1]) std::swap(e[0], e[1]);
+        const auto it = std::lower_bound(s.edges.begin(), s.edges.end(), e);
+        if (it == s.edges.end() || *it != e) continue;
+        auto& slots = edge_faces_[edge0 + (it - s.edges.begin())];
+        (slots[0] < 0 ? slots[0] : slots[1]) = face0 + static_cast<Index>(f);
+      }
+  }
+  for (Index p = first_particle; p < static_cast<Index>(nodes); ++p)
+    in.node_id.push_back(p), in.node_body.push_back(-1);
+  in.node_box.resize(in.node_id.size());
+  in.face_box.resize(in.face_nodes.size());
+  in.edge_box.resize(in.edge_nodes.size());
+  // The lists' reach: 0.2 of the smallest mean tet edge (seed 001's binding lists).
+  reach_ = 0.0;
+  for (const Surface& s : surfaces)
+    if (s.mean_edge_length > 0.0)
+      reach_ = reach_ > 0.0 ? std::min(reach_, 0.2 * s.mean_edge_length) : 0.2 * s.mean_edge_length;
+  have_lists_ = false;
+}
+
+Verification StepVerifier::verify(const std::vector<Surface>& surfaces, const std::vector<Vec3>& x0,
+                                  const std::vector<Vec3>& x1, Index first_particle) {
+  return run(surfaces, x0, x1, first_particle, nullptr);
+}
+
+Verification StepVerifier::verify_again(const std::vector<Surface>& surfaces,
+                                        const std::vector<Vec3>& x0, const std::vector<Vec3>& x1,
+                                        Index first_particle, const std::vector<char>& changed) {
+  return run(surfaces, x0, x1, first_particle, &changed);
+}
+
+Verification StepVerifier::run(const std::vector<Surface>& surfaces, const std::vector<Vec3>& x0,
+                               const std::vector<Vec3>& x1, Index first_particle,
+                               const std::vector<char>* changed) {
+  if (stale_ || x0.size() != built_nodes_ || first_particle != built_first_particle_) {
+    build(surfaces, first_particle, x0.size());
+    stale_ = false;
+    built_nodes_ = x0.size();
+    built_first_particle_ = first_particle;
+    changed = nullptr;  // nothing to reuse
+  }
+  BroadphaseInput& in = input_;
+  const auto node_box = [&](std::size_t i) {
+    in.node_box[i] = swept_box({&x0[in.node_id[i]], &x1[in.node_id[i]]}, 0.0);
+  };
+  const auto face_box = [&](std::size_t f) {
+    const auto& k = in.face_nodes[f];
+    in.face_box[f] =
+        swept_box({&x0[k[0]], &x0[k[1]], &x0[k[2]], &x1[k[0]], &x1[k[1]], &x1[k[2]]}, 0.0);
+  };
+  const auto edge_box = [&](std::size_t e) {
+    const auto& k = in.edge_nodes[e];
+    in.edge_box[e] = swept_box({&x0[k[0]], &x0[k[1]], &x1[k[0]], &x1[k[1]]}, 0.0);
+  };
+  Candidates pairs;
+  if (!changed) {
+    parallel::for_each(in.node_id.size(), node_box, parallel::k_light_block);
+    parallel::for_each(in.face_nodes.size(), face_box);
+    parallel::for_each(in.edge_nodes.size(), edge_box);
+    // Binding lists, as contact's: the pairs of boxes enlarged by the reach, valid while every
+    // vertex stays within the reach of where they were built (then a face's or an edge's box
+    // now lies within its box then, enlarged by the reach). Each call keeps the listed pairs
+    // whose boxes overlap now: the pairs a fresh search gives.
+    bool valid = have_lists_;
+    const double r2 = reach_ * reach_;
+    for (std::size_t i = 0; i < in.node_id.size() && valid; ++i)
+      valid = (x0[in.node_id[i]] - anchor_[i]).squaredNorm() <= r2 &&
+              (x1[in.node_id[i]] - anchor_[i]).squaredNorm() <= r2;
+    if (!valid) {
+      BroadphaseInput enlarged = in;
+      for (auto* boxes : {&enlarged.node_box, &enlarged.face_box, &enlarged.edge_box})
+        for (Box& b : *boxes) b.lo.array() -= reach_, b.hi.array() += reach_;
+      lists_ = broadphase_->find(enlarged);
+      anchor_.resize(in.node_id.size());
+      for (std::size_t i = 0; i < in.node_id.size(); ++i) anchor_[i] = x0[in.node_id[i]];
+      have_lists_ = true;
+      ++list_builds_;
+    }
+    for (const auto& p : lists_.node_face)
+      if (boxes_overlap(in.node_box[p.first], in.face_box[p.second])) pairs.node_face.push_back(p);
+    for (const auto& p : lists_.edge_edge)
+      if (boxes_overlap(in.edge_box[p.first], in.edge_box[p.second])) pairs.edge_edge.push_back(p);
+  } else {
+    // Again: a primitive is dirty when a node its pairs' tests read has moved (a face: its
+    // tet's nodes; an edge: the nodes of the faces at it). Only pairs with a dirty side can
+    // have changed: the broadphase runs on the dirty primitives and those whose boxes reach
+    // theirs; the clean pairs that failed last time are tested again as they are.
+    const auto any = [&](const auto& nodes) {
+      for (const Index n : nodes)
+        if ((*changed)[n]) return true;
+      return false;
+    };
+    std::vector<char> dirty_node(in.node_id.size()), dirty_face(in.face_nodes.size()),
+        dirty_edge(in.edge_nodes.size());
+    for (std::size_t i = 0; i < dirty_node.size(); ++i) dirty_node[i] = (*changed)[in.node_id[i]];
+    for (std::size_t f = 0; f < dirty_face.size(); ++f)
+      dirty_face[f] = any(in.face_nodes[f]) || any(mesh_.tets[face_tet_[f]]);
+    for (std::size_t e = 0; e < dirty_edge.size(); ++e) {
+      bool d = any(in.edge_nodes[e]);
+      for (const Index f : edge_faces_[e]) d = d || (f >= 0 && any(in.face_nodes[f]));
+      dirty_edge[e] = d;
+    }
+    Box reach;
+    bool have = false;
+    const auto grow = [&](const Box& b) {
+      if (!have) reach = b, have = true;
+      reach.lo = reach.lo.cwiseMin(b.lo);
+      reach.hi = reach.hi.cwiseMax(b.hi);
+    };
+    for (std::size_t i = 0; i < dirty_node.size(); ++i)
+      if (dirty_node[i]) node_box(i), grow(in.node_box[i]);
+    for (std::size_t f = 0; f < dirty_face.size(); ++f)
+      if (dirty_face[f]) face_box(f), grow(in.face_box[f]);
+    for (std::size_t e = 0; e < dirty_edge.size(); ++e)
+      if (dirty_edge[e]) edge_box(e), grow(in.edge_box[e]);
+    if (have) {
+      BroadphaseInput sub;
+      std::vector<Index> node_map, face_map, edge_map;
+      for (std::size_t i = 0; i < dirty_node.size(); ++i)
+        if (dirty_node[i] || boxes_overlap(in.node_box[i], reach)) {
+          node_map.push_back(static_cast<Index>(i));
+          sub.node_box.push_back(in.node_box[i]);
+          sub.node_id.push_back(in.node_id[i]);
+          sub.node_body.push_back(in.node_body[i]);
+        }
+      for (std::size_t f = 0; f < dirty_face.size(); ++f)
+        if (dirty_face[f] || boxes_overlap(in.face_box[f], reach)) {
+          face_map.push_back(static_cast<Index>(f));
+          sub.face_box.push_back(in.face_box[f]);
+          sub.face_nodes.push_back(in.face_nodes[f]);
+          sub.face_body.push_back(in.face_body[f]);
+        }
+      for (std::size_t e = 0; e < dirty_edge.size(); ++e)
+        if (dirty_edge[e] || boxes_overlap(in.edge_box[e], reach)) {
+          edge_map.push_back(static_cast<Index>(e));
+          sub.edge_box.push_back(in.edge_box[e]);
+          sub.edge_nodes.push_back(in.edge_nodes[e]);
+          sub.edge_body.push_back(in.edge_body[e]);
+        }
+      const Candidates local = broadphase_->find(sub);
+      for (const auto& [a, b] : local.node_face)
+        if (dirty_node[node_map[a]] || dirty_face[face_map[b]])
+          pairs.node_face.push_back({node_map[a], face_map[b]});
+      for (const auto& [a, b] : local.edge_edge)
+        if (dirty_edge[edge_map[a]] || dirty_edge[edge_map[b]])
+          pairs.edge_edge.push_back(std::minmax(edge_map[a], edge_map[b]));
+    }
+    for (const auto& p : failed_vf_)
+      if (!dirty_node[p.first] && !dirty_face[p.second]) pairs.node_face.push_back(p);
+    for (const auto& p : failed_ee_)
+      if (!dirty_edge[p.first] && !dirty_edge[p.second]) pairs.edge_edge.push_back(p);
+    std::sort(pairs.node_face.begin(), pairs.node_face.end());
+    std::sort(pairs.edge_edge.begin(), pairs.edge_edge.end());
+  }
+  Verification r;
+  r.pairs_checked = static_cast<long>(pairs.node_face.size() + pairs.edge_edge.size());
+
+  // Each pair on the threads: 0 passes, 1 fails from apart, 2 fails from touching.
+  const std::size_t nvf = pairs.node_face.size();
+  std::vector<char> verdict(nvf + pairs.edge_edge.size(), 0);
+  parallel::for_each(verdict.size(), [&](std::size_t k) {
+    if (k < nvf) {
+      const auto& [ni, fi] = pairs.node_face[k];
+      const Index v = in.node_id[ni];
+      const auto& f = in.face_nodes[fi];
+      const bool touching = exact_vertex_face_ccd(
+          {x0[v], x0[f[0]], x0[f[1]], x0[f[2]], x0[v], x0[f[0]], x0[f[1]], x0[f[2]]});
+      if (!touching) {
+        verdict[k] = exact_vertex_face_ccd(
+            {x0[v], x0[f[0]], x0[f[1]], x0[f[2]], x1[v], x1[f[0]], x1[f[1]], x1[f[2]]});
+      } else {
+        const Tet& t = mesh_.tets[face_tet_[fi]];
+        verdict[k] = 2 * exact_point_strictly_in_tet(x1[v], x1[t[0]], x1[t[1]], x1[t[2]], x1[t[3]]);
+      }
+      return;
+    }
+    const auto& [ea, eb] = pairs.edge_edge[k - nvf];
+    const auto &a = in.edge_nodes[ea], &b = in.edge_nodes[eb];
+    const bool touching = exact_edge_edge_ccd(
+        {x0[a[0]], x0[a[1]], x0[b[0]], x0[b[1]], x0[a[0]], x0[a[1]], x0[b[0]], x0[b[1]]});
+    if (!touching) {
+      verdict[k] = exact_edge_edge_ccd(
+          {x0[a[0]], x0[a[1]], x0[b[0]], x0[b[1]], x1[a[0]], x1[a[1]], x1[b[0]], x1[b[1]]});
+      return;
+    }
+    // Touching at the start: each edge against the faces at the other, at the end.
+    const auto through = [&](const Edge& e, Index other) {
+      for (const Index f : edge_faces_[other]) {
+        if (f < 0) continue;
+        const auto& k = in.face_nodes[f];
+        if (exact_segment_crosses_triangle(x1[e[0]], x1[e[1]], x1[k[0]], x1[k[1]], x1[k[2]]))
+          return true;
+      }
+      return false;
+    };
+    verdict[k] = 2 * (through(a, eb) || through(b, ea));
+  });
+  failed_vf_.clear();
+  failed_ee_.clear();
+  for (std::size_t k = 0; k < verdict.size(); ++k) {
+    if (verdict[k] == 0) continue;
+    if (k < nvf)
+      failed_vf_.push_back(pairs.node_face[k]);
+    else
+      failed_ee_.push_back(pairs.edge_edge[k - nvf]);
+    FailedPair p;
+    p.touching_at_start = verdict[k] == 2;
+    const auto add = [&p](Index n) {
+      if (std::find(p.nodes.begin(), p.nodes.begin() + p.count, n) == p.nodes.begin() + p.count)
+        p.nodes[p.count++] = n;
+    };
+    if (k < nvf) {
+      const auto& [ni, fi] = pairs.node_face[k];
+      add(in.node_id[ni]);
+      for (const Index n : in.face_nodes[fi]) add(n);
+      if (p.touching_at_start)
+        for (const Index n : mesh_.tets[face_tet_[fi]]) add(n);
+    } else {
+      const auto& [ea, eb] = pairs.edge_edge[k - nvf];
+      p.edge_edge = true;
+      for (const Index e : {ea, eb}) {
+        for (const Index n : in.edge_nodes[e]) add(n);
+        if (p.touching_at_start)
+          for (const Index f : edge_faces_[e])
+            if (f >= 0)
+              for (const Index n : in.face_nodes[f]) add(n);
+      }
+    }
+    r.failed.push_back(p);
+  }
+  return r;
+}
+
+}  // namespace tc
