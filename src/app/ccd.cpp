@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "tetcontact/io/json.hpp"
+#include "tetcontact/narrowphase/cgal_ccd.hpp"
 #include "tetcontact/narrowphase/exact_ccd.hpp"
 #include "tetcontact/narrowphase/fcl_ccd.hpp"
 
@@ -153,6 +154,34 @@ int ccd_command(const CcdOptions& o) {
                   "false negatives, mean %.0f ns\n",
                   name, t.queries, t.truth, t.collisions, t.fp, t.fn, t.mean_ns);
     if (have_truth) table += buf;
+    if (o.confirm == "cgal" && !qs.empty()) {
+      // Every answer of the fast path against the CGAL oracle, where it decides.
+      long agree = 0, disagree = 0, undecided = 0;
+      const auto t0 = std::chrono::steady_clock::now();
+      for (std::size_t i = 0; i < qs.size(); ++i) {
+        const std::optional<bool> c =
+            ee ? cgal_edge_edge_ccd(qs[i]->q) : cgal_vertex_face_ccd(qs[i]->q);
+        if (!c)
+          ++undecided;
+        else if (*c == ours[i])
+          ++agree;
+        else
+          ++disagree;
+      }
+      const double cns =
+          1e9 * std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() /
+          static_cast<double>(qs.size());
+      Json& y = x["cgal"];
+      y["agreements"] = agree;
+      y["disagreements"] = disagree;
+      y["undecided"] = undecided;
+      y["mean_ns"] = cns;
+      std::snprintf(buf, sizeof buf,
+                    "%s (CGAL oracle): %ld agree, %ld disagree, %ld undecided (coplanar all step, "
+                    "degenerate at the root), mean %.0f ns\n",
+                    name, agree, disagree, undecided, cns);
+      table += buf;
+    }
     if (o.fcl && !qs.empty()) {
       double fns = 0.0;
       const std::vector<bool> fcl = answer_all(

@@ -73,6 +73,10 @@ CLI::App* add_ccd(CLI::App& app, tc::CcdOptions& c) {
                 "double; the mean time then includes finding it)");
   cmd->add_flag("--fcl", c.fcl,
                 "also FCL 0.7's cubic CCD on the same queries (its answers, errors and time)");
+  cmd->add_option("--confirm", c.confirm,
+                  "cgal: check every answer with the independent CGAL oracle (algebraic kernel "
+                  "roots and signs): agreements, disagreements, undecided, time")
+      ->check(CLI::IsMember({"cgal"}));
   cmd->add_flag("--json", c.json, "one object {\"ee\": {...}, \"vf\": {...}}");
   cmd->add_flag("--quiet", c.quiet, "no per-query lines");
   cmd->footer(
