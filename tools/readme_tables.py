@@ -202,7 +202,7 @@ VERIFY_ROWS = [  # (what, case, --set values)
 def verify(binary, work):
     """The step verification's table: each row run with --check."""
     print("| case | verify | crossings / nodes inside | checks | failing pairs (steps) | "
-          "zones (frozen) | verify stage / run |")
+          "zones (translated / frozen) | verify stage / run |")
     print("|---|---|---|---|---|---|---|")
     for k, (what, case, sets) in enumerate(VERIFY_ROWS):
         extra = ["--check"]
@@ -221,7 +221,8 @@ def verify(binary, work):
         v = s["contact"].get("verification")
         on = v is not None
         fails = f"{v['failed_after_passes']:,} ({v['steps_failed']} of {s['steps']})" if on else "—"
-        zones = f"{v['impact_zones']} ({v['frozen_zones']})" if on else "—"
+        zones = (f"{v['impact_zones']} ({v['translated_zones']} / {v['frozen_zones']})" if on
+                 else "—")
         stage = s["timings"].get("verify")
         cost = (f"{stage:.3g} s / {s['wall_seconds']:.3g} s" if on
                 else f"— / {s['wall_seconds']:.3g} s")

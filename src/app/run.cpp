@@ -204,6 +204,7 @@ Json contact_json(const Simulation& sim) {
     v["impact_zones"] = ct.impact_zones;
     v["largest_zone_nodes"] = ct.largest_zone_nodes;
     v["steps_with_zones"] = ct.steps_with_zones;
+    v["translated_zones"] = ct.translated_zones;
     v["frozen_zones"] = ct.frozen_zones;
     v["zone_rounds"] = ct.zone_rounds;
     v["unresolved_steps"] = ct.unresolved_steps;

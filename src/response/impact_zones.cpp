@@ -2,14 +2,16 @@
 
 #include <Eigen/Eigenvalues>
 #include <algorithm>
+#include <cmath>
+#include <limits>
 
 namespace tc {
 
 void ImpactZones::reset(std::size_t node_count) {
-  for (const Index n : touched_) parent_[n] = -1, frozen_root_[n] = 0;
+  for (const Index n : touched_) parent_[n] = -1, level_root_[n] = 0;
   touched_.clear();
   parent_.resize(node_count, -1);
-  frozen_root_.resize(node_count, 0);
+  level_root_.resize(node_count, 0);
   root_slot_.resize(node_count, -1);
 }
 
@@ -36,7 +38,7 @@ bool ImpactZones::merge(const Index* nodes, int count) {
       // The smaller index is the root, so that the zones do not depend on the merge order.
       const Index lo = std::min(r, root), hi = std::max(r, root);
       parent_[hi] = lo;
-      frozen_root_[lo] = frozen_root_[lo] || frozen_root_[hi];
+      level_root_[lo] = std::max(level_root_[lo], level_root_[hi]);
       root = lo;
     }
   }
@@ -49,12 +51,14 @@ bool ImpactZones::same_zone(const Index* nodes, int count) const {
   return true;
 }
 
-void ImpactZones::freeze(Index node) {
-  if (parent_[node] >= 0) frozen_root_[find(node)] = 1;
+void ImpactZones::escalate(Index node) {
+  if (parent_[node] < 0) return;
+  char& level = level_root_[find(node)];
+  level = std::min<char>(level + 1, static_cast<char>(Motion::frozen));
 }
 
-bool ImpactZones::frozen(Index node) const {
-  return parent_[node] >= 0 && frozen_root_[find(node)];
+ImpactZones::Motion ImpactZones::motion(Index node) const {
+  return parent_[node] < 0 ? Motion::rigid : static_cast<Motion>(level_root_[find(node)]);
 }
 
 std::vector<ImpactZones::Zone> ImpactZones::zones() const {
@@ -66,7 +70,7 @@ std::vector<ImpactZones::Zone> ImpactZones::zones() const {
     const Index r = find(n);
     if (root_slot_[r] < 0) {
       root_slot_[r] = static_cast<Index>(out.size());
-      out.push_back({{}, frozen_root_[r] != 0});
+      out.push_back({{}, static_cast<Motion>(level_root_[r])});
     }
     out[root_slot_[r]].nodes.push_back(n);
   }
@@ -108,6 +112,27 @@ void ImpactZones::apply(const std::vector<Vec3>& u, State& st, std::vector<Vec3>
       st.v_star[n] = rigid;
     }
   }
+}
+
+Vec3 exact_translation(const std::vector<Vec3>& x, const std::vector<Index>& nodes, const Vec3& d) {
+  Vec3 out = Vec3::Zero();
+  for (int k = 0; k < 3; ++k) {
+    double grain = 0.0;  // the coarsest ulp of the coordinates on this axis
+    for (const Index n : nodes) {
+      const double a = std::abs(x[n][k]);
+      grain = std::max(grain, std::nextafter(a, std::numeric_limits<double>::infinity()) - a);
+    }
+    if (!(grain > 0.0) || !std::isfinite(grain)) continue;
+    const double dk = grain * std::nearbyint(d[k] / grain);
+    bool exact = std::isfinite(dk);
+    for (std::size_t i = 0; i < nodes.size() && exact; ++i) {
+      // TwoSum: s + e = a + b exactly; the sum is exact iff e = 0.
+      const double a = x[nodes[i]][k], s = a + dk, bb = s - a;
+      exact = (a - (s - bb)) + (dk - bb) == 0.0;
+    }
+    if (exact) out[k] = dk;
+  }
+  return out;
 }
 
 }  // namespace tc

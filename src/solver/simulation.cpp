@@ -234,19 +234,19 @@ void Simulation::corrections() {
 // contact points that move their nodes get further passes (up to k_extra_rounds rounds of
 // `passes`), verified after each; what still fails goes into rigid impact zones
 // (response/impact_zones.hpp), verified again until none fails: a failure across zones
-// merges them, one inside a zone that moved rigidly freezes it.
+// merges them, one inside a zone escalates it (rigid → exact translation → frozen).
 void Simulation::verify_stage(const std::vector<ContactList>& lists, const Islands& islands,
                               int passes) {
   State& st = state_;
   ContactTotals& ct = contact_totals_;
   const std::size_t n = st.x.size();
   x_end_.resize(n);
-  frozen_x_.clear();
+  fixed_x_.clear();
   const auto end_positions = [&] {
     parallel::for_each(
         n, [&](std::size_t i) { x_end_[i] = st.x[i] + st.dt * st.v_star[i]; },
         parallel::k_light_block);
-    for (const auto& [node, x] : frozen_x_) x_end_[node] = x;
+    for (const auto& [node, x] : fixed_x_) x_end_[node] = x;
   };
   end_positions();
   Verification v = verifier_->verify(st.surfaces, st.x, x_end_, st.first_particle);
@@ -285,24 +285,42 @@ void Simulation::verify_stage(const std::vector<ContactList>& lists, const Islan
   u_passes_ = st.v_star;
   int round = 0;
   for (; round < k_zone_rounds && !v.failed.empty(); ++round) {
-    // A failure inside one zone that moved rigidly: rounding, the zone is frozen.
-    std::vector<Index> freeze;
+    // A failure inside one zone: rounding; the zone moves by an exact translation, or, if
+    // that too fails, is frozen.
+    std::vector<Index> escalate;
     for (const FailedPair& p : v.failed)
-      if (zones_.same_zone(p.nodes.data(), p.count)) freeze.push_back(p.nodes[0]);
+      if (zones_.same_zone(p.nodes.data(), p.count)) escalate.push_back(p.nodes[0]);
     for (const FailedPair& p : v.failed) zones_.merge(p.nodes.data(), p.count);
-    for (const Index node : freeze) zones_.freeze(node);
+    std::vector<Index> escalated;  // one node per zone: each zone escalates once a round
+    for (const Index node : escalate) {
+      bool seen = false;
+      for (const Index e : escalated) {
+        const std::array<Index, 2> pair{e, node};
+        seen = seen || zones_.same_zone(pair.data(), 2);
+      }
+      if (!seen) escalated.push_back(node), zones_.escalate(node);
+    }
     zones_.apply(u_passes_, st, st.contact_impulse);
-    frozen_x_.clear();
-    for (const ImpactZones::Zone& z : zones_.zones())
-      if (z.frozen)
-        for (const Index node : z.nodes) frozen_x_.push_back({node, st.x[node]});
+    fixed_x_.clear();
+    for (const ImpactZones::Zone& z : zones_.zones()) {
+      if (z.motion == ImpactZones::Motion::rigid) continue;
+      Vec3 d = Vec3::Zero();
+      if (z.motion == ImpactZones::Motion::translated) {
+        double mass = 0.0;
+        Vec3 p = Vec3::Zero();
+        for (const Index node : z.nodes) mass += st.m[node], p += st.m[node] * st.v_star[node];
+        if (mass > 0.0) d = exact_translation(st.x, z.nodes, st.dt * p / mass);
+      }
+      for (const Index node : z.nodes) fixed_x_.push_back({node, Vec3(st.x[node] + d)});
+    }
     verify_again();
   }
   ct.zone_rounds += round;
   ct.unresolved_steps += !v.failed.empty();
   for (const ImpactZones::Zone& z : zones_.zones()) {
     ++ct.impact_zones;
-    ct.frozen_zones += z.frozen;
+    ct.translated_zones += z.motion == ImpactZones::Motion::translated;
+    ct.frozen_zones += z.motion == ImpactZones::Motion::frozen;
     ct.largest_zone_nodes = std::max(ct.largest_zone_nodes, static_cast<long>(z.nodes.size()));
   }
 }
@@ -376,8 +394,9 @@ void Simulation::output_stage() {
 
 void Simulation::commit_stage() {
   commit(state_);
-  // Frozen impact zones keep xⁿ this step (their velocities are the zone's rigid ones).
-  for (const auto& [node, x] : frozen_x_) state_.x[node] = x;
+  // Translated and frozen impact zones take the positions the zones set (their velocities
+  // are the zone's rigid ones).
+  for (const auto& [node, x] : fixed_x_) state_.x[node] = x;
 }
 
 // Destroyed boundary cells of the last element pass become particles before this one, which

@@ -2,6 +2,7 @@
 // energy, books its impulses, and the zones are the connected sets of the merged nodes.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <random>
 
 #include "tetcontact/response/impact_zones.hpp"
@@ -98,23 +99,55 @@ TEST(ImpactZones, ZonesAreTheConnectedSetsAndFreezingFollowsMerges) {
   EXPECT_TRUE(zones.merge(a.data(), 2));  // already one zone
   EXPECT_TRUE(zones.same_zone(a.data(), 2));
   EXPECT_FALSE(zones.same_zone(c.data(), 2));
-  zones.freeze(5);
-  EXPECT_TRUE(zones.frozen(6));
-  EXPECT_FALSE(zones.frozen(1));
+  using Motion = ImpactZones::Motion;
+  zones.escalate(5);
+  EXPECT_EQ(zones.motion(6), Motion::translated);
+  zones.escalate(6);
+  EXPECT_EQ(zones.motion(5), Motion::frozen);
+  zones.escalate(6);  // frozen is the last
+  EXPECT_EQ(zones.motion(5), Motion::frozen);
+  EXPECT_EQ(zones.motion(1), Motion::rigid);
   zones.merge(c.data(), 2);
   auto z = zones.zones();
   ASSERT_EQ(z.size(), 2u);
   EXPECT_EQ(z[0].nodes, (std::vector<Index>{1, 2, 7}));
-  EXPECT_FALSE(z[0].frozen);
+  EXPECT_EQ(z[0].motion, Motion::rigid);
   EXPECT_EQ(z[1].nodes, (std::vector<Index>{5, 6}));
-  EXPECT_TRUE(z[1].frozen);
+  EXPECT_EQ(z[1].motion, Motion::frozen);
   // A merge with a frozen zone is frozen; a reset forgets everything.
   const std::array<Index, 2> d{7, 6};
   zones.merge(d.data(), 2);
   z = zones.zones();
   ASSERT_EQ(z.size(), 1u);
-  EXPECT_TRUE(z[0].frozen);
+  EXPECT_EQ(z[0].motion, Motion::frozen);
   zones.reset(10);
   EXPECT_TRUE(zones.zones().empty());
-  EXPECT_FALSE(zones.frozen(6));
+  EXPECT_EQ(zones.motion(6), Motion::rigid);
+}
+
+TEST(ImpactZones, ExactTranslationKeepsRelativePositionsBitForBit) {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  for (int trial = 0; trial < 200; ++trial) {
+    const double scale = std::ldexp(1.0, trial % 40 - 20);
+    std::vector<Vec3> x;
+    std::vector<Index> nodes;
+    for (int i = 0; i < 6; ++i) {
+      x.push_back(Vec3(u(rng), u(rng), u(rng)) * scale + Vec3(0.3, -2.0, 5.0));
+      nodes.push_back(i);
+    }
+    const Vec3 want = Vec3(u(rng), u(rng), u(rng)) * scale * 1e-3;
+    const Vec3 d = exact_translation(x, nodes, want);
+    for (int k = 0; k < 3; ++k) {
+      // Each axis: the wanted shift to within the grain, or 0.
+      if (d[k] != 0.0) EXPECT_LT(std::abs(d[k] - want[k]), 1e-12 * scale + 1e-15);
+    }
+    for (const Index i : nodes)
+      for (const Index j : nodes) {
+        const Vec3 before = x[i] - x[j], after = (x[i] + d) - (x[j] + d);
+        EXPECT_EQ(before, after) << trial;  // differences of the moved points: unchanged
+        for (int k = 0; k < 3; ++k)         // and each sum exact
+          EXPECT_EQ((x[i][k] + d[k]) - d[k], x[i][k]);
+      }
+  }
 }

@@ -83,10 +83,11 @@ class Simulation {
     long extra_rounds = 0;        // rounds of further passes
     long failed_after_extra = 0;  // pairs still failing after them: the zones' work
     // The rigid impact zones that removed them (response/impact_zones.hpp): zones made, the
-    // largest (nodes), steps that needed zones, zones frozen, rounds of verification after
-    // the first, and steps whose failures outlasted k_zone_rounds (0 unless the start state
-    // overlapped).
+    // largest (nodes), steps that needed zones, zones frozen (and translated), rounds of
+    // verification after the first, and steps whose failures outlasted k_zone_rounds (0 unless the
+    // start state overlapped).
     long impact_zones = 0, largest_zone_nodes = 0, steps_with_zones = 0, frozen_zones = 0;
+    long translated_zones = 0;
     long zone_rounds = 0, unresolved_steps = 0;
   };
   /// The figures of the run that references measure (diagnostics/reference).
@@ -135,7 +136,8 @@ class Simulation {
   std::vector<char> marked_;    // nodes of failing pairs (verify_stage)
   std::vector<char> changed_;   // nodes whose end position changed since the last verification
   std::vector<Vec3> x_tested_;  // the end positions last verified
-  std::vector<std::pair<Index, Vec3>> frozen_x_;  // nodes of frozen zones and their xⁿ
+  std::vector<std::pair<Index, Vec3>>
+      fixed_x_;  // nodes of translated and frozen zones and their xⁿ⁺¹
   ContactStepStats contact_stats_;
   ContactTotals contact_totals_;
   std::vector<double> wall_force_max_;
