@@ -196,6 +196,21 @@ VERIFY_ROWS = [  # (what, case, --set values)
      ["contact.verify=true", "contact.edge_edge=true"]),
     ("touching-gap0, edge–edge on", "data/cases/stability/touching-gap0.yaml",
      ["contact.verify=true", "contact.edge_edge=true"]),
+] + [
+    (what, case, sets + [f"contact.verify={on}", "diagnostics.every_step=true"])
+    for what, case, sets in [
+        ("cylinders (edge–edge on), coarse (8 / 4 across), every step", "data/cases/cylinders.yaml",
+         ["bodies.0.mesh.cylinder.cells_across=8", "bodies.0.mesh.cylinder.cells_axial=8",
+          "bodies.1.mesh.cylinder.cells_across=4", "bodies.1.mesh.cylinder.cells_axial=4"]),
+        ("spall-plate, edge–edge on, every step", "data/cases/spall-plate.yaml",
+         ["contact.edge_edge=true"]),
+        ("taylor-symmetric, edge–edge on, coarse (6 across), to 10 µs, every step",
+         "data/cases/taylor-symmetric.yaml",
+         ["contact.edge_edge=true", "end_time=10.0e-6", "bodies.0.mesh.cylinder.cells_across=6",
+          "bodies.0.mesh.cylinder.cells_axial=30", "bodies.1.mesh.cylinder.cells_across=6",
+          "bodies.1.mesh.cylinder.cells_axial=30"]),
+    ]
+    for on in ("false", "true")
 ]
 
 

@@ -112,7 +112,7 @@ class Simulation {
   void commit_stage();
   void elements_stage();
   void fracture_stage();
-  void corrections();
+  void corrections(bool verify = true);  // verify: the step's motion (contact.verify)
   void verify_stage(const std::vector<ContactList>& lists, const Islands& islands, int passes);
   [[noreturn]] void rethrow_with_body(const InvertedElement& e) const;
 
