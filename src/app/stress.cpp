@@ -244,13 +244,7 @@ SceneResult run_scene(const std::string& name, const std::string& file,
     while (!sim.done()) {
       sim.step();
       ++r.steps;
-      const Penetration p = probe.measure(sim.state().x);
-      Penetration& m = r.penetration;
-      m.max_depth = std::max(m.max_depth, p.max_depth);
-      m.max_depth_over_h = std::max(m.max_depth_over_h, p.max_depth_over_h);
-      m.nodes_inside = std::max(m.nodes_inside, p.nodes_inside);
-      m.crossings = std::max(m.crossings, p.crossings);
-      m.max_crossing_depth = std::max(m.max_crossing_depth, p.max_crossing_depth);
+      keep_largest(r.penetration, probe.measure(sim.state().x));
     }
     sim.finish();
     r.momentum_error = momentum_error(sim.first_sample(), sim.last_sample());
@@ -364,13 +358,12 @@ std::vector<SceneResult> run_solver_scenes(std::uint64_t seed, int count,
   fs::create_directories(dir);
   std::vector<SceneResult> out;
   const std::vector<std::string> cases = solver_scene_cases(seed, count);
-  for (std::size_t i = 0; i < cases.size(); ++i) {
-    const fs::path file = dir / ("scene.yaml");
-    write_file_atomic(file.string(), cases[i]);
-    const std::string text = cases[i];
-    const std::string name = text.substr(6, text.find('\n') - 6);
+  const std::string file = (dir / "scene.yaml").string();
+  for (const std::string& text : cases) {
+    write_file_atomic(file, text);
+    const std::string name = text.substr(6, text.find('\n') - 6);  // "name: scene-…"
     try {
-      out.push_back(run_scene(name, file.string(), overrides));
+      out.push_back(run_scene(name, file, overrides));
     } catch (const std::exception& e) {  // a scene the setup refuses (it overlaps at t = 0)
       SceneResult r;
       r.name = name;

@@ -7,6 +7,16 @@
 
 namespace tc {
 
+void keep_largest(Penetration& m, const Penetration& p) {
+  m.nodes_inside = std::max(m.nodes_inside, p.nodes_inside);
+  m.max_depth = std::max(m.max_depth, p.max_depth);
+  m.max_depth_over_h = std::max(m.max_depth_over_h, p.max_depth_over_h);
+  m.crossings = std::max(m.crossings, p.crossings);
+  m.max_crossing_depth = std::max(m.max_crossing_depth, p.max_crossing_depth);
+  m.particles_inside = std::max(m.particles_inside, p.particles_inside);
+  m.max_particle_depth = std::max(m.max_particle_depth, p.max_particle_depth);
+}
+
 PenetrationProbe::PenetrationProbe(const Model& model)
     : model_(model), broadphase_(make_broadphase("grid")) {}
 

@@ -107,7 +107,6 @@ Verification StepVerifier::run(const std::vector<Surface>& surfaces, const std::
       anchor_.resize(in.node_id.size());
       for (std::size_t i = 0; i < in.node_id.size(); ++i) anchor_[i] = x0[in.node_id[i]];
       have_lists_ = true;
-      ++list_builds_;
     }
     for (const auto& p : lists_.node_face)
       if (boxes_overlap(in.node_box[p.first], in.face_box[p.second])) pairs.node_face.push_back(p);

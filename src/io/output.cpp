@@ -71,17 +71,7 @@ std::vector<double> OutputWriter::measure_penetration(const State& st) {
   Penetration p = probe_->measure(st);
   probe_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   ++penetration_samples_;
-  penetration_max_.nodes_inside = std::max(penetration_max_.nodes_inside, p.nodes_inside);
-  penetration_max_.max_depth = std::max(penetration_max_.max_depth, p.max_depth);
-  penetration_max_.max_depth_over_h =
-      std::max(penetration_max_.max_depth_over_h, p.max_depth_over_h);
-  penetration_max_.crossings = std::max(penetration_max_.crossings, p.crossings);
-  penetration_max_.max_crossing_depth =
-      std::max(penetration_max_.max_crossing_depth, p.max_crossing_depth);
-  penetration_max_.particles_inside =
-      std::max(penetration_max_.particles_inside, p.particles_inside);
-  penetration_max_.max_particle_depth =
-      std::max(penetration_max_.max_particle_depth, p.max_particle_depth);
+  keep_largest(penetration_max_, p);
   std::vector<double> depth = std::move(p.node_depth);
   penetration_last_ = std::move(p);
   return depth;

@@ -29,6 +29,10 @@ struct Penetration {
   Index crossing_edge_body = -1, crossing_face_body = -1;
 };
 
+/// Raises each of `largest`'s maxima (counts and depths, not the per-node depths or the
+/// bodies) to `p`'s where p's is larger: the run's largest over its samples.
+void keep_largest(Penetration& largest, const Penetration& p);
+
 /// Exact predicates (CGAL's, in penetration_cgal.cpp): p in the closed tet (a, b, c, d);
 /// segment (p, q) passes through the interior of triangle (a, b, c), its ends strictly on
 /// opposite sides of the triangle's plane (an edge lying in the face, or touching it at its

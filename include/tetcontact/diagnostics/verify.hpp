@@ -50,8 +50,6 @@ class StepVerifier {
   /// `first_particle` on).
   Verification verify(const std::vector<Surface>& surfaces, const std::vector<Vec3>& x0,
                       const std::vector<Vec3>& x1, Index first_particle);
-  /// Times the candidate lists were built (the broadphase ran), over the calls.
-  long list_builds() const { return list_builds_; }
   /// The surfaces changed (fracture): the primitives are rebuilt at the next call.
   void surfaces_changed() { stale_ = true; }
   /// The same after a change of x1 at the nodes marked in `changed` (one entry per node), the
@@ -73,13 +71,12 @@ class StepVerifier {
   std::vector<Index> face_tet_;
   std::vector<std::array<Index, 2>> edge_faces_;  // the two surface faces at each edge
   bool stale_ = true;                             // the primitives are rebuilt at the next call
-  // Binding lists of candidate pairs (boxes enlarged by reach_), the vertices' positions they
-  // were built from, and how often they were built.
+  // Binding lists of candidate pairs (boxes enlarged by reach_) and the vertices' positions
+  // they were built from.
   Candidates lists_;
   std::vector<Vec3> anchor_;
   double reach_ = 0.0;
   bool have_lists_ = false;
-  long list_builds_ = 0;
   std::size_t built_nodes_ = 0;
   Index built_first_particle_ = 0;
   // The last call's failing pairs, (node primitive, face) and (edge, edge), sorted.
