@@ -6,6 +6,9 @@ never retyped).
     tools/readme_tables.py micro BINARY                     the micro-scene table
     tools/readme_tables.py profile BINARY                   the broadphase profile (bars)
     tools/readme_tables.py verify BINARY                    the step verification's table
+    tools/readme_tables.py verify-full BINARY               the shipped contact cases at full
+                                                            size with the verification, every
+                                                            step (long: ~30 min on 2 cores)
     tools/readme_tables.py threads BINARY [--cases NAME...] the thread-scaling table: bars,
                                                             cylinders (edge–edge on), Hertz and
                                                             ball-plate in full on 1 and 2 threads
@@ -190,6 +193,8 @@ VERIFY_ROWS = [  # (what, case, --set values)
      ["contact.verify=true", "diagnostics.every_step=true"]),
     ("bars-impact", "data/cases/bars-impact.yaml", ["contact.verify=false"]),
     ("bars-impact", "data/cases/bars-impact.yaml", ["contact.verify=true"]),
+    ("bars-impact, separation 0", "data/cases/bars-impact.yaml",
+     ["contact.verify=true", "contact.separation=0"]),
     ("bars-impact, edge–edge on", "data/cases/bars-impact.yaml",
      ["contact.verify=true", "contact.edge_edge=true"]),
     ("staggered-patch, edge–edge on", "data/cases/staggered-patch.yaml",
@@ -214,10 +219,41 @@ VERIFY_ROWS = [  # (what, case, --set values)
 ]
 
 
+FULL_CASES = ["cubes-edge", "two-blocks-msh", "plate-impact-1d", "staggered-patch",
+              "bars-impact", "spall-plate", "taylor-copper", "cylinders", "ball-plate",
+              "taylor-symmetric", "hertz-spheres"]
+
+
+def verify_full(binary, work):
+    """Every shipped case with contact, full size, edge–edge on, verification on, measured after
+    every step."""
+    print("| case | crossings / nodes inside | checks | momentum | energy | failing pairs (steps) | "
+          "steps with zones: zones (translated / frozen) | verify stage / run |")
+    print("|---|---|---|---|---|---|---|---|")
+    for name in FULL_CASES:
+        extra = ["--check", "--set", "contact.edge_edge=true", "--set", "contact.verify=true",
+                 "--set", "diagnostics.every_step=true"]
+        s, _ = run(binary, os.path.join(ROOT, "data/cases", name + ".yaml"),
+                   os.path.join(work, name), extra)
+        p = s["penetration"]
+        missed = [f"{e['name']} {g(e['measured'])} > {g(e['bound'])}"
+                  for e in s.get("expect", []) if not e["pass"]]
+        missed += [f"{r['name']} {g(r['measured'])}" for r in s.get("references", [])
+                   if r.get("pass") is False]
+        checks = "pass" if not missed else "**" + "; ".join(missed) + "**"
+        v = s["contact"]["verification"]
+        print(f"| {name} | {p['max_crossings']} / {p['max_nodes_inside']} at all {p['samples']} "
+              f"steps | {checks} | {g(s['momentum']['relative_error'])} | "
+              f"{g(s['energy']['balance_error_max'])} | {v['failed_after_passes']:,} "
+              f"({v['steps_failed']} of {s['steps']}) | {v['steps_with_zones']}: "
+              f"{v['impact_zones']} ({v['translated_zones']} / {v['frozen_zones']}) | "
+              f"{s['timings'].get('verify', 0):.3g} s / {s['wall_seconds']:.3g} s |", flush=True)
+
+
 def verify(binary, work):
     """The step verification's table: each row run with --check."""
     print("| case | verify | crossings / nodes inside | checks | failing pairs (steps) | "
-          "zones (translated / frozen) | verify stage / run |")
+          "steps with zones: zones (translated / frozen) | verify stage / run |")
     print("|---|---|---|---|---|---|---|")
     for k, (what, case, sets) in enumerate(VERIFY_ROWS):
         extra = ["--check"]
@@ -236,8 +272,8 @@ def verify(binary, work):
         v = s["contact"].get("verification")
         on = v is not None
         fails = f"{v['failed_after_passes']:,} ({v['steps_failed']} of {s['steps']})" if on else "—"
-        zones = (f"{v['impact_zones']} ({v['translated_zones']} / {v['frozen_zones']})" if on
-                 else "—")
+        zones = (f"{v['steps_with_zones']}: {v['impact_zones']} ({v['translated_zones']} / "
+                 f"{v['frozen_zones']})" if on else "—")
         stage = s["timings"].get("verify")
         cost = (f"{stage:.3g} s / {s['wall_seconds']:.3g} s" if on
                 else f"— / {s['wall_seconds']:.3g} s")
@@ -247,7 +283,8 @@ def verify(binary, work):
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawTextHelpFormatter)
-    ap.add_argument("table", choices=["stability", "micro", "profile", "threads", "verify"])
+    ap.add_argument("table",
+                    choices=["stability", "micro", "profile", "threads", "verify", "verify-full"])
     ap.add_argument("binary")
     ap.add_argument("--work", help="keep the runs here (default: a temporary folder)")
     ap.add_argument("--cases", nargs="*", help="threads: only the cases whose file names "
@@ -259,6 +296,8 @@ def main():
         micro(os.path.abspath(a.binary))
     elif a.table == "verify":
         verify(os.path.abspath(a.binary), a.work or tempfile.mkdtemp(prefix="verify-"))
+    elif a.table == "verify-full":
+        verify_full(os.path.abspath(a.binary), a.work or tempfile.mkdtemp(prefix="verify-full-"))
     elif a.table == "threads":
         threads(os.path.abspath(a.binary), a.work or tempfile.mkdtemp(prefix="threads-"), a.cases)
     else:

@@ -191,6 +191,7 @@ Json contact_json(const Simulation& sim) {
   contact["work"] = sim.last_sample().contact.work;
   contact["broadphase"] = sim.model().contact->broadphase;
   contact["broadphase_runs"] = ct.rebuilds;
+  contact["separation"] = sim.contact_separation();
   // Every step's motion checked with the exact CCD (null when contact.verify is off).
   if (sim.model().contact->verify) {
     Json v = Json::object();
@@ -199,6 +200,7 @@ Json contact_json(const Simulation& sim) {
     v["failed_from_touching"] = ct.failed_touching;
     v["failed_edge_edge"] = ct.failed_edge_edge;
     v["extra_pass_rounds"] = ct.extra_rounds;
+    v["rescue_points"] = ct.rescue_points;
     v["failed_after_extra_passes"] = ct.failed_after_extra;
     v["steps_failed"] = ct.steps_failed;
     v["impact_zones"] = ct.impact_zones;

@@ -245,11 +245,23 @@ Verification StepVerifier::run(const std::vector<Surface>& surfaces, const std::
       const auto& [ni, fi] = pairs.node_face[k];
       add(in.node_id[ni]);
       for (const Index n : in.face_nodes[fi]) add(n);
+      p.body_a = in.node_body[ni];
+      p.body_b = in.face_body[fi];
       if (p.touching_at_start)
         for (const Index n : mesh_.tets[face_tet_[fi]]) add(n);
     } else {
       const auto& [ea, eb] = pairs.edge_edge[k - nvf];
       p.edge_edge = true;
+      p.body_a = in.edge_body[ea];
+      p.body_b = in.edge_body[eb];
+      const auto outward = [&](Index e) {
+        Vec3 sum = Vec3::Zero();
+        for (const Index f : edge_faces_[e])
+          if (f >= 0) sum += face_normal(in.face_nodes[f], x0);
+        return sum;
+      };
+      p.outward_a = outward(ea);
+      p.outward_b = outward(eb);
       for (const Index e : {ea, eb}) {
         for (const Index n : in.edge_nodes[e]) add(n);
         if (p.touching_at_start)

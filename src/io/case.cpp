@@ -851,7 +851,7 @@ void read_contact(const Reader& r, const YAML::Node& root, Case& c) {
   if (const YAML::Node s = root["contact"]) {
     r.keys(s, "contact",
            {"enabled", "broadphase", "margin", "passes", "order", "normal", "friction", "pairs",
-            "binding_lists", "edge_edge", "initial_overlap", "verify"});
+            "binding_lists", "edge_edge", "initial_overlap", "verify", "separation"});
     c.contact = s["enabled"] ? r.boolean(s["enabled"], "contact.enabled") : true;
     ContactSettings& cs = c.contact_settings;
     if (const YAML::Node o = s["initial_overlap"]) {
@@ -875,6 +875,7 @@ void read_contact(const Reader& r, const YAML::Node& root, Case& c) {
       }
     }
     if (s["margin"]) cs.margin = r.non_negative(s["margin"], "contact.margin");
+    if (s["separation"]) cs.separation = r.non_negative(s["separation"], "contact.separation");
     if (s["passes"]) cs.passes = r.count(s["passes"], "contact.passes", 1, 1000);
     if (const YAML::Node o = s["order"]) {
       const std::string v = r.string(o, "contact.order");

@@ -32,6 +32,15 @@ NodeFaceContact::NodeFaceContact(const Mesh& mesh, const std::vector<Surface>& s
   double dx = 0.0;
   for (const Surface& s : surfaces) dx += s.mean_edge_length;
   reach_ = surfaces.empty() ? 0.0 : 0.2 * dx / static_cast<double>(surfaces.size());
+  // The separation aimed at: the case's, or a millionth of the smallest mean tet edge.
+  separation_ = settings.separation;
+  if (separation_ < 0.0) {
+    double h = 0.0;
+    for (const Surface& s : surfaces)
+      if (s.mean_edge_length > 0.0)
+        h = h > 0.0 ? std::min(h, s.mean_edge_length) : s.mean_edge_length;
+    separation_ = ContactSettings::k_separation_fraction * h;
+  }
 }
 
 void NodeFaceContact::build_primitives() {
@@ -230,15 +239,8 @@ void NodeFaceContact::node_face_contacts(const State& st, std::vector<ContactPoi
       }
       c.gap = (x0[node] - x0[f[0]]).dot(face_n);
       c.separation = rounding_margin({&x1[node], &x1[f[0]], &x1[f[1]], &x1[f[2]]});
-      // Friction of the body pair.
-      c.mode = settings_.mode;
-      c.friction = settings_.coefficient;
-      const Index ba = node_body_[ni], bb = face_body_[fi];
-      for (const PairFriction& p : settings_.pairs)
-        if ((p.body_a == ba && p.body_b == bb) || (p.body_a == bb && p.body_b == ba)) {
-          c.mode = p.mode;
-          c.friction = p.coefficient;
-        }
+      c.standoff = separation_;
+      set_friction(c, node_body_[ni], face_body_[fi]);
       found[blk].push_back(c);
     }
   });
@@ -334,6 +336,7 @@ void NodeFaceContact::edge_edge_contacts(const State& st, ContactStepStats& stat
     // exactly 0 leaves touching edges through each other by an ulp half the time (crossings
     // of 5e-18 m in the cubes case).
     c.separation = rounding_margin({&x1[e1[0]], &x1[e1[1]], &x1[e2[0]], &x1[e2[1]]});
+    c.standoff = separation_;
     c.restore = true;
     c.mode = settings_.mode;
     c.friction = settings_.coefficient;
@@ -371,6 +374,78 @@ void NodeFaceContact::edge_edge_contacts(const State& st, ContactStepStats& stat
       add_edge_contact(ea, eb, closest_at_start(ea, eb), nullptr);
     }
   active_edges_ = std::move(active);
+}
+
+// Friction of the body pair: its own entry, or the contact's setting.
+void NodeFaceContact::set_friction(ContactPoint& c, Index body_a, Index body_b) const {
+  c.mode = settings_.mode;
+  c.friction = settings_.coefficient;
+  for (const PairFriction& p : settings_.pairs)
+    if ((p.body_a == body_a && p.body_b == body_b) || (p.body_a == body_b && p.body_b == body_a)) {
+      c.mode = p.mode;
+      c.friction = p.coefficient;
+    }
+}
+
+std::optional<ContactPoint> NodeFaceContact::vertex_face_point(const State& st, Index node,
+                                                               const Face& f, Index node_body,
+                                                               Index face_body) const {
+  const std::vector<Vec3>& x0 = st.x;
+  const TrianglePoint tp = closest_point_on_triangle(x0[node], x0[f[0]], x0[f[1]], x0[f[2]]);
+  const Vec3 on_face = tp.w[0] * x0[f[0]] + tp.w[1] * x0[f[1]] + tp.w[2] * x0[f[2]];
+  ContactPoint c;
+  // Apart: along the shortest way from the face to the node, the gap its length (a node
+  // beside the face is pushed away from the face's edge, not through its plane).
+  c.normal = x0[node] - on_face;
+  c.gap = c.normal.norm();
+  if (!(c.gap > 0.0)) c.normal = face_normal(f, x0), c.gap = 0.0;
+  if (!(c.normal.squaredNorm() > 0.0)) return std::nullopt;
+  c.normal.normalize();
+  c.a_nodes[0] = node;
+  c.a_w[0] = 1.0;
+  c.a_count = 1;
+  for (int k = 0; k < 3; ++k) c.b_nodes[k] = f[k], c.b_w[k] = tp.w[k];
+  c.b_count = 3;
+  const std::vector<Vec3>& x1 = st.x_star;
+  c.separation = rounding_margin({&x1[node], &x1[f[0]], &x1[f[1]], &x1[f[2]]});
+  c.standoff = separation_;
+  c.restore = true;
+  set_friction(c, node_body, face_body);
+  return c;
+}
+
+std::optional<ContactPoint> NodeFaceContact::edge_edge_point(const State& st, const Edge& a,
+                                                             const Edge& b, Index body_a,
+                                                             Index body_b, const Vec3& outward_a,
+                                                             const Vec3& outward_b) const {
+  const std::vector<Vec3>& x0 = st.x;
+  const SegmentPoints cp = closest_points_on_segments(x0[a[0]], x0[a[1]], x0[b[0]], x0[b[1]]);
+  ContactPoint c;
+  c.normal = cp.on_a - cp.on_b;
+  c.gap = c.normal.norm();
+  if (!(c.gap > 0.0)) {
+    // Touching: the common perpendicular (for parallel edges, the outward normals' way),
+    // pointing out of B and into A.
+    const Vec3 out = outward_b - outward_a;
+    c.normal = (x0[a[1]] - x0[a[0]]).cross(x0[b[1]] - x0[b[0]]);
+    if (!(c.normal.squaredNorm() > 0.0)) c.normal = out;
+    if (c.normal.dot(out) < 0.0) c.normal = -c.normal;
+    c.gap = 0.0;
+  }
+  if (!(c.normal.squaredNorm() > 0.0)) return std::nullopt;
+  c.normal.normalize();
+  c.a_nodes = {a[0], a[1], 0, 0};
+  c.a_w = {1.0 - cp.alpha, cp.alpha, 0, 0};
+  c.a_count = 2;
+  c.b_nodes = {b[0], b[1], 0, 0};
+  c.b_w = {1.0 - cp.beta, cp.beta, 0, 0};
+  c.b_count = 2;
+  const std::vector<Vec3>& x1 = st.x_star;
+  c.separation = rounding_margin({&x1[a[0]], &x1[a[1]], &x1[b[0]], &x1[b[1]]});
+  c.standoff = separation_;
+  c.restore = true;
+  set_friction(c, body_a, body_b);
+  return c;
 }
 
 std::vector<ContactPoint> NodeFaceContact::detect(const State& st, ContactStepStats& stats) {

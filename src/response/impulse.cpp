@@ -37,15 +37,25 @@ double rounding_margin(std::initializer_list<const Vec3*> points) {
   return 16.0 * std::ldexp(std::numeric_limits<double>::epsilon(), std::ilogb(size));
 }
 
+double target_velocity(const ContactPoint& c, double tau) {
+  if (c.gap < -c.separation && !c.restore) return 0.0;
+  const double aim = c.separation + std::clamp(c.gap - c.separation, 0.0, c.standoff);
+  return (aim - c.gap) / tau;
+}
+
+Vec3 relative_velocity(const ContactPoint& c, const State& st) {
+  return point_velocity(c.a_nodes, c.a_w, c.a_count, st) -
+         point_velocity(c.b_nodes, c.b_w, c.b_count, st);
+}
+
 double apply_contact(ContactPoint& c, State& st, double tau, std::vector<Vec3>& ledger) {
   double inv_mass = 0.0;  // Σ w²/m over both sides
   for (int i = 0; i < c.a_count; ++i) inv_mass += c.a_w[i] * c.a_w[i] / st.m[c.a_nodes[i]];
   for (int i = 0; i < c.b_count; ++i) inv_mass += c.b_w[i] * c.b_w[i] / st.m[c.b_nodes[i]];
   if (!(inv_mass > 0.0)) return 0.0;
   const Vec3& n = c.normal;
-  const Vec3 v_rel = point_velocity(c.a_nodes, c.a_w, c.a_count, st) -
-                     point_velocity(c.b_nodes, c.b_w, c.b_count, st);
-  const double target = (c.gap >= -c.separation || c.restore) ? (c.separation - c.gap) / tau : 0.0;
+  const Vec3 v_rel = relative_velocity(c, st);
+  const double target = target_velocity(c, tau);
   // The accumulated impulse of the step pushes, never pulls: an increment may take back what
   // earlier passes over-pushed (the corrections of neighbouring contacts move shared nodes),
   // but the total stays ≥ 0 (projected Gauss–Seidel).

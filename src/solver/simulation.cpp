@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <optional>
+#include <set>
 #include <sstream>
 
 #include "tetcontact/parallel/parallel.hpp"
@@ -225,7 +226,7 @@ void Simulation::corrections(bool verify) {
   timer.reset();
   if (verifier_ && verify) {
     StageTimer t(profile_["verify"]);
-    verify_stage(lists, islands, passes);
+    verify_stage(lists, passes);
   }
 }
 
@@ -235,8 +236,7 @@ void Simulation::corrections(bool verify) {
 // `passes`), verified after each; what still fails goes into rigid impact zones
 // (response/impact_zones.hpp), verified again until none fails: a failure across zones
 // merges them, one inside a zone escalates it (rigid → exact translation → frozen).
-void Simulation::verify_stage(const std::vector<ContactList>& lists, const Islands& islands,
-                              int passes) {
+void Simulation::verify_stage(const std::vector<ContactList>& lists, int passes) {
   State& st = state_;
   ContactTotals& ct = contact_totals_;
   const std::size_t n = st.x.size();
@@ -267,14 +267,28 @@ void Simulation::verify_stage(const std::vector<ContactList>& lists, const Islan
   }
   ++ct.steps_failed;
   x_tested_ = x_end_;
-  // Further passes where the failures are.
+  // Further passes where the failures are: a failing pair becomes a contact point of its own
+  // (once a step: restoring, aimed beyond touching, NodeFaceContact::vertex_face_point and
+  // edge_edge_point), and the islands of the points that move a failing pair's nodes get
+  // more passes: `passes` in the first round, doubling each round (the passes converge
+  // slowly on large coupled islands; only the failing islands pay).
   marked_.assign(n, 0);
+  std::set<std::array<Index, 5>> rescued;  // (edge–edge, the pair's four nodes)
   for (int extra = 0; extra < k_extra_rounds && !v.failed.empty(); ++extra) {
-    for (const FailedPair& p : v.failed)
+    for (const FailedPair& p : v.failed) {
       for (int k = 0; k < p.count; ++k) marked_[p.nodes[k]] = 1;
-    const Islands failing = islands_with(lists, islands, marked_);
+      const auto& k = p.nodes;
+      if (!rescued.insert({p.edge_edge, k[0], k[1], k[2], k[3]}).second) continue;
+      const std::optional<ContactPoint> c =
+          p.edge_edge
+              ? contact_->edge_edge_point(st, {k[0], k[1]}, {k[2], k[3]}, p.body_a, p.body_b,
+                                          p.outward_a, p.outward_b)
+              : contact_->vertex_face_point(st, k[0], {k[1], k[2], k[3]}, p.body_a, p.body_b);
+      if (c) contacts_.push_back(*c), ++ct.rescue_points;
+    }
+    const Islands failing = islands_with(lists, contact_islands(lists, n, island_slot_), marked_);
     if (failing.count() == 0) break;  // no contact point moves them: only zones can
-    correct_in_islands(lists, failing, passes, st);
+    correct_in_islands(lists, failing, passes << extra, st);
     ++ct.extra_rounds;
     verify_again();
   }
@@ -301,6 +315,29 @@ void Simulation::verify_stage(const std::vector<ContactList>& lists, const Islan
       if (!seen) escalated.push_back(node), zones_.escalate(node);
     }
     zones_.apply(u_passes_, st, st.contact_impulse);
+    // Rounding a rigid motion to doubles can leave a pair that touches inside a zone an ulp
+    // through: the contact points inside the rigid zones get `passes` again from zero impulse
+    // (they only push; equal and opposite at one place: both momenta kept), which puts such a
+    // pair a rounding margin apart and leaves the others as the rigid field moves them.
+    in_rigid_.assign(n, 0);
+    for (const ImpactZones::Zone& z : zones_.zones())
+      if (z.motion == ImpactZones::Motion::rigid)
+        for (const Index node : z.nodes) in_rigid_[node] = 1;
+    inside_.clear();
+    for (const std::vector<ContactPoint>* list : {&contacts_, &particle_contacts_})
+      for (const ContactPoint& c : *list) {
+        bool inside = true;
+        for (int k = 0; k < c.a_count; ++k) inside = inside && in_rigid_[c.a_nodes[k]];
+        for (int k = 0; k < c.b_count; ++k) inside = inside && in_rigid_[c.b_nodes[k]];
+        if (!inside) continue;
+        inside_.push_back(c);
+        inside_.back().lambda = 0.0;
+        inside_.back().tangential.setZero();
+      }
+    if (!inside_.empty()) {
+      const std::vector<ContactList> inner{{&inside_, &st.contact_impulse}};
+      correct_in_islands(inner, contact_islands(inner, n, island_slot_), passes, st);
+    }
     fixed_x_.clear();
     for (const ImpactZones::Zone& z : zones_.zones()) {
       if (z.motion == ImpactZones::Motion::rigid) continue;
@@ -376,6 +413,10 @@ void Simulation::sample_stage() {
   s.balance_error = balance_error(s);
   balance_error_max_ = std::max(balance_error_max_, s.balance_error);
   last_ = s;
+}
+
+double Simulation::contact_separation() const {
+  return contact_ ? contact_->separation() : 0.0;
 }
 
 RunFigures Simulation::run_figures() const {

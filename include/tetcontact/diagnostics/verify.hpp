@@ -28,12 +28,16 @@ namespace tc {
 
 /// A pair that failed, with every node its test read: vertex–face (v, f0, f1, f2, and the
 /// apex of the face's tet when they touched at the start) or edge–edge (a0, a1, b0, b1, and
-/// the third nodes of the faces at each edge when they touched).
+/// the third nodes of the faces at each edge when they touched). The pair itself is
+/// nodes[0..3]: the vertex and the face's nodes in the surface's outward order, or edge A
+/// (nodes[0], nodes[1]) and edge B (nodes[2], nodes[3]).
 struct FailedPair {
   std::array<Index, 8> nodes{};
   int count = 0;
   bool edge_edge = false;
   bool touching_at_start = false;
+  Index body_a = -1, body_b = -1;  // the vertex's (−1: a particle) or edge A's; the face's or B's
+  Vec3 outward_a = Vec3::Zero(), outward_b = Vec3::Zero();  // edges: Σ outward normals at xⁿ
 };
 
 struct Verification {

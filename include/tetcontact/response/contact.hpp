@@ -5,6 +5,7 @@
 #include <array>
 
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -49,6 +50,23 @@ class NodeFaceContact {
   std::vector<ContactPoint> detect(const State& st, ContactStepStats& stats);
 
   const Broadphase& broadphase() const { return *broadphase_; }
+  /// The separation contacts aim at beyond the rounding margin (m).
+  double separation() const { return separation_; }
+
+  /// A contact point for a pair the step's verification found failing (issue 15): a vertex
+  /// `node` of body `node_body` against the face `face` of body `face_body` (nodes in the
+  /// surface's outward order), or the edge `a` of body `body_a` against the edge `b`. At their
+  /// closest points at xⁿ; the normal from B's point to A's when they are apart there (gap:
+  /// the distance), else the face's outward normal, or for edges their common perpendicular
+  /// oriented against the outward normals of the faces at them (gap 0). Friction as for a
+  /// detected contact of the pair; `restore`, aiming `rounding_margin` beyond touching.
+  /// nullopt when no normal can be found (degenerate primitives touching). `outward_a`,
+  /// `outward_b`: the sums of the outward normals of the faces at each edge.
+  std::optional<ContactPoint> vertex_face_point(const State& st, Index node, const Face& face,
+                                                Index node_body, Index face_body) const;
+  std::optional<ContactPoint> edge_edge_point(const State& st, const Edge& a, const Edge& b,
+                                              Index body_a, Index body_b, const Vec3& outward_a,
+                                              const Vec3& outward_b) const;
 
  private:
   void build_primitives();
@@ -57,6 +75,7 @@ class NodeFaceContact {
   void edge_edge_contacts(const State& st, ContactStepStats& stats,
                           std::vector<ContactPoint>& contacts);
   Box layer_box(Index face, const State& st, double margin) const;
+  void set_friction(ContactPoint& c, Index body_a, Index body_b) const;
   const Mesh& mesh_;
   const std::vector<Surface>& surfaces_;
   ContactSettings settings_;
@@ -78,6 +97,7 @@ class NodeFaceContact {
   Candidates candidates_;
   std::vector<Vec3> anchor_;
   double reach_ = 0.0;
+  double separation_ = 0.0;  // aimed at beyond the rounding margin (ContactSettings::separation)
   bool have_lists_ = false;
   // This step's layer boxes of the faces the lists name (binding lists).
   std::vector<Index> listed_faces_;

@@ -26,6 +26,10 @@ struct ContactPoint {
   /// rounded to doubles do not end a touching pair an ulp through (rounding_margin); 0 for
   /// walls.
   double separation = 0.0;
+  /// The stand-off (m, ContactSettings::separation): a pair closing from farther stops this far
+  /// beyond `separation`; a pair already closer is held where it is, never pushed apart (a
+  /// push of s/τ grows without bound as the step shrinks).
+  double standoff = 0.0;
   FrictionMode mode = FrictionMode::slip;
   double friction = 0.0;  // Coulomb coefficient k
   /// Close a negative gap within the step too (target −g/τ for g < 0): for edge–edge pairs,
@@ -55,5 +59,10 @@ double rounding_margin(std::initializer_list<const Vec3*> points);
 /// Impulses are added per node to `ledger` (A side and B side). Returns the normal impulse
 /// of this correction (negative when it takes back an over-push).
 double apply_contact(ContactPoint& c, State& st, double tau, std::vector<Vec3>& ledger);
+
+/// The normal velocity v* a contact aims at (apply_contact).
+double target_velocity(const ContactPoint& c, double tau);
+/// A's point velocity less B's: Σ w_A U_A − Σ w_B U_B.
+Vec3 relative_velocity(const ContactPoint& c, const State& st);
 
 }  // namespace tc

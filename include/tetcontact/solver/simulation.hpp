@@ -32,8 +32,8 @@ class Simulation {
   /// (each round merges, grows or freezes a zone, so a start state free of overlap never
   /// needs this many).
   static constexpr int k_zone_rounds = 64;
-  /// Rounds of further passes (each `contact.passes` passes) over the islands where a step's
-  /// verification failed, before impact zones.
+  /// Rounds of further passes (`contact.passes` in the first, doubling each round) over the
+  /// islands where a step's verification failed, before impact zones.
   static constexpr int k_extra_rounds = 8;
 
   Simulation(Model model, SolverSettings settings);
@@ -81,6 +81,7 @@ class Simulation {
     long verified_pairs = 0, failed_pairs = 0, failed_touching = 0, steps_failed = 0;
     long failed_edge_edge = 0;    // of failed_pairs, edge–edge pairs
     long extra_rounds = 0;        // rounds of further passes
+    long rescue_points = 0;       // contact points made for failing pairs
     long failed_after_extra = 0;  // pairs still failing after them: the zones' work
     // The rigid impact zones that removed them (response/impact_zones.hpp): zones made, the
     // largest (nodes), steps that needed zones, zones frozen (and translated), rounds of
@@ -93,6 +94,8 @@ class Simulation {
   /// The figures of the run that references measure (diagnostics/reference).
   RunFigures run_figures() const;
   const ContactTotals& contact_totals() const { return contact_totals_; }
+  /// The separation contacts aim at beyond rounding (m; 0 without contact).
+  double contact_separation() const;
   bool has_contact() const { return contact_ != nullptr; }
   const std::vector<std::string>& modules() const { return modules_; }
   /// The conversions of destroyed cells into particles (null when the case has none).
@@ -113,7 +116,7 @@ class Simulation {
   void elements_stage();
   void fracture_stage();
   void corrections(bool verify = true);  // verify: the step's motion (contact.verify)
-  void verify_stage(const std::vector<ContactList>& lists, const Islands& islands, int passes);
+  void verify_stage(const std::vector<ContactList>& lists, int passes);
   [[noreturn]] void rethrow_with_body(const InvertedElement& e) const;
 
   const Model model_;  // as set up: never changed during the run
@@ -132,8 +135,10 @@ class Simulation {
   std::unique_ptr<StepVerifier> verifier_;
   std::vector<Vec3> x_end_;  // xⁿ⁺¹ as the commit will write it, for the verification
   ImpactZones zones_;
-  std::vector<Vec3> u_passes_;  // U* as the passes left it (zone steps)
-  std::vector<char> marked_;    // nodes of failing pairs (verify_stage)
+  std::vector<Vec3> u_passes_;        // U* as the passes left it (zone steps)
+  std::vector<char> marked_;          // nodes of failing pairs (verify_stage)
+  std::vector<char> in_rigid_;        // nodes in rigid zones (verify_stage)
+  std::vector<ContactPoint> inside_;  // the contact points inside rigid zones, from Λ = 0
   std::vector<char> changed_;   // nodes whose end position changed since the last verification
   std::vector<Vec3> x_tested_;  // the end positions last verified
   std::vector<std::pair<Index, Vec3>>
