@@ -231,11 +231,12 @@ void Simulation::corrections(bool verify) {
 }
 
 // The step's motion verified (diagnostics/verify.hpp): xⁿ⁺¹ = xⁿ + τ U*, the same doubles the
-// commit will write (commit_stage: x += τ U with U = U*). Where pairs fail, the islands of
-// contact points that move their nodes get further passes (up to k_extra_rounds rounds of
-// `passes`), verified after each; what still fails goes into rigid impact zones
-// (response/impact_zones.hpp), verified again until none fails: a failure across zones
-// merges them, one inside a zone escalates it (rigid → exact translation → frozen).
+// commit will write (commit_stage: x += τ U with U = U*). Where pairs fail, each gets a
+// contact point of its own and the islands of contact points that move their nodes get
+// further passes (up to k_extra_rounds rounds, doubling), verified after each; what still fails
+// goes into rigid impact zones (response/impact_zones.hpp), verified again until none fails: a
+// failure across zones merges them, one inside a zone escalates it (rigid → exact translation →
+// frozen).
 void Simulation::verify_stage(const std::vector<ContactList>& lists, int passes) {
   State& st = state_;
   ContactTotals& ct = contact_totals_;

@@ -59,7 +59,8 @@ class NodeFaceContact {
   /// closest points at xⁿ; the normal from B's point to A's when they are apart there (gap:
   /// the distance), else the face's outward normal, or for edges their common perpendicular
   /// oriented against the outward normals of the faces at them (gap 0). Friction as for a
-  /// detected contact of the pair; `restore`, aiming `rounding_margin` beyond touching.
+  /// detected contact of the pair; `restore`, aiming as a detected contact does (the rounding
+  /// margin and the stand-off).
   /// nullopt when no normal can be found (degenerate primitives touching). `outward_a`,
   /// `outward_b`: the sums of the outward normals of the faces at each edge.
   std::optional<ContactPoint> vertex_face_point(const State& st, Index node, const Face& face,

@@ -47,8 +47,9 @@ double rounding_margin(std::initializer_list<const Vec3*> points);
 
 /// One correction of a contact (seed 001 §4, seed 000 eqs. 11–12). With v_n the relative
 /// normal velocity of the two points, v_n = (Σ w_A U_A − Σ w_B U_B)·n, and the target
-/// v* = (s − g)/τ (close the gap within the step, to the separation s of rounding; 0 when
-/// penetrated deeper than s: no pushing back),
+/// v* = (a − g)/τ with a = s + clamp(g − s, 0, δ) (close the gap within the step: to the
+/// stand-off δ beyond the rounding separation s from farther, hold a pair already within it,
+/// put a touching one s apart; 0 when penetrated deeper than s and not restoring),
 ///   Λ ← max(0, Λ + (v* − v_n) / (Σ w_A²/m_A + Σ w_B²/m_B)),   λ = change of Λ,
 /// with Λ the contact's accumulated normal impulse of the step: contacts push, never pull
 /// (Λ ≥ 0), while a later pass may take back what earlier ones over-pushed;
