@@ -28,6 +28,19 @@ void push(ContactPoint& c, const Vec3& impulse_on_a, State& st, std::vector<Vec3
   }
 }
 
+// The normal velocity v* a contact aims at (apply_contact).
+double target_velocity(const ContactPoint& c, double tau) {
+  if (c.gap < -c.separation && !c.restore) return 0.0;
+  const double aim = c.separation + std::clamp(c.gap - c.separation, 0.0, c.standoff);
+  return (aim - c.gap) / tau;
+}
+
+// A's point velocity less B's: Σ w_A U_A − Σ w_B U_B.
+Vec3 relative_velocity(const ContactPoint& c, const State& st) {
+  return point_velocity(c.a_nodes, c.a_w, c.a_count, st) -
+         point_velocity(c.b_nodes, c.b_w, c.b_count, st);
+}
+
 }  // namespace
 
 double rounding_margin(std::initializer_list<const Vec3*> points) {
@@ -35,17 +48,6 @@ double rounding_margin(std::initializer_list<const Vec3*> points) {
   for (const Vec3* p : points) size = std::max(size, p->cwiseAbs().maxCoeff());
   if (size == 0.0) return 0.0;
   return 16.0 * std::ldexp(std::numeric_limits<double>::epsilon(), std::ilogb(size));
-}
-
-double target_velocity(const ContactPoint& c, double tau) {
-  if (c.gap < -c.separation && !c.restore) return 0.0;
-  const double aim = c.separation + std::clamp(c.gap - c.separation, 0.0, c.standoff);
-  return (aim - c.gap) / tau;
-}
-
-Vec3 relative_velocity(const ContactPoint& c, const State& st) {
-  return point_velocity(c.a_nodes, c.a_w, c.a_count, st) -
-         point_velocity(c.b_nodes, c.b_w, c.b_count, st);
 }
 
 double apply_contact(ContactPoint& c, State& st, double tau, std::vector<Vec3>& ledger) {

@@ -61,9 +61,4 @@ double rounding_margin(std::initializer_list<const Vec3*> points);
 /// of this correction (negative when it takes back an over-push).
 double apply_contact(ContactPoint& c, State& st, double tau, std::vector<Vec3>& ledger);
 
-/// The normal velocity v* a contact aims at (apply_contact).
-double target_velocity(const ContactPoint& c, double tau);
-/// A's point velocity less B's: Σ w_A U_A − Σ w_B U_B.
-Vec3 relative_velocity(const ContactPoint& c, const State& st);
-
 }  // namespace tc
