@@ -145,7 +145,23 @@ Verification StepVerifier::run(const std::vector<Surface>& surfaces, const std::
       if (dirty_face[f]) face_box(f), grow(in.face_box[f]);
     for (std::size_t e = 0; e < dirty_edge.size(); ++e)
       if (dirty_edge[e]) edge_box(e), grow(in.edge_box[e]);
-    if (have) {
+    // The binding lists still hold every pair whose boxes overlap when the moved nodes stay
+    // within the reach (x⁰ was checked by the first call of the step); else a broadphase on
+    // the dirty primitives and those whose boxes reach theirs.
+    bool valid = have_lists_;
+    const double r2 = reach_ * reach_;
+    for (std::size_t i = 0; i < in.node_id.size() && valid; ++i)
+      valid = !dirty_node[i] || (x1[in.node_id[i]] - anchor_[i]).squaredNorm() <= r2;
+    if (have && valid) {
+      for (const auto& p : lists_.node_face)
+        if ((dirty_node[p.first] || dirty_face[p.second]) &&
+            boxes_overlap(in.node_box[p.first], in.face_box[p.second]))
+          pairs.node_face.push_back(p);
+      for (const auto& p : lists_.edge_edge)
+        if ((dirty_edge[p.first] || dirty_edge[p.second]) &&
+            boxes_overlap(in.edge_box[p.first], in.edge_box[p.second]))
+          pairs.edge_edge.push_back(p);
+    } else if (have) {
       BroadphaseInput sub;
       std::vector<Index> node_map, face_map, edge_map;
       for (std::size_t i = 0; i < dirty_node.size(); ++i)

@@ -156,11 +156,60 @@ Inside vertex_in_face(const Points& p) {
           face_rule};
 }
 
+// Separating axes (the inside test's fallback, where its orientations are too close to 0 to
+// sign, as for parallel or nearly parallel coplanar edges): over T each point's projection on a
+// fixed direction s lies in an interval (its coordinates' enclosures over T, combined in
+// interval arithmetic), and a segment's or a triangle's projection at each time lies between
+// its vertices'. Disjoint hulls: the primitives do not meet anywhere in T. Any s will do for
+// soundness; it is chosen at T's middle, in doubles: the primitives' directions, and the
+// directions across each edge towards the other primitive (in-plane normals when coplanar).
+bool separated_over(const Points& p, int first_b, double t0, double t1) {
+  std::array<std::array<Iv, 3>, 4> box;
+  std::array<Vec3, 4> mid;
+  const double m = 0.5 * (t0 + t1);
+  for (int n = 0; n < 4; ++n) {
+    const IPoly* c[3] = {&p[n].x, &p[n].y, &p[n].z};
+    for (int d = 0; d < 3; ++d) {
+      box[n][d] = t0 == t1 ? at(*c[d], t0) : over(*c[d], t0, t1);
+      const Iv v = at(*c[d], m);
+      mid[n][d] = 0.5 * (v.lo + v.hi);
+    }
+  }
+  const auto apart = [&](const Vec3& s) {
+    if (!(s.squaredNorm() > 0.0) || !s.allFinite()) return false;
+    double lo[2] = {1e308, 1e308}, hi[2] = {-1e308, -1e308};
+    for (int n = 0; n < 4; ++n) {
+      Iv x{0.0, 0.0};
+      for (int d = 0; d < 3; ++d) x = x + box[n][d] * Iv{s[d], s[d]};
+      const int side = n < first_b ? 0 : 1;
+      lo[side] = std::min(lo[side], x.lo);
+      hi[side] = std::max(hi[side], x.hi);
+    }
+    return hi[0] < lo[1] || hi[1] < lo[0];
+  };
+  // Across the edge e (from `from`), towards the point `to`: the part of to − from normal to e.
+  const auto across = [&](const Vec3& from, const Vec3& e, const Vec3& to) {
+    const Vec3 w = to - from;
+    return Vec3(w * e.squaredNorm() - e * e.dot(w));
+  };
+  if (first_b == 2) {  // edges [a, b] and [c, d]
+    const Vec3 u = mid[1] - mid[0], v = mid[3] - mid[2];
+    return apart(u) || apart(v) || apart(across(mid[0], u, 0.5 * (mid[2] + mid[3]))) ||
+           apart(across(mid[2], v, 0.5 * (mid[0] + mid[1])));
+  }
+  // Vertex p and triangle (a, b, c): across each edge, away from the opposite vertex.
+  for (int k = 0; k < 3; ++k) {
+    const Vec3 &a = mid[1 + k], &b = mid[1 + (k + 1) % 3], &c = mid[1 + (k + 2) % 3];
+    if (apart(across(a, b - a, c))) return true;
+  }
+  return false;
+}
+
 // Subdivision of [0, 1] as described in the header. `o, i, j, k` pick the points of the
 // coplanarity determinant det[p_i − p_o, p_j − p_o, p_k − p_o]; `make_inside` builds the inside
 // test's polynomials (only when a span may hold a root).
 Certain subdivide(const std::array<Vec3, 8>& q, int o, int i, int j, int k,
-                  Inside (*make_inside)(const Points&)) {
+                  Inside (*make_inside)(const Points&), int first_b) {
   constexpr double kLimit = 0x1p100;
   constexpr int kMaxDepth = 30, kMaxSpans = 48;
   Points p;
@@ -181,7 +230,9 @@ Certain subdivide(const std::array<Vec3, 8>& q, int o, int i, int j, int k,
     std::array<Iv, 4> v{};
     for (int n = 0; n < inside.count; ++n)
       v[n] = t0 == t1 ? at(inside.polys[n], t0) : over(inside.polys[n], t0, t1);
-    return inside.rule(v);
+    const Certain c = inside.rule(v);
+    if (c == Certain::unknown && separated_over(p, first_b, t0, t1)) return Certain::no;
+    return c;
   };
   // Coplanar and possibly meeting at t = 0 or 1 (touching at the start, as resting contact
   // gives): no span ending there can ever be certified, so the exact path answers at once.
@@ -218,11 +269,11 @@ Certain subdivide(const std::array<Vec3, 8>& q, int o, int i, int j, int k,
 }  // namespace
 
 Certain interval_vertex_face_ccd(const std::array<Vec3, 8>& q) {
-  return subdivide(q, 1, 2, 3, 0, vertex_in_face);  // det[b − a, c − a, p − a]
+  return subdivide(q, 1, 2, 3, 0, vertex_in_face, 1);  // det[b − a, c − a, p − a]
 }
 
 Certain interval_edge_edge_ccd(const std::array<Vec3, 8>& q) {
-  return subdivide(q, 0, 1, 2, 3, edges_meet);  // det[b − a, c − a, d − a]
+  return subdivide(q, 0, 1, 2, 3, edges_meet, 2);  // det[b − a, c − a, d − a]
 }
 
 }  // namespace tc

@@ -387,61 +387,123 @@ void NodeFaceContact::set_friction(ContactPoint& c, Index body_a, Index body_b) 
     }
 }
 
-std::optional<ContactPoint> NodeFaceContact::vertex_face_point(const State& st, Index node,
-                                                               const Face& f, Index node_body,
+namespace {
+
+// Positions at the fraction t of the step: x(t) = x⁰ + t (x¹ − x⁰).
+Vec3 at(const std::vector<Vec3>& x0, const std::vector<Vec3>& x1, Index node, double t) {
+  return x0[node] + t * (x1[node] - x0[node]);
+}
+
+}  // namespace
+
+// Apart at xⁿ (Bridson, Fedkiw & Anderson 2002; Harmon et al. 2008): the primitives meet first
+// at the fraction t* of the step (exact_*_toi). The point is where they meet then: the
+// vertex's barycentric weights on the face, or the edges' closest-point parameters, at x(t*);
+// the normal the face's, or the edges' common perpendicular, at x(t*), signed so that
+// s = n·(p_A − p_B) with these weights is ≥ 0 at xⁿ, and the gap s(xⁿ). Keeping s ≥ 0 at the
+// step's end is then, to first order in the motion, the pair not crossing: the closest points
+// at xⁿ (often an end of an edge, or a corner of a face) say nothing about where the pair
+// crosses. Touching at xⁿ, or no time found: at the closest points at xⁿ, as below.
+std::optional<ContactPoint> NodeFaceContact::vertex_face_point(const State& st,
+                                                               const std::vector<Vec3>& x1,
+                                                               Index node, const Face& f,
+                                                               Index node_body,
                                                                Index face_body) const {
   const std::vector<Vec3>& x0 = st.x;
-  const TrianglePoint tp = closest_point_on_triangle(x0[node], x0[f[0]], x0[f[1]], x0[f[2]]);
-  const Vec3 on_face = tp.w[0] * x0[f[0]] + tp.w[1] * x0[f[1]] + tp.w[2] * x0[f[2]];
   ContactPoint c;
-  // Apart: along the shortest way from the face to the node, the gap its length (a node
-  // beside the face is pushed away from the face's edge, not through its plane).
-  c.normal = x0[node] - on_face;
-  c.gap = c.normal.norm();
-  if (!(c.gap > 0.0)) c.normal = face_normal(f, x0), c.gap = 0.0;
-  if (!(c.normal.squaredNorm() > 0.0)) return std::nullopt;
-  c.normal.normalize();
+  const std::optional<double> toi = exact_vertex_face_toi(
+      {x0[node], x0[f[0]], x0[f[1]], x0[f[2]], x1[node], x1[f[0]], x1[f[1]], x1[f[2]]});
+  bool placed = false;
+  if (toi && *toi > 0.0) {
+    const double t = *toi;
+    const Vec3 v = at(x0, x1, node, t), a = at(x0, x1, f[0], t), b = at(x0, x1, f[1], t),
+               d = at(x0, x1, f[2], t);
+    const Vec3 n = (b - a).cross(d - a);
+    if (n.squaredNorm() > 0.0) {
+      const TrianglePoint tp = closest_point_on_triangle(v, a, b, d);
+      c.normal = n.normalized();
+      for (int k = 0; k < 3; ++k) c.b_w[k] = tp.w[k];
+      const Vec3 on_face = tp.w[0] * x0[f[0]] + tp.w[1] * x0[f[1]] + tp.w[2] * x0[f[2]];
+      c.gap = c.normal.dot(x0[node] - on_face);
+      if (c.gap < 0.0) c.normal = -c.normal, c.gap = -c.gap;
+      placed = true;
+    }
+  }
+  if (!placed) {
+    const TrianglePoint tp = closest_point_on_triangle(x0[node], x0[f[0]], x0[f[1]], x0[f[2]]);
+    const Vec3 on_face = tp.w[0] * x0[f[0]] + tp.w[1] * x0[f[1]] + tp.w[2] * x0[f[2]];
+    // Apart: along the shortest way from the face to the node, the gap its length (a node
+    // beside the face is pushed away from the face's edge, not through its plane).
+    c.normal = x0[node] - on_face;
+    c.gap = c.normal.norm();
+    if (!(c.gap > 0.0)) c.normal = face_normal(f, x0), c.gap = 0.0;
+    if (!(c.normal.squaredNorm() > 0.0)) return std::nullopt;
+    c.normal.normalize();
+    for (int k = 0; k < 3; ++k) c.b_w[k] = tp.w[k];
+  }
   c.a_nodes[0] = node;
   c.a_w[0] = 1.0;
   c.a_count = 1;
-  for (int k = 0; k < 3; ++k) c.b_nodes[k] = f[k], c.b_w[k] = tp.w[k];
+  for (int k = 0; k < 3; ++k) c.b_nodes[k] = f[k];
   c.b_count = 3;
-  const std::vector<Vec3>& x1 = st.x_star;
-  c.separation = rounding_margin({&x1[node], &x1[f[0]], &x1[f[1]], &x1[f[2]]});
+  const std::vector<Vec3>& xs = st.x_star;
+  c.separation = rounding_margin({&xs[node], &xs[f[0]], &xs[f[1]], &xs[f[2]]});
   c.standoff = separation_;
   c.restore = true;
   set_friction(c, node_body, face_body);
   return c;
 }
 
-std::optional<ContactPoint> NodeFaceContact::edge_edge_point(const State& st, const Edge& a,
-                                                             const Edge& b, Index body_a,
-                                                             Index body_b, const Vec3& outward_a,
-                                                             const Vec3& outward_b) const {
+std::optional<ContactPoint> NodeFaceContact::edge_edge_point(
+    const State& st, const std::vector<Vec3>& x1, const Edge& a, const Edge& b, Index body_a,
+    Index body_b, const Vec3& outward_a, const Vec3& outward_b) const {
   const std::vector<Vec3>& x0 = st.x;
-  const SegmentPoints cp = closest_points_on_segments(x0[a[0]], x0[a[1]], x0[b[0]], x0[b[1]]);
   ContactPoint c;
-  c.normal = cp.on_a - cp.on_b;
-  c.gap = c.normal.norm();
-  if (!(c.gap > 0.0)) {
-    // Touching: the common perpendicular (for parallel edges, the outward normals' way),
-    // pointing out of B and into A.
-    const Vec3 out = outward_b - outward_a;
-    c.normal = (x0[a[1]] - x0[a[0]]).cross(x0[b[1]] - x0[b[0]]);
-    if (!(c.normal.squaredNorm() > 0.0)) c.normal = out;
-    if (c.normal.dot(out) < 0.0) c.normal = -c.normal;
-    c.gap = 0.0;
+  const std::optional<double> toi = exact_edge_edge_toi(
+      {x0[a[0]], x0[a[1]], x0[b[0]], x0[b[1]], x1[a[0]], x1[a[1]], x1[b[0]], x1[b[1]]});
+  bool placed = false;
+  if (toi && *toi > 0.0) {
+    const double t = *toi;
+    const Vec3 a0 = at(x0, x1, a[0], t), a1 = at(x0, x1, a[1], t), b0 = at(x0, x1, b[0], t),
+               b1 = at(x0, x1, b[1], t);
+    const Vec3 n = (a1 - a0).cross(b1 - b0);
+    if (n.squaredNorm() > 0.0) {
+      const SegmentPoints cp = closest_points_on_segments(a0, a1, b0, b1);
+      c.normal = n.normalized();
+      c.a_w = {1.0 - cp.alpha, cp.alpha, 0, 0};
+      c.b_w = {1.0 - cp.beta, cp.beta, 0, 0};
+      const Vec3 pa = c.a_w[0] * x0[a[0]] + c.a_w[1] * x0[a[1]];
+      const Vec3 pb = c.b_w[0] * x0[b[0]] + c.b_w[1] * x0[b[1]];
+      c.gap = c.normal.dot(pa - pb);
+      if (c.gap < 0.0 || (c.gap == 0.0 && c.normal.dot(outward_b - outward_a) < 0.0))
+        c.normal = -c.normal, c.gap = -c.gap;
+      placed = true;
+    }
   }
-  if (!(c.normal.squaredNorm() > 0.0)) return std::nullopt;
-  c.normal.normalize();
+  if (!placed) {
+    const SegmentPoints cp = closest_points_on_segments(x0[a[0]], x0[a[1]], x0[b[0]], x0[b[1]]);
+    c.normal = cp.on_a - cp.on_b;
+    c.gap = c.normal.norm();
+    if (!(c.gap > 0.0)) {
+      // Touching: the common perpendicular (for parallel edges, the outward normals' way),
+      // pointing out of B and into A.
+      const Vec3 out = outward_b - outward_a;
+      c.normal = (x0[a[1]] - x0[a[0]]).cross(x0[b[1]] - x0[b[0]]);
+      if (!(c.normal.squaredNorm() > 0.0)) c.normal = out;
+      if (c.normal.dot(out) < 0.0) c.normal = -c.normal;
+      c.gap = 0.0;
+    }
+    if (!(c.normal.squaredNorm() > 0.0)) return std::nullopt;
+    c.normal.normalize();
+    c.a_w = {1.0 - cp.alpha, cp.alpha, 0, 0};
+    c.b_w = {1.0 - cp.beta, cp.beta, 0, 0};
+  }
   c.a_nodes = {a[0], a[1], 0, 0};
-  c.a_w = {1.0 - cp.alpha, cp.alpha, 0, 0};
   c.a_count = 2;
   c.b_nodes = {b[0], b[1], 0, 0};
-  c.b_w = {1.0 - cp.beta, cp.beta, 0, 0};
   c.b_count = 2;
-  const std::vector<Vec3>& x1 = st.x_star;
-  c.separation = rounding_margin({&x1[a[0]], &x1[a[1]], &x1[b[0]], &x1[b[1]]});
+  const std::vector<Vec3>& xs = st.x_star;
+  c.separation = rounding_margin({&xs[a[0]], &xs[a[1]], &xs[b[0]], &xs[b[1]]});
   c.standoff = separation_;
   c.restore = true;
   set_friction(c, body_a, body_b);

@@ -281,17 +281,19 @@ void Simulation::verify_stage(const std::vector<ContactList>& lists, int passes)
       const auto& k = p.nodes;
       if (!rescued.insert({p.edge_edge, k[0], k[1], k[2], k[3]}).second) continue;
       const std::optional<ContactPoint> c =
-          p.edge_edge
-              ? contact_->edge_edge_point(st, {k[0], k[1]}, {k[2], k[3]}, p.body_a, p.body_b,
-                                          p.outward_a, p.outward_b)
-              : contact_->vertex_face_point(st, k[0], {k[1], k[2], k[3]}, p.body_a, p.body_b);
+          p.edge_edge ? contact_->edge_edge_point(st, x_end_, {k[0], k[1]}, {k[2], k[3]}, p.body_a,
+                                                  p.body_b, p.outward_a, p.outward_b)
+                      : contact_->vertex_face_point(st, x_end_, k[0], {k[1], k[2], k[3]}, p.body_a,
+                                                    p.body_b);
       if (c) contacts_.push_back(*c), ++ct.rescue_points;
     }
     const Islands failing = islands_with(lists, contact_islands(lists, n, island_slot_), marked_);
     if (failing.count() == 0) break;  // no contact point moves them: only zones can
     correct_in_islands(lists, failing, passes << extra, st);
     ++ct.extra_rounds;
+    const std::size_t before = v.failed.size();
     verify_again();
+    if (v.failed.size() >= before) break;  // no progress: the passes stall, zones take over
   }
   if (v.failed.empty()) return;
   ct.failed_after_extra += static_cast<long>(v.failed.size());

@@ -6,7 +6,9 @@
 // outward). The step [0, 1] is cut into time intervals T, on which each polynomial is enclosed
 // by its centred form (Taylor coefficients at T's middle), so that
 //   - T is dropped when the determinant is nonzero on all of T, or the inside test fails at
-//     every time of T;
+//     every time of T (by its orientations, or, where those are too close to 0 to sign, as for
+//     nearly parallel coplanar edges, by a separating axis: the primitives' projections on a
+//     direction, enclosed over T, are disjoint);
 //   - a collision is certain when the determinant has opposite strict signs at T's ends (a root
 //     inside, by continuity) and the inside test holds strictly at every time of T;
 //   - otherwise T is split in two (off-centre, 15/32 : 17/32, so that roots at 1/2, 1/4, …

@@ -53,20 +53,24 @@ class NodeFaceContact {
   /// The separation contacts aim at beyond the rounding margin (m).
   double separation() const { return separation_; }
 
-  /// A contact point for a pair the step's verification found failing (issue 15): a vertex
-  /// `node` of body `node_body` against the face `face` of body `face_body` (nodes in the
-  /// surface's outward order), or the edge `a` of body `body_a` against the edge `b`. At their
-  /// closest points at xⁿ; the normal from B's point to A's when they are apart there (gap:
-  /// the distance), else the face's outward normal, or for edges their common perpendicular
-  /// oriented against the outward normals of the faces at them (gap 0). Friction as for a
-  /// detected contact of the pair; `restore`, aiming as a detected contact does (the rounding
-  /// margin and the stand-off).
-  /// nullopt when no normal can be found (degenerate primitives touching). `outward_a`,
-  /// `outward_b`: the sums of the outward normals of the faces at each edge.
-  std::optional<ContactPoint> vertex_face_point(const State& st, Index node, const Face& face,
-                                                Index node_body, Index face_body) const;
-  std::optional<ContactPoint> edge_edge_point(const State& st, const Edge& a, const Edge& b,
-                                              Index body_a, Index body_b, const Vec3& outward_a,
+  /// A contact point for a pair the step's verification found failing over the motion
+  /// xⁿ = st.x → `x1` (issue 15): a vertex `node` of body `node_body` against the face `face`
+  /// of body `face_body` (nodes in the surface's outward order), or the edge `a` of body
+  /// `body_a` against the edge `b`. Apart at xⁿ: where they first meet during the motion (the
+  /// exact time of impact t*), the normal the face's or the edges' common perpendicular at t*,
+  /// signed to point from B to A at xⁿ, the gap the distance along it at xⁿ (response/contact.cpp
+  /// says why). Touching at xⁿ: at their closest points at xⁿ, the face's outward normal, or for
+  /// edges their common perpendicular oriented against the outward normals of the faces at them
+  /// (gap 0). Friction as for a detected contact of the pair; `restore`, aiming as a detected
+  /// contact does (the rounding margin and the stand-off). nullopt when no normal can be found
+  /// (degenerate primitives touching). `outward_a`, `outward_b`: the sums of the outward
+  /// normals of the faces at each edge.
+  std::optional<ContactPoint> vertex_face_point(const State& st, const std::vector<Vec3>& x1,
+                                                Index node, const Face& face, Index node_body,
+                                                Index face_body) const;
+  std::optional<ContactPoint> edge_edge_point(const State& st, const std::vector<Vec3>& x1,
+                                              const Edge& a, const Edge& b, Index body_a,
+                                              Index body_b, const Vec3& outward_a,
                                               const Vec3& outward_b) const;
 
  private:
