@@ -99,6 +99,23 @@ struct Poly {
   }
 };
 
+// Sign of p at the dyadic t = k / 2^j without forming the value: by Horner on integers,
+//   2^(j n) p(k / 2^j) = Σ c_i k^i 2^(j (n − i)),  R_n = c_n,  R_i = R_(i+1) k + c_i 2^(j (n − i)),
+// in storage kept per thread (the exact path spends most of its time in these signs; a
+// value built from temporaries allocates at every operation).
+int sign_of(const Poly& p, const Q& t) {
+  if (p.zero()) return 0;
+  thread_local Z r, s;
+  const int n = p.degree();
+  r = p.c[n];
+  for (int i = n - 1; i >= 0; --i) {
+    mpz_mul(r.get_mpz_t(), r.get_mpz_t(), t.k.get_mpz_t());
+    mpz_mul_2exp(s.get_mpz_t(), p.c[i].get_mpz_t(), t.j * static_cast<unsigned long>(n - i));
+    mpz_add(r.get_mpz_t(), r.get_mpz_t(), s.get_mpz_t());
+  }
+  return sgn(r);
+}
+
 Poly operator+(const Poly& a, const Poly& b) {
   std::vector<Z> r(std::max(a.c.size(), b.c.size()));
   for (std::size_t k = 0; k < a.c.size(); ++k) r[k] += a.c[k];
@@ -176,7 +193,7 @@ int sturm_count(const std::vector<Poly>& seq, const Q& lo, const Q& hi) {
   const auto changes = [&](const Q& t) {
     int n = 0, last = 0;
     for (const Poly& p : seq) {
-      const int s = sign(p(t));
+      const int s = sign_of(p, t);
       if (s == 0) continue;
       if (last != 0 && s != last) ++n;
       last = s;
@@ -209,11 +226,11 @@ struct Point {
 // the rational midpoint, the point becomes rational.
 void bisect(Point& pt) {
   const Q mid = midpoint(pt.lo, pt.hi);
-  const int sm = sign(pt.q(mid));
+  const int sm = sign_of(pt.q, mid);
   if (sm == 0) {
     pt.rational = true;
     pt.t = mid;
-  } else if (sm == sign(pt.q(pt.lo))) {
+  } else if (sm == sign_of(pt.q, pt.lo)) {
     pt.lo = mid;
   } else {
     pt.hi = mid;
@@ -231,7 +248,7 @@ Z slope_bound(const Poly& g) {
 // Sign of g at the point, exactly.
 int sign_at(const Poly& g, Point& pt) {
   if (g.zero()) return 0;
-  if (pt.rational) return sign(g(pt.t));
+  if (pt.rational) return sign_of(g, pt.t);
   // Fast path, no gcd or Sturm sequence: on [lo, hi] ⊂ [0, 1], |g(x) − g(lo)| ≤ (hi − lo) L
   // with L = Σ k |c_k| ≥ max |g'|, so |g(lo)| > (hi − lo) L gives the sign. Tried while the
   // root's interval is halved a few times (g not vanishing at the root passes soon).
@@ -241,22 +258,22 @@ int sign_at(const Poly& g, Point& pt) {
     if (abs(glo) > lip * (pt.hi - pt.lo)) return sign(glo);
     bisect(pt);
   }
-  if (pt.rational) return sign(g(pt.t));
+  if (pt.rational) return sign_of(g, pt.t);
   const Poly h = gcd(pt.q, g);
-  if (h.degree() >= 1 && sign(h(pt.lo)) * sign(h(pt.hi)) < 0) return 0;  // shares the root
+  if (h.degree() >= 1 && sign_of(h, pt.lo) * sign_of(h, pt.hi) < 0) return 0;  // shares the root
   const std::vector<Poly> seq = sturm_sequence(g);
   for (;;) {
-    const int a = sign(g(pt.lo)), b = sign(g(pt.hi));
+    const int a = sign_of(g, pt.lo), b = sign_of(g, pt.hi);
     if (a != 0 && a == b && sturm_count(seq, pt.lo, pt.hi) == 0) return a;
     // Bisect, keeping q's sign change.
     const Q mid = midpoint(pt.lo, pt.hi);
-    const int sm = sign(pt.q(mid));
+    const int sm = sign_of(pt.q, mid);
     if (sm == 0) {  // the root itself is rational after all
       pt.rational = true;
       pt.t = mid;
-      return sign(g(mid));
+      return sign_of(g, mid);
     }
-    if (sm == sign(pt.q(pt.lo)))
+    if (sm == sign_of(pt.q, pt.lo))
       pt.lo = mid;
     else
       pt.hi = mid;
@@ -269,7 +286,7 @@ std::vector<Point> roots_in_unit(const Poly& p) {
   if (p.degree() < 1) return out;
   const Poly sf = quotient(p, gcd(p, derivative(p)));  // square-free part
   for (const Q& end : {Q(0), Q(1)})
-    if (sf(end) == 0) out.push_back(Point{true, end, {}, {}, {}});
+    if (sign_of(sf, end) == 0) out.push_back(Point{true, end, {}, {}, {}});
   const std::vector<Poly> seq = sturm_sequence(sf);
   // Isolate the roots in the open interval (0, 1) by bisection on Sturm counts.
   std::vector<std::pair<Q, Q>> todo{{Q(0), Q(1)}};
@@ -277,14 +294,15 @@ std::vector<Point> roots_in_unit(const Poly& p) {
     auto [lo, hi] = todo.back();
     todo.pop_back();
     int n = sturm_count(seq, lo, hi);
-    if (sf(hi) == 0) --n;  // (lo, hi] counted a root at hi: an endpoint, handled apart
+    if (sign_of(sf, hi) == 0) --n;  // (lo, hi] counted a root at hi: an endpoint, handled apart
     if (n <= 0) continue;
-    if (n == 1 && sf(lo) != 0 && sf(hi) != 0 && sign(sf(lo)) != sign(sf(hi))) {
+    const int slo = sign_of(sf, lo), shi = sign_of(sf, hi);
+    if (n == 1 && slo != 0 && shi != 0 && slo != shi) {
       out.push_back(Point{false, {}, sf, lo, hi});
       continue;
     }
     const Q mid = midpoint(lo, hi);
-    if (sf(mid) == 0) out.push_back(Point{true, mid, {}, {}, {}});
+    if (sign_of(sf, mid) == 0) out.push_back(Point{true, mid, {}, {}, {}});
     todo.push_back({lo, mid});
     todo.push_back({mid, hi});
   }
@@ -427,14 +445,14 @@ double exists(const Poly& coplanar, const std::vector<Poly>& polys,
       for (std::size_t n = 0; n < squarefree.size(); ++n) {
         const Poly& g = squarefree[n];
         const Q glo = g(r.lo);
-        if (glo == 0 || g(r.hi) == 0) {
+        if (sign(glo) == 0 || sign_of(g, r.hi) == 0) {
           clean = false;
           break;
         }
         if (abs(glo) > slopes[n] * (r.hi - r.lo)) continue;  // no root of g in it at all
         const int inside = sturm_count(sequences[n], r.lo, r.hi);
         const Poly& h = common[n];
-        const bool shares = h.degree() >= 1 && sign(h(r.lo)) * sign(h(r.hi)) < 0;
+        const bool shares = h.degree() >= 1 && sign_of(h, r.lo) * sign_of(h, r.hi) < 0;
         if (inside > (shares ? 1 : 0)) {
           clean = false;
           break;

@@ -36,7 +36,9 @@ TEST_P(StressFamilyTest, ExactCcdAgreesWithTheConstructedAnswers) {
     const bool hit = s.edge_edge ? exact_edge_edge_ccd(s.q) : exact_vertex_face_ccd(s.q);
     EXPECT_EQ(hit, s.truth) << "query " << i;
     const Certain c = s.edge_edge ? interval_edge_edge_ccd(s.q) : interval_vertex_face_ccd(s.q);
-    if (c != Certain::unknown) EXPECT_EQ(c == Certain::yes, s.truth) << "interval, query " << i;
+    if (c != Certain::unknown) {
+      EXPECT_EQ(c == Certain::yes, s.truth) << "interval, query " << i;
+    }
     truths += s.truth;
     for (const Vec3& p : s.q)
       for (int d = 0; d < 3; ++d)

@@ -54,7 +54,9 @@ TEST(Impulse, ConservesMomentumAndEnforcesTheNormalVelocity) {
                                        c.b_w[2] * st.v_star[3]);
     const double target = c.gap >= 0 ? -c.gap / tau : 0.0;
     EXPECT_GE(v_rel.dot(c.normal), target - 1e-12);  // no interpenetration within the step
-    if (lambda > 0) EXPECT_NEAR(v_rel.dot(c.normal), target, 1e-12);  // and no more push
+    if (lambda > 0) {
+      EXPECT_NEAR(v_rel.dot(c.normal), target, 1e-12);  // and no more push
+    }
     // Already satisfied: nothing more than round-off.
     EXPECT_LE(apply_contact(c, st, tau, ledger), 1e-12 * (1.0 + lambda));
   }
