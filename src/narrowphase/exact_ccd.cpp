@@ -103,9 +103,9 @@ struct Poly {
 //   2^(j n) p(k / 2^j) = Σ c_i k^i 2^(j (n − i)),  R_n = c_n,  R_i = R_(i+1) k + c_i 2^(j (n − i)),
 // in storage kept per thread (the exact path spends most of its time in these signs; a
 // value built from temporaries allocates at every operation).
-int sign_of(const Poly& p, const Q& t) {
-  if (p.zero()) return 0;
-  thread_local Z r, s;
+// 2^(j n) p(k / 2^j) into r (storage kept per thread by the callers).
+void scaled_value(const Poly& p, const Q& t, Z& r) {
+  thread_local Z s;
   const int n = p.degree();
   r = p.c[n];
   for (int i = n - 1; i >= 0; --i) {
@@ -113,6 +113,11 @@ int sign_of(const Poly& p, const Q& t) {
     mpz_mul_2exp(s.get_mpz_t(), p.c[i].get_mpz_t(), t.j * static_cast<unsigned long>(n - i));
     mpz_add(r.get_mpz_t(), r.get_mpz_t(), s.get_mpz_t());
   }
+}
+int sign_of(const Poly& p, const Q& t) {
+  if (p.zero()) return 0;
+  thread_local Z r;
+  scaled_value(p, t, r);
   return sgn(r);
 }
 
@@ -246,37 +251,42 @@ Z slope_bound(const Poly& g) {
 }
 
 // Sign of g at the point, exactly.
+// The sign of g at lo when |g(lo)| > (hi − lo) L, else 0. On integers, with lo = k / 2^j and
+// hi − lo = w / 2^i: |2^(j n) g(lo)| 2^i > L w 2^(j n).
+int lipschitz_sign(const Poly& g, const Z& lip, const Q& lo, const Q& hi) {
+  thread_local Z value, width, left, right;
+  scaled_value(g, lo, value);
+  if (sgn(value) == 0) return 0;
+  const unsigned long i = std::max(lo.j, hi.j);
+  mpz_mul_2exp(width.get_mpz_t(), hi.k.get_mpz_t(), i - hi.j);
+  mpz_mul_2exp(left.get_mpz_t(), lo.k.get_mpz_t(), i - lo.j);
+  mpz_sub(width.get_mpz_t(), width.get_mpz_t(), left.get_mpz_t());
+  mpz_abs(left.get_mpz_t(), value.get_mpz_t());
+  mpz_mul_2exp(left.get_mpz_t(), left.get_mpz_t(), i);
+  mpz_mul(right.get_mpz_t(), lip.get_mpz_t(), width.get_mpz_t());
+  mpz_mul_2exp(right.get_mpz_t(), right.get_mpz_t(), lo.j * static_cast<unsigned long>(g.degree()));
+  return mpz_cmp(left.get_mpz_t(), right.get_mpz_t()) > 0 ? sgn(value) : 0;
+}
+
+// Sign of g at the point, exactly. On [lo, hi] ⊂ [0, 1], |g(x) − g(lo)| ≤ (hi − lo) L with
+// L = Σ k |c_k| ≥ max |g'|, so |g(lo)| > (hi − lo) L gives the sign; the root's interval is
+// halved until it does. That ends unless g vanishes at the root: after a few halvings a gcd
+// with q tells (q is square-free with one root in (lo, hi), so a common factor with a sign
+// change there vanishes at it), and if not, halving goes on until the test decides.
 int sign_at(const Poly& g, Point& pt) {
   if (g.zero()) return 0;
   if (pt.rational) return sign_of(g, pt.t);
-  // Fast path, no gcd or Sturm sequence: on [lo, hi] ⊂ [0, 1], |g(x) − g(lo)| ≤ (hi − lo) L
-  // with L = Σ k |c_k| ≥ max |g'|, so |g(lo)| > (hi − lo) L gives the sign. Tried while the
-  // root's interval is halved a few times (g not vanishing at the root passes soon).
   const Z lip = slope_bound(g);
-  for (int it = 0; it < 12 && !pt.rational; ++it) {
-    const Q glo = g(pt.lo);
-    if (abs(glo) > lip * (pt.hi - pt.lo)) return sign(glo);
-    bisect(pt);
-  }
-  if (pt.rational) return sign_of(g, pt.t);
-  const Poly h = gcd(pt.q, g);
-  if (h.degree() >= 1 && sign_of(h, pt.lo) * sign_of(h, pt.hi) < 0) return 0;  // shares the root
-  const std::vector<Poly> seq = sturm_sequence(g);
-  for (;;) {
-    const int a = sign_of(g, pt.lo), b = sign_of(g, pt.hi);
-    if (a != 0 && a == b && sturm_count(seq, pt.lo, pt.hi) == 0) return a;
-    // Bisect, keeping q's sign change.
-    const Q mid = midpoint(pt.lo, pt.hi);
-    const int sm = sign_of(pt.q, mid);
-    if (sm == 0) {  // the root itself is rational after all
-      pt.rational = true;
-      pt.t = mid;
-      return sign_of(g, mid);
+  bool shared_checked = false;
+  for (int it = 0;; ++it) {
+    if (pt.rational) return sign_of(g, pt.t);
+    if (const int s = lipschitz_sign(g, lip, pt.lo, pt.hi)) return s;
+    if (it >= 24 && !shared_checked) {
+      const Poly h = gcd(pt.q, g);
+      if (h.degree() >= 1 && sign_of(h, pt.lo) * sign_of(h, pt.hi) < 0) return 0;
+      shared_checked = true;
     }
-    if (sm == sign_of(pt.q, pt.lo))
-      pt.lo = mid;
-    else
-      pt.hi = mid;
+    bisect(pt);
   }
 }
 
