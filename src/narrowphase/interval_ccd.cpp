@@ -223,6 +223,9 @@ Certain subdivide(const std::array<Vec3, 8>& q, int o, int i, int j, int k,
       coord[d]->c[1] = Iv{x1, x1} - Iv{x0, x0};
     }
   }
+  // Apart along a direction over the whole step (most pairs of a contact interface: sliding
+  // past each other, often coplanar at some time): no polynomial needed.
+  if (separated_over(p, first_b, 0.0, 1.0)) return Certain::no;
   const IPoly f = dot(p[i] - p[o], cross(p[j] - p[o], p[k] - p[o]));
   Inside inside;
   const auto inside_over = [&](double t0, double t1) {
