@@ -168,6 +168,10 @@ CLI::App* add_profile(CLI::App& app, tc::ProfileOptions& p) {
   cmd->add_option("--margin", p.margin, "frames mode: box inflation, m (default 0)")
       ->check(CLI::NonNegativeNumber);
   cmd->add_flag("--json", p.json, "stdout is one JSON array, an object per method");
+  cmd->add_option("--ccd-queries", p.ccd_queries,
+                  "case mode: write the exact CCD queries of the first method's steps (contact "
+                  "and verification) to FILE, in ccd's format: time them with ccd FILE --fcl")
+      ->excludes(frames);
   add_overrides(cmd, p.overrides);
   return cmd;
 }

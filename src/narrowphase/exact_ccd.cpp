@@ -5,6 +5,7 @@
 #include <gmpxx.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <functional>
 #include <vector>
@@ -629,11 +630,67 @@ std::array<PVec, 4> moving_points(const std::array<Vec3, 8>& q) {
           moving(q[3], q[7], E)};
 }
 
+// No motion (every point where it was: the verification's "touching at the start"): the same
+// predicates at the one time, on the integer coordinates directly, with no polynomial.
+using ZVec = std::array<Z, 3>;
+bool no_motion(const std::array<Vec3, 8>& q) {
+  for (int k = 0; k < 4; ++k)
+    if (q[k] != q[k + 4]) return false;
+  return true;
+}
+std::array<ZVec, 4> static_points(const std::array<Vec3, 8>& q) {
+  const long E = integer_exponent(q);
+  std::array<ZVec, 4> out;
+  for (int k = 0; k < 4; ++k)
+    for (int d = 0; d < 3; ++d) out[k][d] = integer(q[k][d], E);
+  return out;
+}
+ZVec sub(const ZVec& a, const ZVec& b) {
+  return {a[0] - b[0], a[1] - b[1], a[2] - b[2]};
+}
+ZVec cross(const ZVec& a, const ZVec& b) {
+  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+}
+int dot_sign(const ZVec& a, const ZVec& b) {
+  const Z r = a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+  return sgn(r);
+}
+bool is_zero(const ZVec& v) {
+  return v[0] == 0 && v[1] == 0 && v[2] == 0;
+}
+// As on_segment, segments_meet and point_in_triangle above, at one time.
+bool on_segment(const ZVec& p, const ZVec& a, const ZVec& b) {
+  const ZVec ab = sub(b, a), ap = sub(p, a);
+  if (is_zero(ab)) return is_zero(ap);
+  if (!is_zero(cross(ab, ap))) return false;
+  return dot_sign(ap, ab) >= 0 && dot_sign(sub(p, b), sub(a, b)) >= 0;
+}
+bool static_edges_meet(const std::array<Vec3, 8>& q) {
+  const auto [a, b, c, d] = static_points(q);
+  const ZVec u = sub(b, a), v = sub(d, c);
+  if (dot_sign(cross(u, sub(c, a)), sub(d, a)) != 0) return false;  // not coplanar
+  const ZVec m = cross(u, v);
+  if (!is_zero(m))
+    return dot_sign(cross(u, sub(c, a)), m) * dot_sign(cross(u, sub(d, a)), m) <= 0 &&
+           dot_sign(cross(v, sub(a, c)), m) * dot_sign(cross(v, sub(b, c)), m) <= 0;
+  return on_segment(a, c, d) || on_segment(b, c, d) || on_segment(c, a, b) || on_segment(d, a, b);
+}
+bool static_vertex_in_face(const std::array<Vec3, 8>& q) {
+  const auto [p, a, b, c] = static_points(q);
+  const ZVec n = cross(sub(b, a), sub(c, a));
+  if (dot_sign(n, sub(p, a)) != 0) return false;  // not coplanar
+  if (is_zero(n)) return on_segment(p, a, b) || on_segment(p, b, c) || on_segment(p, c, a);
+  return dot_sign(cross(sub(b, a), sub(p, a)), n) >= 0 &&
+         dot_sign(cross(sub(c, b), sub(p, b)), n) >= 0 &&
+         dot_sign(cross(sub(a, c), sub(p, c)), n) >= 0;
+}
+
 double vertex_face_query(const std::array<Vec3, 8>& q, bool earliest, const CcdFilters& use) {
   // det[b − a, c − a, p − a] for q = p, a, b, c.
   const double f =
       filters(q, {0, 1, 1, 1, 0, 1, 1, 1}, {1, 2, 3, 0}, interval_vertex_face_ccd, earliest, use);
   if (!std::isnan(f)) return f;
+  if (no_motion(q)) return static_vertex_in_face(q) ? 0.0 : -1.0;
   const auto [p, a, b, c] = moving_points(q);
   const Poly coplanar = dot(cross(sub(b, a), sub(c, a)), sub(p, a));
   const auto meet = [&](Point& pt) { return point_in_triangle(p, a, b, c, pt); };
@@ -647,6 +704,7 @@ double edge_edge_query(const std::array<Vec3, 8>& q, bool earliest, const CcdFil
   const double f =
       filters(q, {0, 0, 1, 1, 0, 0, 1, 1}, {0, 1, 2, 3}, interval_edge_edge_ccd, earliest, use);
   if (!std::isnan(f)) return f;
+  if (no_motion(q)) return static_edges_meet(q) ? 0.0 : -1.0;
   const auto [a, b, c, d] = moving_points(q);
   const Poly coplanar = dot(cross(sub(b, a), sub(c, a)), sub(d, a));
   const auto meet = [&](Point& pt) { return segments_meet(a, b, c, d, pt); };
@@ -664,10 +722,18 @@ bool exact_vertex_face_ccd(const std::array<Vec3, 8>& q, const CcdFilters& filte
 bool exact_edge_edge_ccd(const std::array<Vec3, 8>& q, const CcdFilters& filters) {
   return edge_edge_query(q, false, filters) >= 0.0;
 }
+namespace {
+std::atomic<CcdObserver> observer{nullptr};
+}  // namespace
+void set_ccd_observer(CcdObserver o) {
+  observer.store(o);
+}
 bool exact_vertex_face_ccd(const std::array<Vec3, 8>& q) {
+  if (const CcdObserver o = observer.load(std::memory_order_relaxed)) o(false, q);
   return exact_vertex_face_ccd(q, CcdFilters{});
 }
 bool exact_edge_edge_ccd(const std::array<Vec3, 8>& q) {
+  if (const CcdObserver o = observer.load(std::memory_order_relaxed)) o(true, q);
   return exact_edge_edge_ccd(q, CcdFilters{});
 }
 std::optional<double> exact_vertex_face_toi(const std::array<Vec3, 8>& q) {

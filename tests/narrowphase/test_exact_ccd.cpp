@@ -222,3 +222,77 @@ TEST(ExactCcd, CliPrintsTimeOfImpactAndRejectsBadLines) {
   EXPECT_EQ(r.code, 2);
   EXPECT_NE(r.err.find("q.txt:1: expected 24 coordinates"), std::string::npos) << r.err;
 }
+
+namespace {
+
+// 2-D predicates on small integers, written apart from the exact CCD: orientation of (a, b, p),
+// p on the closed segment [a, b], closed segments meeting, p in the closed triangle.
+using P2 = std::array<long long, 2>;
+long long orient(const P2& a, const P2& b, const P2& p) {
+  return (b[0] - a[0]) * (p[1] - a[1]) - (b[1] - a[1]) * (p[0] - a[0]);
+}
+bool on_segment_2d(const P2& p, const P2& a, const P2& b) {
+  return orient(a, b, p) == 0 && std::min(a[0], b[0]) <= p[0] && p[0] <= std::max(a[0], b[0]) &&
+         std::min(a[1], b[1]) <= p[1] && p[1] <= std::max(a[1], b[1]);
+}
+bool segments_meet_2d(const P2& a, const P2& b, const P2& c, const P2& d) {
+  const long long o1 = orient(a, b, c), o2 = orient(a, b, d), o3 = orient(c, d, a),
+                  o4 = orient(c, d, b);
+  const auto sg = [](long long x) { return (x > 0) - (x < 0); };
+  if (sg(o1) * sg(o2) < 0 && sg(o3) * sg(o4) < 0) return true;
+  return on_segment_2d(c, a, b) || on_segment_2d(d, a, b) || on_segment_2d(a, c, d) ||
+         on_segment_2d(b, c, d);
+}
+bool in_triangle_2d(const P2& p, const P2& a, const P2& b, const P2& c) {
+  const long long area = orient(a, b, c);
+  if (area == 0) return on_segment_2d(p, a, b) || on_segment_2d(p, b, c) || on_segment_2d(p, c, a);
+  const long long s = area > 0 ? 1 : -1;
+  return s * orient(a, b, p) >= 0 && s * orient(b, c, p) >= 0 && s * orient(c, a, p) >= 0;
+}
+
+}  // namespace
+
+// Queries with no motion (the verification's "touching at the start") take their own exact
+// path. Points on a 4 × 4 grid of one plane (collinear, touching, overlapping and shared points
+// common), placed by exact maps (axis permutation and signs, integer offset, scale 2^e): the
+// answer of the 2-D integer predicates above; and the same query moved by a common exact
+// translation, which keeps every relation and goes through the general path.
+TEST(ExactCcd, QueriesWithoutMotionMatchTwoDimensionalPredicatesAndTranslatedMotions) {
+  std::mt19937_64 rng(17);
+  std::uniform_int_distribution<int> grid(0, 3), offset(-1000, 1000), scale(-30, 30), coin(0, 1);
+  long hits[2] = {0, 0}, total[2] = {0, 0};
+  for (int n = 0; n < 4000; ++n) {
+    const bool ee = n % 2 == 0;
+    std::array<P2, 4> p2;
+    for (P2& p : p2) p = {grid(rng), grid(rng)};
+    const bool truth = ee ? segments_meet_2d(p2[0], p2[1], p2[2], p2[3])
+                          : in_triangle_2d(p2[0], p2[1], p2[2], p2[3]);
+    std::array<int, 3> axis{0, 1, 2};
+    std::shuffle(axis.begin(), axis.end(), rng);
+    const Vec3 shift(offset(rng), offset(rng), offset(rng));
+    const double s = std::ldexp(1.0, scale(rng));
+    const double sign[3] = {coin(rng) ? 1.0 : -1.0, coin(rng) ? 1.0 : -1.0, coin(rng) ? 1.0 : -1.0};
+    std::array<Vec3, 8> q, moved;
+    const Vec3 step(offset(rng), offset(rng), offset(rng));  // the common translation
+    for (int k = 0; k < 4; ++k) {
+      Vec3 x;
+      x[axis[0]] = sign[0] * p2[k][0];
+      x[axis[1]] = sign[1] * p2[k][1];
+      x[axis[2]] = sign[2] * 7.0;  // the plane
+      q[k] = q[k + 4] = s * (x + shift);
+      moved[k] = q[k];
+      moved[k + 4] = s * (x + shift + step);
+    }
+    const bool fast = ee ? exact_edge_edge_ccd(q) : exact_vertex_face_ccd(q);
+    const bool general = ee ? exact_edge_edge_ccd(moved) : exact_vertex_face_ccd(moved);
+    EXPECT_EQ(fast, truth) << "query " << n;
+    EXPECT_EQ(general, truth) << "translated query " << n;
+    hits[ee] += truth;
+    ++total[ee];
+  }
+  // Both answers are common: the set tests something.
+  for (int ee = 0; ee < 2; ++ee) {
+    EXPECT_GT(hits[ee], total[ee] / 10);
+    EXPECT_LT(hits[ee], total[ee] * 9 / 10);
+  }
+}

@@ -13,6 +13,9 @@ struct ProfileOptions {
   double margin = 0.0;  // frames mode
   long steps = 100;     // case mode: steps per method (the whole case when shorter)
   bool json = false;
+  /// case mode: write the exact CCD queries the first method's steps asked (contact detection
+  /// and verification) to this file, in `ccd`'s format (time them with `ccd FILE --fcl`).
+  std::string ccd_queries;
   std::vector<std::string> overrides;
 };
 

@@ -42,6 +42,12 @@ struct CcdFilters {
 bool exact_vertex_face_ccd(const std::array<Vec3, 8>& q, const CcdFilters& filters);
 bool exact_edge_edge_ccd(const std::array<Vec3, 8>& q, const CcdFilters& filters);
 
+/// An observer of the yes/no queries above (the two-argument-free entry points, which contact
+/// detection and the step's verification call), for `profile --ccd-queries`: called with each
+/// query, from any thread, before it is answered. nullptr (the default): none.
+using CcdObserver = void (*)(bool edge_edge, const std::array<Vec3, 8>& q);
+void set_ccd_observer(CcdObserver observer);
+
 /// Earliest time of impact in [0, 1], or none. The time is exact up to its rounding to a
 /// double: an irrational root is returned as the lower end of an isolating interval whose ends
 /// round to the same double, a rational one as its nearest double toward zero.
