@@ -34,6 +34,11 @@ Iv operator*(Iv a, Iv b) {
   return {down(std::min(std::min(p, q), std::min(r, s))),
           up(std::max(std::max(p, q), std::max(r, s)))};
 }
+// The double t times an interval (two products instead of four).
+Iv scaled(double t, Iv a) {
+  const double p = t * a.lo, q = t * a.hi;
+  return {down(std::min(p, q)), up(std::max(p, q))};
+}
 bool positive(Iv a) {
   return a.lo > 0.0;
 }
@@ -83,7 +88,7 @@ IPoly operator*(const IPoly& a, const IPoly& b) {  // degrees must add up to ≤
 // Value at the double t (an interval holding the exact value).
 Iv at(const IPoly& p, double t) {
   Iv r{0.0, 0.0};
-  for (int k = p.n; k-- > 0;) r = r * Iv{t, t} + p.c[k];
+  for (int k = p.n; k-- > 0;) r = scaled(t, r) + p.c[k];
   return r;
 }
 // An interval holding p(t) for every t in [t0, t1]: the centred form about m = (t0 + t1)/2,
@@ -95,7 +100,7 @@ Iv over(const IPoly& p, double t0, double t1) {
   const double r = up(std::max(t1 - m, m - t0));
   std::array<Iv, 5> g = p.c;
   for (int i = 0; i + 1 < p.n; ++i)
-    for (int k = p.n - 2; k >= i; --k) g[k] = g[k] + Iv{m, m} * g[k + 1];
+    for (int k = p.n - 2; k >= i; --k) g[k] = g[k] + scaled(m, g[k + 1]);
   double spread = 0.0, rk = 1.0;
   for (int k = 1; k < p.n; ++k) {
     rk = up(rk * r);
@@ -180,7 +185,7 @@ bool separated_over(const Points& p, int first_b, double t0, double t1) {
     double lo[2] = {1e308, 1e308}, hi[2] = {-1e308, -1e308};
     for (int n = 0; n < 4; ++n) {
       Iv x{0.0, 0.0};
-      for (int d = 0; d < 3; ++d) x = x + box[n][d] * Iv{s[d], s[d]};
+      for (int d = 0; d < 3; ++d) x = x + scaled(s[d], box[n][d]);
       const int side = n < first_b ? 0 : 1;
       lo[side] = std::min(lo[side], x.lo);
       hi[side] = std::max(hi[side], x.hi);
