@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "tetcontact/app/ccd.hpp"
+#include "tetcontact/app/partition.hpp"
 #include "tetcontact/app/profile.hpp"
 #include "tetcontact/app/run.hpp"
 #include "tetcontact/app/stress.hpp"
@@ -176,6 +177,21 @@ CLI::App* add_profile(CLI::App& app, tc::ProfileOptions& p) {
   return cmd;
 }
 
+CLI::App* add_partition(CLI::App& app, tc::PartitionOptions& p) {
+  CLI::App* cmd = app.add_subcommand(
+      "partition",
+      "the decomposition a distributed run uses: pieces per rank, shared and ghost "
+      "nodes, imbalance (METIS)");
+  cmd->add_option("case", p.case_path, "the case file")->required();
+  cmd->add_option("--ranks", p.ranks, "pieces (default 2)")->check(CLI::PositiveNumber);
+  cmd->add_flag("--tets-only", p.tets_only,
+                "balance the tets alone (default: tets and boundary faces, the contact work)");
+  cmd->add_flag("--json", p.json, "stdout is one JSON object");
+  add_overrides(cmd, p.overrides);
+  cmd->footer("Exit codes: 0, 2 bad input (the case, or more ranks than tets).");
+  return cmd;
+}
+
 // --threads N: the case's solver.threads, for this command (wins over --set solver.threads).
 void add_threads(CLI::App* cmd, int& threads) {
   cmd->add_option("--threads", threads,
@@ -214,12 +230,14 @@ int main(int argc, char** argv) {
   tc::StressOptions stress;
   tc::SweepOptions sweep;
   tc::ProfileOptions profile;
+  tc::PartitionOptions partition;
   CLI::App* run_cmd = add_run(app, run);
   CLI::App* check_cmd = add_check(app, check);
   CLI::App* ccd_cmd = add_ccd(app, ccd);
   CLI::App* stress_cmd = add_stress(app, stress);
   CLI::App* sweep_cmd = add_sweep(app, sweep);
   CLI::App* profile_cmd = add_profile(app, profile);
+  CLI::App* partition_cmd = add_partition(app, partition);
   int run_threads = 0, sweep_threads = 0, profile_threads = 0;
   add_threads(run_cmd, run_threads);
   add_threads(sweep_cmd, sweep_threads);
@@ -243,5 +261,6 @@ int main(int argc, char** argv) {
   if (stress_cmd->parsed()) return guarded([&] { return tc::stress_command(stress); }, k_bad_usage);
   if (sweep_cmd->parsed()) return guarded([&] { return tc::sweep_command(sweep); });
   if (profile_cmd->parsed()) return guarded([&] { return tc::profile_command(profile); });
+  if (partition_cmd->parsed()) return guarded([&] { return tc::partition_command(partition); });
   return k_bad_usage;
 }
