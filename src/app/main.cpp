@@ -5,6 +5,7 @@
 // or bad input (nothing written).
 #include <CLI/CLI.hpp>
 
+#include <cstdlib>
 #include <exception>
 #include <iostream>
 #include <string>
@@ -250,6 +251,15 @@ int main(int argc, char** argv) {
     const int code = app.exit(e);  // help and version print and give 0
     return code == 0 ? 0 : k_bad_usage;
   }
+  // Started as one of several processes (mpirun -np N, srun): every copy would run the whole
+  // case into the same folder. Until distributed runs exist (issue 16), say so and stop.
+  for (const char* var : {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE", "PMIX_SIZE"})
+    if (const char* size = std::getenv(var); size && std::atoi(size) > 1) {
+      std::cerr << "tetcontact: error: started as one of " << size << " processes (" << var
+                << "): distributed runs are not implemented yet (issue 16); run one process, "
+                   "with --threads N for the cores of a machine\n";
+      return k_bad_usage;
+    }
   apply_threads(run_threads, run.overrides);
   apply_threads(sweep_threads, sweep.overrides);
   apply_threads(profile_threads, profile.overrides);
