@@ -275,6 +275,7 @@ void Simulation::verify_stage(const std::vector<ContactList>& lists, int passes)
   // slowly on large coupled islands; only the failing islands pay).
   marked_.assign(n, 0);
   std::set<std::array<Index, 5>> rescued;  // (edge–edge, the pair's four nodes)
+  int stalled = 0;
   for (int extra = 0; extra < k_extra_rounds && !v.failed.empty(); ++extra) {
     for (const FailedPair& p : v.failed) {
       for (int k = 0; k < p.count; ++k) marked_[p.nodes[k]] = 1;
@@ -293,7 +294,9 @@ void Simulation::verify_stage(const std::vector<ContactList>& lists, int passes)
     ++ct.extra_rounds;
     const std::size_t before = v.failed.size();
     verify_again();
-    if (v.failed.size() >= before) break;  // no progress: the passes stall, zones take over
+    // Two rounds in a row that do not lower the failing pairs: the passes stall, zones take over.
+    stalled = v.failed.size() >= before ? stalled + 1 : 0;
+    if (stalled == 2) break;
   }
   if (v.failed.empty()) return;
   ct.failed_after_extra += static_cast<long>(v.failed.size());
