@@ -294,9 +294,11 @@ void Simulation::verify_stage(const std::vector<ContactList>& lists, int passes)
     ++ct.extra_rounds;
     const std::size_t before = v.failed.size();
     verify_again();
-    // Two rounds in a row that do not lower the failing pairs: the passes stall, zones take over.
+    // Three rounds in a row that do not lower the failing pairs: the passes stall, zones take
+    // over (after one such round the coarse Taylor rods had zones on 81 steps, after two on 19
+    // and the full rods missed their radius by 2.6 %, after three on 6, and the full rods pass).
     stalled = v.failed.size() >= before ? stalled + 1 : 0;
-    if (stalled == 2) break;
+    if (stalled == 3) break;
   }
   if (v.failed.empty()) return;
   ct.failed_after_extra += static_cast<long>(v.failed.size());
