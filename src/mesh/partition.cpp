@@ -24,15 +24,14 @@ double imbalance(const std::vector<long>& work) {
   return static_cast<double>(most) * static_cast<double>(work.size()) / static_cast<double>(total);
 }
 
-}  // namespace
-
-Partition describe_partition(const Mesh& mesh, const std::vector<Surface>& surfaces, int ranks,
-                             std::vector<int> tet_rank) {
+// The per-rank counts, shared and ghost nodes, cut and imbalances of an assignment of tets to
+// ranks (`faces`: boundary faces per tet; `across`: the tet across each face).
+Partition describe(const Mesh& mesh, const std::vector<long>& faces, const TetNeighbours& across,
+                   int ranks, std::vector<int> tet_rank) {
   Partition p;
   p.ranks = ranks;
   p.tet_rank = std::move(tet_rank);
   p.pieces.assign(ranks, RankPiece{});
-  const std::vector<long> faces = faces_per_tet(mesh, surfaces);
   // Tets grouped by rank (counting sort, tet order kept within a rank).
   std::vector<std::size_t> begin(ranks + 1, 0), order(mesh.tets.size());
   for (const int r : p.tet_rank) ++begin[r + 1];
@@ -65,7 +64,6 @@ Partition describe_partition(const Mesh& mesh, const std::vector<Surface>& surfa
         p.pieces[r].shared_nodes += holders[v] > 1;
         p.pieces[r].ghost_nodes += p.node_owner[v] < r;
       }
-  const TetNeighbours across = tet_neighbours(mesh);
   for (std::size_t t = 0; t < across.size(); ++t)
     for (const Index u : across[t])
       p.cut_faces += u > static_cast<Index>(t) && p.tet_rank[u] != p.tet_rank[t];
@@ -77,6 +75,8 @@ Partition describe_partition(const Mesh& mesh, const std::vector<Surface>& surfa
   return p;
 }
 
+}  // namespace
+
 Partition partition_mesh(const Mesh& mesh, const std::vector<Surface>& surfaces,
                          const PartitionSettings& settings) {
   const int ranks = settings.ranks;
@@ -85,9 +85,10 @@ Partition partition_mesh(const Mesh& mesh, const std::vector<Surface>& surfaces,
   if (ranks > tets)
     throw PartitionError("cannot cut " + std::to_string(tets) + " tets into " +
                          std::to_string(ranks) + " pieces");
-  if (ranks == 1) return describe_partition(mesh, surfaces, 1, std::vector<int>(tets, 0));
-  // The element graph in CSR form: tets joined across shared faces.
   const TetNeighbours across = tet_neighbours(mesh);
+  const std::vector<long> faces = faces_per_tet(mesh, surfaces);
+  if (ranks == 1) return describe(mesh, faces, across, 1, std::vector<int>(tets, 0));
+  // The element graph in CSR form: tets joined across shared faces.
   std::vector<idx_t> xadj{0}, adjncy;
   adjncy.reserve(4 * mesh.tets.size() + 1);  // never null, even with no shared face
   for (const auto& nb : across) {
@@ -96,7 +97,6 @@ Partition partition_mesh(const Mesh& mesh, const std::vector<Surface>& surfaces,
     xadj.push_back(static_cast<idx_t>(adjncy.size()));
   }
   // Two constraints a tet: element work 1, contact work its boundary faces.
-  const std::vector<long> faces = faces_per_tet(mesh, surfaces);
   long total_faces = 0;
   for (const long f : faces) total_faces += f;
   idx_t ncon = settings.balance_contact && total_faces > 0 ? 2 : 1;
@@ -118,7 +118,7 @@ Partition partition_mesh(const Mesh& mesh, const std::vector<Surface>& surfaces,
   if (status != METIS_OK)
     throw PartitionError("METIS could not cut the mesh into " + std::to_string(ranks) +
                          " pieces (status " + std::to_string(status) + ")");
-  return describe_partition(mesh, surfaces, ranks, std::vector<int>(part.begin(), part.end()));
+  return describe(mesh, faces, across, ranks, std::vector<int>(part.begin(), part.end()));
 }
 
 }  // namespace tc

@@ -59,9 +59,4 @@ struct PartitionError : std::runtime_error {
 Partition partition_mesh(const Mesh& mesh, const std::vector<Surface>& surfaces,
                          const PartitionSettings& settings);
 
-/// The per-rank counts, shared and ghost nodes, cut and imbalances of a given assignment of
-/// tets to ranks (what partition_mesh reports; also the tests' recount).
-Partition describe_partition(const Mesh& mesh, const std::vector<Surface>& surfaces, int ranks,
-                             std::vector<int> tet_rank);
-
 }  // namespace tc
