@@ -106,19 +106,22 @@ def stability(binary, work):
 
 def micro(binary):
     res = {}
-    for label, extra in (("on", []), ("off", ["--set", "contact.enabled=false"])):
+    for label, extra in (("on", []), ("verify", ["--set", "contact.verify=true"]),
+                         ("off", ["--set", "contact.enabled=false"])):
         r = subprocess.run([binary, "stress", "--count", "10", "--json"] + extra,
                            capture_output=True, text=True)
         res[label] = {s["name"]: s for s in json.loads(r.stdout)["scenes"]}
     print("| micro-scene | steps | pass | momentum error | energy balance | max depth / h "
-          "(bound) | nodes inside | edge crossings | contact off: depth / h, pass |")
-    print("|---|---|---|---|---|---|---|---|---|")
+          "(bound) | nodes inside | edge crossings | `contact.verify` on: nodes inside / crossings, "
+          "pass | contact off: depth / h, pass |")
+    print("|---|---|---|---|---|---|---|---|---|---|")
     for name, s in res["on"].items():
         b = next((e["bound"] for e in s["expect"] if e["name"] == "max_depth_over_h"), None)
-        o = res["off"][name]
+        o, v = res["off"][name], res["verify"][name]
         print(f"| {name} | {s['steps']} | {'yes' if s['pass'] else 'NO'} | "
               f"{g(s['momentum_error'])} | {g(s['balance_error'])} | "
               f"{g(s['max_depth_over_h'])} ({g(b)}) | {s['nodes_inside']} | {s['crossings']} | "
+              f"{v['nodes_inside']} / {v['crossings']}, {'yes' if v['pass'] else 'NO'} | "
               f"{g(o['max_depth_over_h'])}, {'yes' if o['pass'] else 'no'} |")
 
 
