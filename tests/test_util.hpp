@@ -10,6 +10,7 @@
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -84,6 +85,24 @@ inline CliResult run_cli(const std::string& args, const std::string& scratch) {
   std::filesystem::remove(out);
   std::filesystem::remove(err);
   return r;
+}
+
+/// history.csv without its wall-clock columns (seconds_*).
+inline std::string history_without_timings(const std::filesystem::path& file) {
+  std::istringstream in(read_text(file.string()));
+  std::string line, out;
+  std::vector<bool> keep;
+  while (std::getline(in, line)) {
+    std::vector<std::string> cells;
+    std::stringstream ls(line);
+    for (std::string c; std::getline(ls, c, ',');) cells.push_back(c);
+    if (keep.empty())
+      for (const std::string& c : cells) keep.push_back(c.rfind("seconds_", 0) != 0);
+    for (std::size_t i = 0; i < cells.size() && i < keep.size(); ++i)
+      if (keep[i]) out += cells[i] + ",";
+    out += "\n";
+  }
+  return out;
 }
 
 }  // namespace tc::test

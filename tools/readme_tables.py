@@ -12,6 +12,9 @@ never retyped).
     tools/readme_tables.py threads BINARY [--cases NAME...] the thread-scaling table: bars,
                                                             cylinders (edge–edge on), Hertz and
                                                             ball-plate in full on 1 and 2 threads
+    tools/readme_tables.py mpi BINARY                       distributed runs: each case as one
+                                                            process (1 and 2 threads) and under
+                                                            mpirun on 2 ranks of 1 thread
 
 `stability` runs every case of data/cases/stability/ twice, as shipped (`--check`) and with
 contact switched off, and prints one markdown row per case from the two summary.json files:
@@ -185,6 +188,43 @@ def threads(binary, work, only):
               f"{stage_shares(two)} |", flush=True)
 
 
+MPI_CASES = [
+    ("Taylor rod on a wall (ANP)", "data/cases/taylor-copper.yaml", ["end_time=20.0e-6"]),
+    ("bars", "data/cases/bars-impact.yaml", []),
+    ("cylinders, edge–edge on, coarse", "data/cases/cylinders.yaml",
+     ["bodies.0.mesh.cylinder.cells_across=8", "bodies.0.mesh.cylinder.cells_axial=8",
+      "bodies.1.mesh.cylinder.cells_across=4", "bodies.1.mesh.cylinder.cells_axial=4"]),
+]
+
+
+def mpi(binary, work):
+    """Each case as one process on 1 and 2 threads and on 2 ranks of 1 thread (mpirun): wall
+    time, the element stage, the seconds in collectives; the results must be the same."""
+    print("| case | tets | steps | 1 process, 1 thread | 1 process, 2 threads | 2 ranks × 1 thread "
+          "| elements: 1 thread / 2 ranks | communication (2 ranks) | same result |")
+    print("|---|---|---|---|---|---|---|---|---|")
+    for name, case, sets in MPI_CASES:
+        runs = {}
+        for label, launcher, threads in (("1x1", [], 1), ("1x2", [], 2),
+                                         ("2x1", ["mpirun", "--allow-run-as-root",
+                                                  "--oversubscribe", "-np", "2"], 1)):
+            out = os.path.join(work, f"{os.path.basename(case)}-{label}")
+            cmd = launcher + [binary, "run", os.path.join(ROOT, case), "--quiet", "--force",
+                              "--threads", str(threads), "--out", out]
+            for kv in sets:
+                cmd += ["--set", kv]
+            subprocess.run(cmd, check=True)
+            with open(os.path.join(out, "summary.json")) as f:
+                runs[label] = json.load(f)
+        a, b, c = runs["1x1"], runs["1x2"], runs["2x1"]
+        same = all(a[k] == c[k] for k in ("steps", "energy", "momentum", "bodies", "contact"))
+        print(f"| {name} | {a['mesh']['tets']:,} | {a['steps']:,} | {a['wall_seconds']:.1f} s | "
+              f"{b['wall_seconds']:.1f} s | {c['wall_seconds']:.1f} s | "
+              f"{a['timings']['elements']:.1f} s / {c['timings']['elements']:.1f} s | "
+              f"{c['parallel']['communication_seconds']:.2f} s | {'yes' if same else 'NO'} |",
+              flush=True)
+
+
 VERIFY_ROWS = [  # (what, case, --set values)
     ("cubes-edge, every step", "data/cases/cubes-edge.yaml",
      ["contact.verify=true", "diagnostics.every_step=true"]),
@@ -287,7 +327,8 @@ def verify(binary, work):
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawTextHelpFormatter)
     ap.add_argument("table",
-                    choices=["stability", "micro", "profile", "threads", "verify", "verify-full"])
+                    choices=["stability", "micro", "profile", "threads", "verify", "verify-full",
+                             "mpi"])
     ap.add_argument("binary")
     ap.add_argument("--work", help="keep the runs here (default: a temporary folder)")
     ap.add_argument("--cases", nargs="*", help="threads: only the cases whose file names "
@@ -303,6 +344,8 @@ def main():
         verify_full(os.path.abspath(a.binary), a.work or tempfile.mkdtemp(prefix="verify-full-"))
     elif a.table == "threads":
         threads(os.path.abspath(a.binary), a.work or tempfile.mkdtemp(prefix="threads-"), a.cases)
+    elif a.table == "mpi":
+        mpi(os.path.abspath(a.binary), a.work or tempfile.mkdtemp(prefix="mpi-"))
     else:
         profile(os.path.abspath(a.binary))
 

@@ -3,8 +3,10 @@
 //
 // Exit codes: 0 success, 1 run failure (summary.json says why) or a missed check, 2 bad usage
 // or bad input (nothing written).
+#include <unistd.h>
 #include <CLI/CLI.hpp>
 
+#include <cstdio>
 #include <cstdlib>
 #include <exception>
 #include <iostream>
@@ -17,6 +19,7 @@
 #include "tetcontact/app/run.hpp"
 #include "tetcontact/app/stress.hpp"
 #include "tetcontact/app/sweep.hpp"
+#include "tetcontact/parallel/mpi.hpp"
 #include "tetcontact/parallel/parallel.hpp"
 
 namespace {
@@ -211,15 +214,41 @@ int guarded(F&& command, int on_error = 1) {
   try {
     return command();
   } catch (const std::exception& e) {
-    std::cerr << "tetcontact: " << (on_error == k_bad_usage ? "error: " : "internal error: ")
-              << e.what() << "\n";
+    // stdio, not std::cerr: the other ranks' std::cerr is silenced, not their errors.
+    std::fprintf(stderr, "tetcontact: %s%s\n",
+                 on_error == k_bad_usage ? "error: " : "internal error: ", e.what());
+    if (tc::mpi::ranks() > 1) {
+      // An error the ranks did not meet together (they meet the case's, the run's and the
+      // elements' together): the others cannot go on without this one.
+      std::fflush(nullptr);
+      tc::mpi::abort(on_error);
+    }
     return on_error;
   }
 }
 
+int tetcontact_main(int argc, char** argv);
+
 }  // namespace
 
+// In a distributed run (mpirun -np N) every process runs the command and meets the same
+// input errors and run failures; rank 0 alone speaks and writes, the others' output is
+// discarded (their unexpected errors still reach stderr: tc::mpi::abort follows them).
 int main(int argc, char** argv) {
+  tc::mpi::init(&argc, &argv);
+  if (tc::mpi::rank() != 0) {
+    if (!std::freopen("/dev/null", "w", stdout)) return 1;
+    std::cerr.rdbuf(nullptr);  // what rank 0 says too; errors of its own go through stdio
+  }
+  const int code = tetcontact_main(argc, argv);
+  std::fflush(nullptr);
+  tc::mpi::finalize();
+  return code;
+}
+
+namespace {
+
+int tetcontact_main(int argc, char** argv) {
   CLI::App app{"tetcontact: explicit contact–impact solver for tetrahedral meshes", "tetcontact"};
   app.set_version_flag("--version", std::string("tetcontact ") + TETCONTACT_VERSION);
   app.require_subcommand(1);
@@ -251,15 +280,15 @@ int main(int argc, char** argv) {
     const int code = app.exit(e);  // help and version print and give 0
     return code == 0 ? 0 : k_bad_usage;
   }
-  // Started as one of several processes (mpirun -np N, srun): every copy would run the whole
-  // case into the same folder. Until distributed runs exist (issue 16), say so and stop.
-  for (const char* var : {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE", "PMIX_SIZE"})
-    if (const char* size = std::getenv(var); size && std::atoi(size) > 1) {
-      std::cerr << "tetcontact: error: started as one of " << size << " processes (" << var
-                << "): distributed runs are not implemented yet (issue 16); run one process, "
-                   "with --threads N for the cores of a machine\n";
-      return k_bad_usage;
-    }
+  // Started as one of several processes (mpirun -np N, srun): only `run` is distributed;
+  // every copy of another command would do the whole of it.
+  if (tc::mpi::ranks() > 1 && !run_cmd->parsed()) {
+    if (tc::mpi::rank() == 0)
+      std::cerr << "tetcontact: error: started as one of " << tc::mpi::ranks()
+                << " processes: only `run` runs distributed (issue 16); run this command as one "
+                   "process, with --threads N for the cores of a machine\n";
+    return k_bad_usage;
+  }
   apply_threads(run_threads, run.overrides);
   apply_threads(sweep_threads, sweep.overrides);
   apply_threads(profile_threads, profile.overrides);
@@ -274,3 +303,5 @@ int main(int argc, char** argv) {
   if (partition_cmd->parsed()) return guarded([&] { return tc::partition_command(partition); });
   return k_bad_usage;
 }
+
+}  // namespace

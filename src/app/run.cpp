@@ -18,6 +18,7 @@
 #include "tetcontact/io/json.hpp"
 #include "tetcontact/io/output.hpp"
 #include "tetcontact/mesh/gmsh.hpp"
+#include "tetcontact/parallel/mpi.hpp"
 #include "tetcontact/parallel/parallel.hpp"
 #include "tetcontact/solver/simulation.hpp"
 
@@ -383,6 +384,47 @@ int with_bad_input_guard(F&& body) {
   return 2;
 }
 
+// The processes and threads of the run, and the decomposition of a distributed one.
+Json parallel_json(const Simulation& sim, double communication) {
+  const Partition& p = sim.partition();
+  Json j = Json::object();
+  j["ranks"] = p.ranks;
+  j["threads"] = parallel::threads();
+  // Issue 16's first increment: every rank holds the whole state and repeats all but the
+  // element stage, whose tets are cut between the ranks.
+  j["distributed"] = p.ranks > 1 ? Json("element stage; state replicated on every rank") : Json();
+  if (p.ranks > 1) {
+    Json part = Json::object();
+    Json tets = Json::array(), faces = Json::array(), nodes = Json::array(), shared = Json::array(),
+         ghosts = Json::array();
+    for (const RankPiece& r : p.pieces) {
+      tets.push_back(r.tets);
+      faces.push_back(r.boundary_faces);
+      nodes.push_back(r.nodes);
+      shared.push_back(r.shared_nodes);
+      ghosts.push_back(r.ghost_nodes);
+    }
+    part["tets"] = tets;
+    part["boundary_faces"] = faces;
+    part["nodes"] = nodes;
+    part["shared_nodes"] = shared;
+    part["ghost_nodes"] = ghosts;
+    part["cut_faces"] = p.cut_faces;
+    part["tet_imbalance"] = p.tet_imbalance;
+    part["face_imbalance"] = p.face_imbalance;
+    j["partition"] = part;
+  } else {
+    j["partition"] = Json();
+  }
+  // The largest over the ranks of the seconds spent in the collectives.
+  j["communication_seconds"] = communication;
+  return j;
+}
+
+int report_run(const RunOptions& o, const Case& c, const Simulation& s, OutputWriter& writer,
+               const std::string& dir, const std::string& status, int code, double wall,
+               double communication, const std::vector<std::string>& warnings);
+
 }  // namespace
 
 int check_case(const RunOptions& o) {
@@ -410,6 +452,7 @@ int check_case(const RunOptions& o) {
 }
 
 int run_case(const RunOptions& o) {
+  const bool root = mpi::rank() == 0;
   Case c;
   std::unique_ptr<Simulation> sim;
   std::string dir;
@@ -429,23 +472,31 @@ int run_case(const RunOptions& o) {
     if (!o.quiet)
       for (const std::string& w : warnings) std::cerr << "tetcontact: warning: " << w << "\n";
     dir = o.out_dir.empty() ? "results/" + c.name : o.out_dir;
-    prepare_output_dir(dir, o.force);  // only now, when the input is known to be good
+    // Only now, when the input is known to be good; in a distributed run rank 0 alone writes.
+    if (root) prepare_output_dir(dir, o.force);
     return 0;
   });
-  if (setup != 0) return setup;
+  // Every rank reads the same case and meets the same errors; the folder is rank 0's: if it
+  // refuses, all stop.
+  if (const long worst = mpi::max(static_cast<long>(setup)); worst != 0)
+    return static_cast<int>(worst);
 
   const auto t0 = Clock::now();
-  OutputWriter writer(sim->model(), c.output, dir, c.end_time, &sim->profile());
-  sim->add_observer(&writer, "output:vtu+history");
-  // Interpenetration at every frame, independent of the contact code (bodies ≥ 2, or
-  // particles: a particle may not be inside any body).
+  std::unique_ptr<OutputWriter> writer_on_root;
   std::unique_ptr<PenetrationProbe> probe;
-  if (sim->model().mesh.bodies.size() >= 2 || sim->model().particles) {
-    probe = std::make_unique<PenetrationProbe>(sim->model());
-    writer.set_penetration_probe(probe.get());
-    sim->add_module("diagnostics:penetration");
+  if (root) {
+    writer_on_root =
+        std::make_unique<OutputWriter>(sim->model(), c.output, dir, c.end_time, &sim->profile());
+    sim->add_observer(writer_on_root.get(), "output:vtu+history");
+    // Interpenetration at every frame, independent of the contact code (bodies ≥ 2, or
+    // particles: a particle may not be inside any body).
+    if (sim->model().mesh.bodies.size() >= 2 || sim->model().particles) {
+      probe = std::make_unique<PenetrationProbe>(sim->model());
+      writer_on_root->set_penetration_probe(probe.get());
+      sim->add_module("diagnostics:penetration");
+    }
   }
-  Progress progress(o.quiet, c.end_time);
+  Progress progress(o.quiet || !root, c.end_time);
   std::string status = "ok";
   int code = 0;
   try {
@@ -454,14 +505,35 @@ int run_case(const RunOptions& o) {
       progress.update(sim->state());
     }
     sim->finish();
-  } catch (const RunFailure& e) {
+  } catch (const RunFailure& e) {  // in a distributed run: on every rank alike
     status = std::string("failed: ") + e.what();
     code = 1;
   }
   progress.done();
+  const double communication = mpi::max(mpi::seconds());
+  // The other ranks end with rank 0's code (a missed check is known to rank 0 alone).
+  if (!root) return std::stoi(mpi::broadcast("", 0));
+  try {
+    code = report_run(o, c, *sim, *writer_on_root, dir, status, code, seconds_since(t0),
+                      communication, warnings);
+  } catch (...) {
+    mpi::broadcast("1", 0);
+    throw;
+  }
+  mpi::broadcast(std::to_string(code), 0);
+  return code;
+}
+
+namespace {
+
+// Rank 0's part after the run: the summary with the case's checks, and the table.
+int report_run(const RunOptions& o, const Case& c, const Simulation& s, OutputWriter& writer,
+               const std::string& dir, const std::string& status, int code, double wall,
+               double communication, const std::vector<std::string>& warnings) {
+  const Simulation* sim = &s;
   writer.close();
-  const double wall = seconds_since(t0);
   Json summary = summary_json(c, *sim, writer, status, wall, warnings);
+  summary["parallel"] = parallel_json(*sim, communication);
   // The case's stated bounds (`expect`), each against its summary figure.
   std::string expect_lines;
   if (!c.expect.empty()) {
@@ -538,5 +610,7 @@ int run_case(const RunOptions& o) {
   if (status != "ok") std::cerr << "tetcontact: run failed: " << status.substr(8) << "\n";
   return code;
 }
+
+}  // namespace
 
 }  // namespace tc

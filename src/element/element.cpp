@@ -3,9 +3,12 @@
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <cstring>
 #include <limits>
 #include <sstream>
 
+#include "tetcontact/parallel/mpi.hpp"
 #include "tetcontact/parallel/parallel.hpp"
 
 namespace tc {
@@ -159,6 +162,119 @@ void merge(ForceResult& into, const std::vector<ForceResult>& blocks) {
   }
 }
 
+// The tets this process updates: in a distributed run its own (ascending), else all.
+class MyTets {
+ public:
+  MyTets(const ElementScratch& scratch, std::size_t tets)
+      : list_(scratch.rank_tets.empty() ? nullptr : &scratch.rank_tets[scratch.rank]),
+        n_(list_ ? list_->size() : tets) {}
+  std::size_t size() const { return n_; }
+  std::size_t operator[](std::size_t i) const {
+    return list_ ? static_cast<std::size_t>((*list_)[i]) : i;
+  }
+
+ private:
+  const std::vector<Index>* list_;
+  std::size_t n_;
+};
+
+bool distributed(const ElementScratch& scratch) {
+  return !scratch.rank_tets.empty();
+}
+
+// A pass over this process's tets. In a distributed run a failure on any rank stops every
+// rank with the failure of the lowest tet: the one a single process meets first (for_blocks
+// rethrows the lowest block's). Any other error ends the job: the ranks could not go on in
+// step.
+template <class Pass>
+void collective_pass(const ElementScratch& scratch, Pass&& pass) {
+  if (!distributed(scratch)) {
+    pass();
+    return;
+  }
+  double failed = std::numeric_limits<double>::infinity();
+  std::string what;
+  try {
+    pass();
+  } catch (const InvertedElement& e) {
+    failed = static_cast<double>(e.tet);
+    what = e.what();
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "tetcontact: internal error on rank %d: %s\n", scratch.rank, e.what());
+    mpi::abort(1);
+  }
+  const mpi::MinAt first = mpi::min_at({failed, scratch.rank});
+  if (std::isinf(first.value)) return;
+  throw InvertedElement(static_cast<Index>(first.value),
+                        mpi::broadcast(what, static_cast<int>(first.index)));
+}
+
+// A pass's result over the ranks: the smallest step with the lowest tet that reaches it (ties
+// between ranks are ties between tets: MINLOC keeps the lowest), and the eroding tets of all
+// ranks in tet order — the serial pass's.
+void across_ranks(const ElementScratch& scratch, ForceResult& r) {
+  if (!distributed(scratch)) return;
+  const mpi::MinAt m = mpi::min_at({r.dt_stable, r.critical_tet});
+  r.dt_stable = m.value;
+  r.critical_tet = static_cast<Index>(m.index);
+  std::vector<char> mine(r.eroding.size() * sizeof(Index));
+  std::memcpy(mine.data(), r.eroding.data(), mine.size());
+  const std::vector<char> all = mpi::all_gather(mine, nullptr);
+  r.eroding.resize(all.size() / sizeof(Index));
+  std::memcpy(r.eroding.data(), all.data(), all.size());
+  std::sort(r.eroding.begin(), r.eroding.end());
+}
+
+// What a pass wrote per tet, gathered from the ranks that own the tets by every rank (issue
+// 16's first increment: every process holds the whole state). Packed as doubles, each rank's
+// tets in its ascending order, unpacked by the same lists.
+enum Shared : unsigned {
+  k_forces = 1,    // the corner forces
+  k_material = 2,  // deviator, plastic strain and work, viscosity, volume
+  k_pressure = 4,  // energy, pressure, sound speed, damage
+  k_averages = 8,  // the nodal averages' inputs (tet_energy, tet_dvol, tet_averaged)
+};
+
+void share_tets(ElementScratch& scratch, State& st, unsigned what) {
+  if (!distributed(scratch)) return;
+  std::vector<double> values;
+  const auto fields = [&](std::size_t t, auto&& io) {
+    if (what & k_forces)
+      for (int c = 0; c < 4; ++c)
+        for (int d = 0; d < 3; ++d) io(scratch.tet_force[4 * t + c][d]);
+    if (what & k_material) {
+      for (int c = 0; c < 6; ++c) io(st.s[t][c]);
+      for (auto* f : {&st.eps_p, &st.w_plastic, &st.q, &st.trace_d, &st.w_viscous, &st.vol})
+        io((*f)[t]);
+    }
+    if (what & k_pressure) {
+      io(st.e_int[t]);
+      io(st.p[t]);
+      io(st.sound2[t]);
+      double dmg = static_cast<double>(st.damage[t]);
+      io(dmg);
+      st.damage[t] = static_cast<Damage>(static_cast<int>(dmg));
+    }
+    if (what & k_averages) {
+      io(scratch.tet_energy[t]);
+      io(scratch.tet_dvol[t]);
+      double averaged = scratch.tet_averaged[t];
+      io(averaged);
+      scratch.tet_averaged[t] = static_cast<char>(averaged);
+    }
+  };
+  for (const Index t : scratch.rank_tets[scratch.rank])
+    fields(t, [&](double& v) { values.push_back(v); });
+  std::vector<char> mine(values.size() * sizeof(double));
+  std::memcpy(mine.data(), values.data(), mine.size());
+  const std::vector<char> all = mpi::all_gather(mine, nullptr);
+  values.resize(all.size() / sizeof(double));
+  std::memcpy(values.data(), all.data(), all.size());
+  std::size_t k = 0;
+  for (const std::vector<Index>& tets : scratch.rank_tets)
+    for (const Index t : tets) fields(t, [&](double& v) { v = values[k++]; });
+}
+
 std::vector<ForceResult> block_results(std::size_t tets) {
   ForceResult none;
   none.dt_stable = std::numeric_limits<double>::infinity();
@@ -215,19 +331,25 @@ ForceResult compute_forces(const std::vector<Tet>& tets, const ElementOptions& o
                            ElementScratch& scratch) {
   const std::size_t mesh_nodes = static_cast<std::size_t>(st.first_particle);
   build_incidence(tets, mesh_nodes, scratch);
-  std::vector<ForceResult> blocks = block_results(tets.size());
-  parallel::for_blocks(tets.size(), [&](std::size_t blk, std::size_t begin, std::size_t end) {
-    TetGeometry g;
-    for (std::size_t t = begin; t < end; ++t) {
-      if (st.damage[t] == Damage::particle) continue;
-      const Index ti = static_cast<Index>(t);
-      end_geometry(ti, tets[t], st, g, "");
-      tet_forces(ti, g, options, st, &scratch.tet_force[4 * t], blocks[blk]);
-    }
+  const MyTets mine(scratch, tets.size());
+  std::vector<ForceResult> blocks = block_results(mine.size());
+  collective_pass(scratch, [&] {
+    parallel::for_blocks(mine.size(), [&](std::size_t blk, std::size_t begin, std::size_t end) {
+      TetGeometry g;
+      for (std::size_t i = begin; i < end; ++i) {
+        const std::size_t t = mine[i];
+        if (st.damage[t] == Damage::particle) continue;
+        const Index ti = static_cast<Index>(t);
+        end_geometry(ti, tets[t], st, g, "");
+        tet_forces(ti, g, options, st, &scratch.tet_force[4 * t], blocks[blk]);
+      }
+    });
   });
   ForceResult r;
   r.dt_stable = std::numeric_limits<double>::infinity();
   merge(r, blocks);
+  across_ranks(scratch, r);
+  share_tets(scratch, st, k_forces);
   gather_forces(mesh_nodes, scratch, st);
   return finish_forces(r);
 }
@@ -266,113 +388,120 @@ ForceResult update_material(const std::vector<Tet>& tets, const std::vector<Mate
   // Pass 1: kinematics, deviator, viscosity; for per-tet pressure also the EOS, the energy
   // and the forces.
   const double h = 0.5 * tau;
-  std::vector<ForceResult> blocks = block_results(tets.size());
-  parallel::for_blocks(tets.size(), [&](std::size_t blk, std::size_t begin, std::size_t end) {
-    TetGeometry gm, ge;  // mid-step and end-of-step geometry
-    for (std::size_t t = begin; t < end; ++t) {
-      if (st.damage[t] == Damage::particle) continue;  // now a particle: no longer a cell
-      const Index ti = static_cast<Index>(t);
-      const Tet& k = tets[t];
-      const Index mi = st.tet_material[t];
-      const Material& mat = materials[mi];
+  const MyTets mine(scratch, tets.size());
+  std::vector<ForceResult> blocks = block_results(mine.size());
+  collective_pass(scratch, [&] {
+    parallel::for_blocks(mine.size(), [&](std::size_t blk, std::size_t begin, std::size_t end) {
+      TetGeometry gm, ge;  // mid-step and end-of-step geometry
+      for (std::size_t i = begin; i < end; ++i) {
+        const std::size_t t = mine[i];
+        if (st.damage[t] == Damage::particle) continue;  // now a particle: no longer a cell
+        const Index ti = static_cast<Index>(t);
+        const Tet& k = tets[t];
+        const Index mi = st.tet_material[t];
+        const Material& mat = materials[mi];
 
-      // Edges at the end of the step and at mid-step (x^{n+1/2} = x^{n+1} − τ/2 U^{n+1}), and
-      // the velocity differences U_i − U_0.
-      const Vec3 &x0 = st.x[k[0]], &u0 = st.v[k[0]];
-      double ee[3][3], em[3][3], du[3][3];
-      for (int i = 0; i < 3; ++i) {
-        const Vec3 &xi = st.x[k[i + 1]], &ui = st.v[k[i + 1]];
-        for (int d = 0; d < 3; ++d) {
-          ee[i][d] = xi[d] - x0[d];
-          du[i][d] = ui[d] - u0[d];
-          em[i][d] = ee[i][d] - h * du[i][d];
+        // Edges at the end of the step and at mid-step (x^{n+1/2} = x^{n+1} − τ/2 U^{n+1}), and
+        // the velocity differences U_i − U_0.
+        const Vec3 &x0 = st.x[k[0]], &u0 = st.v[k[0]];
+        double ee[3][3], em[3][3], du[3][3];
+        for (int i = 0; i < 3; ++i) {
+          const Vec3 &xi = st.x[k[i + 1]], &ui = st.v[k[i + 1]];
+          for (int d = 0; d < 3; ++d) {
+            ee[i][d] = xi[d] - x0[d];
+            du[i][d] = ui[d] - u0[d];
+            em[i][d] = ee[i][d] - h * du[i][d];
+          }
         }
-      }
-      tet_geometry(em, gm);
-      if (!(gm.vol > 0.0)) inverted(ti, "during the step", gm.vol, st.vol0[t]);
-      tet_geometry(ee, ge);
-      if (!std::isfinite(ge.vol)) throw InvertedElement(ti, "non-finite node position");
-      if (!(ge.vol > 0.0)) inverted(ti, "at the end of the step", ge.vol, st.vol0[t]);
+        tet_geometry(em, gm);
+        if (!(gm.vol > 0.0)) inverted(ti, "during the step", gm.vol, st.vol0[t]);
+        tet_geometry(ee, ge);
+        if (!std::isfinite(ge.vol)) throw InvertedElement(ti, "non-finite node position");
+        if (!(ge.vol > 0.0)) inverted(ti, "at the end of the step", ge.vol, st.vol0[t]);
 
-      // L = Σ_i (U_i − U_0) ⊗ ∇N_i, ∇N_i = −a_i / (3V) at mid-step.
-      double L[3][3];
-      const double inv3v = -1.0 / (3.0 * gm.vol);
-      for (int r = 0; r < 3; ++r)
-        for (int c = 0; c < 3; ++c)
-          L[r][c] = inv3v * (du[0][r] * gm.a[1][c] + du[1][r] * gm.a[2][c] + du[2][r] * gm.a[3][c]);
-      const Sym6 d{L[0][0],
-                   L[1][1],
-                   L[2][2],
-                   0.5 * (L[0][1] + L[1][0]),
-                   0.5 * (L[1][2] + L[2][1]),
-                   0.5 * (L[0][2] + L[2][0])};
-      const std::array<double, 3> w{0.5 * (L[2][1] - L[1][2]), 0.5 * (L[0][2] - L[2][0]),
-                                    0.5 * (L[1][0] - L[0][1])};
-      const double trD = d[0] + d[1] + d[2];
+        // L = Σ_i (U_i − U_0) ⊗ ∇N_i, ∇N_i = −a_i / (3V) at mid-step.
+        double L[3][3];
+        const double inv3v = -1.0 / (3.0 * gm.vol);
+        for (int r = 0; r < 3; ++r)
+          for (int c = 0; c < 3; ++c)
+            L[r][c] =
+                inv3v * (du[0][r] * gm.a[1][c] + du[1][r] * gm.a[2][c] + du[2][r] * gm.a[3][c]);
+        const Sym6 d{L[0][0],
+                     L[1][1],
+                     L[2][2],
+                     0.5 * (L[0][1] + L[1][0]),
+                     0.5 * (L[1][2] + L[2][1]),
+                     0.5 * (L[0][2] + L[2][0])};
+        const std::array<double, 3> w{0.5 * (L[2][1] - L[1][2]), 0.5 * (L[0][2] - L[2][0]),
+                                      0.5 * (L[1][0] - L[0][1])};
+        const double trD = d[0] + d[1] + d[2];
 
-      // Deviator (Jaumann rate, radial return) and its trapezoidal work τ V ½(sⁿ + sⁿ⁺¹) : D.
-      const Sym6 s_old = st.s[t];
-      const bool failed = options.fracture && st.damage[t] != Damage::intact;  // no deviator
-      const DeviatorIncrement inc =
-          failed ? DeviatorIncrement{} : update_deviator6(mat, st.s[t], d, w, tau, st.eps_p[t]);
-      const Sym6& s_new = st.s[t];
-      double sd = 0.0;
-      for (int c = 0; c < 6; ++c) sd += (c < 3 ? 1.0 : 2.0) * (s_old[c] + s_new[c]) * d[c];
-      const double w_dev = 0.5 * tau * gm.vol * sd;
-      if (inc.dplastic > 0.0) {
-        // Plastic work V σy Δε̄p, with σy at mid-increment (exact for linear hardening).
-        st.w_plastic[t] +=
-            gm.vol * (inc.yield - 0.5 * mat.hardening_modulus * inc.dplastic) * inc.dplastic;
-        st.eps_p[t] += inc.dplastic;
-      }
-
-      // Viscosity from the mid-step strain rate; its work is the trapezoid of the values at
-      // both ends of the step (q^{n+1/2} is what the forces at t^{n+1} carry), as for the
-      // pressure.
-      double q = 0.0;
-      if (trD < 0.0) {  // compression only: length, density and sound speed only then
-        const double l = 3.0 * gm.vol / std::sqrt(gm.amax2);
-        const double rho_mid = mat.density * st.vol0[t] / gm.vol;
-        q = bulk_viscosity(rho_mid, l, std::sqrt(st.sound2[t]), trD, options.viscosity_linear,
-                           options.viscosity_quadratic);
-      }
-      const double dvol = ge.vol - st.vol[t];
-      const double w_q = -0.5 * (st.q[t] + q) * dvol;
-      st.q[t] = q;
-      st.trace_d[t] = trD;
-      st.w_viscous[t] += w_q;
-      st.vol[t] = ge.vol;
-
-      if (anp(mi)) {
-        // Failed cells are left out of the nodal averages: their neighbours' pressure must not
-        // depend on a loosened cell's volume (an intact cell beside spalled ones was crushed to
-        // V/V0 = 0.29 under an averaged pressure far below its own).
-        scratch.tet_averaged[t] = !options.fracture || st.damage[t] == Damage::intact;
-        scratch.tet_energy[t] = st.e_int[t];
-        st.e_int[t] += w_dev + w_q;  // the pressure work follows in pass 3
-        scratch.tet_dvol[t] = dvol;
-        continue;
-      }
-      // Per-tet pressure: p^{n+1} = A(μ) + B E^{n+1}/V0 with
-      //   E^{n+1} = E^n + W_dev − ½ (p^n + p^{n+1}) ΔV + W_q, solved for E^{n+1}.
-      const double mu = st.vol0[t] / ge.vol - 1.0;
-      const EosTerms eos = eos_terms(mat, mu);
-      double e_new = implicit_energy(st.e_int[t] + w_dev, w_q, st.p[t], eos, dvol, st.vol0[t]);
-      double p_new = eos.a + eos.b * e_new / st.vol0[t];
-      if (options.fracture) {
-        const double carried = fail(mat, ti, ge.vol, p_new, st);
-        if (carried != p_new) {  // the energy with the pressure the cell carries
-          p_new = carried;
-          e_new = st.e_int[t] + w_dev - 0.5 * (st.p[t] + p_new) * dvol + w_q;
+        // Deviator (Jaumann rate, radial return) and its trapezoidal work τ V ½(sⁿ + sⁿ⁺¹) : D.
+        const Sym6 s_old = st.s[t];
+        const bool failed = options.fracture && st.damage[t] != Damage::intact;  // no deviator
+        const DeviatorIncrement inc =
+            failed ? DeviatorIncrement{} : update_deviator6(mat, st.s[t], d, w, tau, st.eps_p[t]);
+        const Sym6& s_new = st.s[t];
+        double sd = 0.0;
+        for (int c = 0; c < 6; ++c) sd += (c < 3 ? 1.0 : 2.0) * (s_old[c] + s_new[c]) * d[c];
+        const double w_dev = 0.5 * tau * gm.vol * sd;
+        if (inc.dplastic > 0.0) {
+          // Plastic work V σy Δε̄p, with σy at mid-increment (exact for linear hardening).
+          st.w_plastic[t] +=
+              gm.vol * (inc.yield - 0.5 * mat.hardening_modulus * inc.dplastic) * inc.dplastic;
+          st.eps_p[t] += inc.dplastic;
         }
+
+        // Viscosity from the mid-step strain rate; its work is the trapezoid of the values at
+        // both ends of the step (q^{n+1/2} is what the forces at t^{n+1} carry), as for the
+        // pressure.
+        double q = 0.0;
+        if (trD < 0.0) {  // compression only: length, density and sound speed only then
+          const double l = 3.0 * gm.vol / std::sqrt(gm.amax2);
+          const double rho_mid = mat.density * st.vol0[t] / gm.vol;
+          q = bulk_viscosity(rho_mid, l, std::sqrt(st.sound2[t]), trD, options.viscosity_linear,
+                             options.viscosity_quadratic);
+        }
+        const double dvol = ge.vol - st.vol[t];
+        const double w_q = -0.5 * (st.q[t] + q) * dvol;
+        st.q[t] = q;
+        st.trace_d[t] = trD;
+        st.w_viscous[t] += w_q;
+        st.vol[t] = ge.vol;
+
+        if (anp(mi)) {
+          // Failed cells are left out of the nodal averages: their neighbours' pressure must not
+          // depend on a loosened cell's volume (an intact cell beside spalled ones was crushed to
+          // V/V0 = 0.29 under an averaged pressure far below its own).
+          scratch.tet_averaged[t] = !options.fracture || st.damage[t] == Damage::intact;
+          scratch.tet_energy[t] = st.e_int[t];
+          st.e_int[t] += w_dev + w_q;  // the pressure work follows in pass 3
+          scratch.tet_dvol[t] = dvol;
+          continue;
+        }
+        // Per-tet pressure: p^{n+1} = A(μ) + B E^{n+1}/V0 with
+        //   E^{n+1} = E^n + W_dev − ½ (p^n + p^{n+1}) ΔV + W_q, solved for E^{n+1}.
+        const double mu = st.vol0[t] / ge.vol - 1.0;
+        const EosTerms eos = eos_terms(mat, mu);
+        double e_new = implicit_energy(st.e_int[t] + w_dev, w_q, st.p[t], eos, dvol, st.vol0[t]);
+        double p_new = eos.a + eos.b * e_new / st.vol0[t];
+        if (options.fracture) {
+          const double carried = fail(mat, ti, ge.vol, p_new, st);
+          if (carried != p_new) {  // the energy with the pressure the cell carries
+            p_new = carried;
+            e_new = st.e_int[t] + w_dev - 0.5 * (st.p[t] + p_new) * dvol + w_q;
+          }
+        }
+        st.e_int[t] = e_new;
+        st.p[t] = p_new;
+        st.sound2[t] = sound_speed2(mat, mu, st.p[t], eos);
+        tet_forces(ti, ge, options, st, &scratch.tet_force[4 * t], blocks[blk]);
       }
-      st.e_int[t] = e_new;
-      st.p[t] = p_new;
-      st.sound2[t] = sound_speed2(mat, mu, st.p[t], eos);
-      tet_forces(ti, ge, options, st, &scratch.tet_force[4 * t], blocks[blk]);
-    }
+    });
   });
   merge(forces, blocks);
+  across_ranks(scratch, forces);
+  share_tets(scratch, st, k_forces | k_material | k_pressure | (any_anp ? k_averages : 0u));
   if (!any_anp) {
     gather_forces(mesh_nodes, scratch, st);
     return finish_forces(forces);
@@ -398,35 +527,44 @@ ForceResult update_material(const std::vector<Tet>& tets, const std::vector<Mate
   });
 
   // Pass 3: element pressure = mean of its nodes'; trapezoidal pressure work; forces.
-  blocks = block_results(tets.size());
-  parallel::for_blocks(tets.size(), [&](std::size_t blk, std::size_t begin, std::size_t end) {
-    for (std::size_t t = begin; t < end; ++t) {
-      const Index mi = st.tet_material[t];
-      if (!anp(mi) || st.damage[t] == Damage::particle) continue;
-      const Index ti = static_cast<Index>(t);
-      const Tet& k = tets[t];
-      const Material& mat = materials[mi];
-      const double mu = st.vol0[t] / st.vol[t] - 1.0, dvol = scratch.tet_dvol[t];
-      const EosTerms eos = eos_terms(mat, mu);
-      double p_new = 0.25 * (scratch.pressure[k[0]] + scratch.pressure[k[1]] +
-                             scratch.pressure[k[2]] + scratch.pressure[k[3]]);
-      if (options.fracture && st.damage[t] != Damage::intact) {
-        // A failed cell no longer averages its pressure with its neighbours' nodes (loosened
-        // neighbours in tension would leave it no resistance to compression): its own EOS,
-        // the energy solved implicitly as in the per-tet path.
-        p_new = eos.a + eos.b * implicit_energy(st.e_int[t], 0.0, st.p[t], eos, dvol, st.vol0[t]) /
-                            st.vol0[t];
+  blocks = block_results(mine.size());
+  collective_pass(scratch, [&] {
+    parallel::for_blocks(mine.size(), [&](std::size_t blk, std::size_t begin, std::size_t end) {
+      for (std::size_t i = begin; i < end; ++i) {
+        const std::size_t t = mine[i];
+        const Index mi = st.tet_material[t];
+        if (!anp(mi) || st.damage[t] == Damage::particle) continue;
+        const Index ti = static_cast<Index>(t);
+        const Tet& k = tets[t];
+        const Material& mat = materials[mi];
+        const double mu = st.vol0[t] / st.vol[t] - 1.0, dvol = scratch.tet_dvol[t];
+        const EosTerms eos = eos_terms(mat, mu);
+        double p_new = 0.25 * (scratch.pressure[k[0]] + scratch.pressure[k[1]] +
+                               scratch.pressure[k[2]] + scratch.pressure[k[3]]);
+        if (options.fracture && st.damage[t] != Damage::intact) {
+          // A failed cell no longer averages its pressure with its neighbours' nodes (loosened
+          // neighbours in tension would leave it no resistance to compression): its own EOS,
+          // the energy solved implicitly as in the per-tet path.
+          p_new = eos.a + eos.b *
+                              implicit_energy(st.e_int[t], 0.0, st.p[t], eos, dvol, st.vol0[t]) /
+                              st.vol0[t];
+        }
+        if (options.fracture) p_new = fail(mat, ti, st.vol[t], p_new, st);
+        st.e_int[t] -= 0.5 * (st.p[t] + p_new) * dvol;
+        st.p[t] = p_new;
+        st.sound2[t] = sound_speed2(mat, mu, p_new, eos);
+        TetGeometry g;
+        end_geometry(ti, k, st, g, "at the end of the step");
+        tet_forces(ti, g, options, st, &scratch.tet_force[4 * t], blocks[blk]);
       }
-      if (options.fracture) p_new = fail(mat, ti, st.vol[t], p_new, st);
-      st.e_int[t] -= 0.5 * (st.p[t] + p_new) * dvol;
-      st.p[t] = p_new;
-      st.sound2[t] = sound_speed2(mat, mu, p_new, eos);
-      TetGeometry g;
-      end_geometry(ti, k, st, g, "at the end of the step");
-      tet_forces(ti, g, options, st, &scratch.tet_force[4 * t], blocks[blk]);
-    }
+    });
   });
-  merge(forces, blocks);
+  ForceResult third;
+  third.dt_stable = std::numeric_limits<double>::infinity();
+  merge(third, blocks);
+  across_ranks(scratch, third);
+  merge(forces, {third});
+  share_tets(scratch, st, k_forces | k_pressure);
   gather_forces(mesh_nodes, scratch, st);
   return finish_forces(forces);
 }

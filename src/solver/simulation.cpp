@@ -6,6 +6,7 @@
 #include <set>
 #include <sstream>
 
+#include "tetcontact/parallel/mpi.hpp"
 #include "tetcontact/parallel/parallel.hpp"
 #include "tetcontact/solver/integrator.hpp"
 
@@ -62,7 +63,10 @@ Simulation::Simulation(Model model, SolverSettings settings)
       settings_(settings),
       state_(initial_state(model_)),
       element_(model_.element) {
-  parallel::set_threads(settings_.threads);
+  // Threads: all the cores by default; processes sharing a machine share its cores.
+  parallel::set_threads(settings_.threads > 0 || mpi::local_ranks() == 1
+                            ? settings_.threads
+                            : std::max(1, parallel::hardware_threads() / mpi::local_ranks()));
   State& st = state_;
   // The modules this case needs, and nothing else.
   modules_ = {"integrator:central_difference", "elements:linear_tet"};
@@ -115,6 +119,24 @@ Simulation::Simulation(Model model, SolverSettings settings)
     if (s == "response" && !contact_ && model_.walls.empty() && !fragmentation_) continue;
     if ((s == "fracture" || s == "particles") && !fragmentation_) continue;
     profile_[stage] = 0.0;
+  }
+  if (mpi::ranks() > 1) {
+    // Distributed (issue 16, first increment): every process holds the whole state and runs
+    // the whole step, but updates only its own tets in the element stage and gathers the
+    // others' (element.cpp, share_tets). Each process cuts the mesh itself: METIS gives the
+    // same pieces for the same mesh, ranks and seed.
+    try {
+      partition_ = partition_mesh(model_.mesh, model_.surfaces, {.ranks = mpi::ranks()});
+    } catch (const PartitionError& e) {
+      throw RunFailure(std::string("cannot run on ") + std::to_string(mpi::ranks()) +
+                       " processes: " + e.what());
+    }
+    scratch_.rank = mpi::rank();
+    scratch_.rank_tets.assign(static_cast<std::size_t>(mpi::ranks()), {});
+    for (std::size_t t = 0; t < partition_.tet_rank.size(); ++t)
+      scratch_.rank_tets[static_cast<std::size_t>(partition_.tet_rank[t])].push_back(
+          static_cast<Index>(t));
+    modules_.push_back("parallel:mpi_replicated");
   }
   elements_stage();  // F^0 and τ^0; the first step then uses τ_v = τ/2
   st.dt_prev = 0.0;

@@ -241,25 +241,3 @@ TEST(Cli, BodiesOverlappingAtStartAreBadInputUnlessAllowed) {
   EXPECT_EQ(r.code, 2);
   EXPECT_NE(r.err.find("initial_overlap must be error or allow"), std::string::npos) << r.err;
 }
-
-// Started by mpirun as one of several processes, every copy would run the whole case into the
-// same folder: refused (exit 2, nothing written) until distributed runs exist; one process is
-// fine.
-TEST(Cli, SeveralProcessesAreRefusedUntilDistributedRunsExist) {
-  test::TempDir dir("cli-mpi");
-  const std::string out = dir / "out", err = dir / "err.txt";
-  const auto launch = [&](const std::string& env) {
-    const std::string cmd = env + " '" + std::string(TETCONTACT_BINARY) + "' run " + quote(k_case) +
-                            " --quiet --out " + quote(out) + " 2>" + quote(err) + " </dev/null";
-    const int status = std::system(cmd.c_str());
-    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  };
-  EXPECT_EQ(launch("OMPI_COMM_WORLD_SIZE=3"), 2);
-  EXPECT_NE(test::read_text(err).find("started as one of 3 processes"), std::string::npos)
-      << test::read_text(err);
-  EXPECT_FALSE(fs::exists(out));
-  EXPECT_EQ(launch("PMI_SIZE=2"), 2);
-  EXPECT_FALSE(fs::exists(out));
-  EXPECT_EQ(launch("OMPI_COMM_WORLD_SIZE=1"), 0) << test::read_text(err);
-  EXPECT_TRUE(fs::exists(fs::path(out) / "summary.json"));
-}

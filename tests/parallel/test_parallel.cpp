@@ -86,24 +86,6 @@ TEST(Parallel, ThreadCountFollowsTheSetting) {
 
 namespace {
 
-// history.csv without its wall-clock columns (seconds_*).
-std::string history_without_timings(const fs::path& file) {
-  std::istringstream in(test::read_text(file.string()));
-  std::string line, out;
-  std::vector<bool> keep;
-  while (std::getline(in, line)) {
-    std::vector<std::string> cells;
-    std::stringstream ls(line);
-    for (std::string c; std::getline(ls, c, ',');) cells.push_back(c);
-    if (keep.empty())
-      for (const std::string& c : cells) keep.push_back(c.rfind("seconds_", 0) != 0);
-    for (std::size_t i = 0; i < cells.size() && i < keep.size(); ++i)
-      if (keep[i]) out += cells[i] + ",";
-    out += "\n";
-  }
-  return out;
-}
-
 // Runs a case on 1, 2 and 3 threads; every frame, particle frame and the history must be the
 // same bytes. Returns the 1-thread summary for the caller's checks that the run did something.
 test::Json same_on_any_thread_count(const std::string& name, const std::string& case_file,
@@ -130,8 +112,8 @@ test::Json same_on_any_thread_count(const std::string& name, const std::string& 
   }
   EXPECT_GT(frames, 1);
   for (const char* n : {"2", "3"}) {
-    EXPECT_EQ(history_without_timings(one / "history.csv"),
-              history_without_timings(fs::path(dir.str()) / n / "history.csv"))
+    EXPECT_EQ(test::history_without_timings(one / "history.csv"),
+              test::history_without_timings(fs::path(dir.str()) / n / "history.csv"))
         << name << " on " << n << " threads";
     const test::Json other = test::read_json((fs::path(dir.str()) / n / "summary.json").string());
     EXPECT_EQ(test::number(other, "/threads"), std::stoi(n));

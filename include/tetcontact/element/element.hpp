@@ -51,6 +51,12 @@ struct ElementScratch {
   std::vector<double> tet_dvol;        // per tet: ΔV of the step
   std::vector<double> tet_energy;      // per tet: Eⁿ, its share of the nodal energy
   std::vector<char> tet_averaged;      // per tet: in the nodal averages this step
+  // Distributed runs (issue 16): every rank's tets, ascending, and this process's rank. Each
+  // process updates its own tets; what they wrote is then gathered by every process, so that
+  // all hold the whole state, bit for bit what one process computes (element.cpp,
+  // share_tets). Empty: one process, all the tets.
+  std::vector<std::vector<Index>> rank_tets;
+  int rank = 0;
 };
 
 struct ForceResult {

@@ -12,6 +12,7 @@
 #include "tetcontact/diagnostics/verify.hpp"
 #include "tetcontact/element/element.hpp"
 #include "tetcontact/fracture/particles.hpp"
+#include "tetcontact/mesh/partition.hpp"
 #include "tetcontact/model/model.hpp"
 #include "tetcontact/model/sample.hpp"
 #include "tetcontact/model/state.hpp"
@@ -106,6 +107,9 @@ class Simulation {
   Index critical_tet() const { return critical_tet_; }
   /// The smallest time step of the run, s.
   double min_dt() const { return min_dt_; }
+  /// The decomposition of a distributed run (issue 16; ranks = 1 on one process): each rank
+  /// updates the tets METIS gave it.
+  const Partition& partition() const { return partition_; }
 
  private:
   void predict_stage();
@@ -155,6 +159,7 @@ class Simulation {
   std::vector<std::string> modules_;
   std::vector<Observer*> observers_;
   StepProfile profile_;
+  Partition partition_;
 };
 
 }  // namespace tc

@@ -1,0 +1,54 @@
+// Processes (issue 16): OpenMPI underneath, in mpi.cpp only; nothing else includes <mpi.h>.
+//
+// The program joins an MPI job only when a launcher started it (mpirun, srun: the variables
+// OMPI_COMM_WORLD_SIZE, PMI_SIZE or PMIX_SIZE name a size); otherwise it makes no MPI call at
+// all and is one process (rank 0 of 1), and every function here is the identity or a no-op.
+//
+// Every collective here gives each rank the same result, whatever the order in which the
+// messages arrive: gathers concatenate in rank order, minima break ties by the lowest index.
+// A sum of doubles across ranks is not offered: its rounding would depend on how the work is
+// cut (the solver gathers the terms and adds them in the serial order instead).
+#pragma once
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+namespace tc::mpi {
+
+/// The size a launcher announced in the environment (1 when none did).
+int launched_size();
+
+/// Joins the job when launched_size() > 1 (MPI_Init_thread, funneled); call first in main.
+void init(int* argc, char*** argv);
+/// Leaves it (MPI_Finalize), if joined.
+void finalize();
+
+int rank();         // this process, 0 when not in a job
+int ranks();        // the processes of the job, 1 when not in a job
+int local_ranks();  // the processes of the job on this machine (sharing its cores)
+
+/// Every rank's bytes, concatenated in rank order; `sizes` gets each rank's byte count.
+std::vector<char> all_gather(const std::vector<char>& mine, std::vector<std::size_t>* sizes);
+
+/// The smallest value over the ranks, with its index; equal values: the lowest index.
+struct MinAt {
+  double value;
+  long index;
+};
+MinAt min_at(MinAt mine);
+
+/// The largest value over the ranks (integers: exact whatever the order).
+long max(long mine);
+double max(double mine);
+
+/// `text` as the root rank has it, on every rank.
+std::string broadcast(const std::string& text, int root);
+
+/// Ends every process of the job with `code` (MPI_Abort), after what this one printed.
+[[noreturn]] void abort(int code);
+
+/// Seconds spent in this file's collectives by this process since init.
+double seconds();
+
+}  // namespace tc::mpi

@@ -1,0 +1,147 @@
+#include "tetcontact/parallel/mpi.hpp"
+
+#include <mpi.h>
+
+#include <chrono>
+#include <cstdlib>
+#include <limits>
+#include <stdexcept>
+
+namespace tc::mpi {
+namespace {
+
+bool joined = false;
+int my_rank = 0, my_ranks = 1, my_local_ranks = 1;
+double spent = 0.0;
+
+// Times a collective into `spent`.
+class Timed {
+ public:
+  Timed() : start_(std::chrono::steady_clock::now()) {}
+  ~Timed() {
+    spent += std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+  }
+
+ private:
+  std::chrono::steady_clock::time_point start_;
+};
+
+void check(int rc, const char* what) {
+  if (rc != MPI_SUCCESS) throw std::runtime_error(std::string("MPI: ") + what + " failed");
+}
+
+}  // namespace
+
+int launched_size() {
+  for (const char* var : {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE", "PMIX_SIZE"})
+    if (const char* size = std::getenv(var)) return std::max(1, std::atoi(size));
+  return 1;
+}
+
+void init(int* argc, char*** argv) {
+  if (joined || launched_size() <= 1) return;
+  int provided = 0;
+  check(MPI_Init_thread(argc, argv, MPI_THREAD_FUNNELED, &provided), "MPI_Init_thread");
+  joined = true;
+  MPI_Comm_rank(MPI_COMM_WORLD, &my_rank);
+  MPI_Comm_size(MPI_COMM_WORLD, &my_ranks);
+  MPI_Comm local;
+  MPI_Comm_split_type(MPI_COMM_WORLD, MPI_COMM_TYPE_SHARED, my_rank, MPI_INFO_NULL, &local);
+  MPI_Comm_size(local, &my_local_ranks);
+  MPI_Comm_free(&local);
+}
+
+void finalize() {
+  if (!joined) return;
+  MPI_Finalize();
+  joined = false;
+}
+
+int rank() {
+  return my_rank;
+}
+
+int ranks() {
+  return my_ranks;
+}
+
+int local_ranks() {
+  return my_local_ranks;
+}
+
+std::vector<char> all_gather(const std::vector<char>& mine, std::vector<std::size_t>* sizes) {
+  if (!joined) {
+    if (sizes) *sizes = {mine.size()};
+    return mine;
+  }
+  Timed t;
+  if (mine.size() > static_cast<std::size_t>(std::numeric_limits<int>::max()))
+    throw std::runtime_error("MPI: a rank's piece is over 2 GiB");
+  const int count = static_cast<int>(mine.size());
+  std::vector<int> counts(my_ranks), displs(my_ranks);
+  check(MPI_Allgather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, MPI_COMM_WORLD),
+        "MPI_Allgather");
+  long total = 0;
+  for (int r = 0; r < my_ranks; ++r) {
+    displs[r] = static_cast<int>(total);
+    total += counts[r];
+  }
+  if (total > std::numeric_limits<int>::max())
+    throw std::runtime_error("MPI: a gather of over 2 GiB");
+  std::vector<char> all(static_cast<std::size_t>(total));
+  check(MPI_Allgatherv(mine.data(), count, MPI_BYTE, all.data(), counts.data(), displs.data(),
+                       MPI_BYTE, MPI_COMM_WORLD),
+        "MPI_Allgatherv");
+  if (sizes) sizes->assign(counts.begin(), counts.end());
+  return all;
+}
+
+MinAt min_at(MinAt mine) {
+  if (!joined) return mine;
+  Timed t;
+  // MPI_MINLOC on (double, int) breaks ties by the lower index; the index is a tet's, which
+  // fits an int (partition_mesh refuses meshes METIS cannot index).
+  struct {
+    double value;
+    int index;
+  } in{mine.value, static_cast<int>(mine.index)}, out{};
+  check(MPI_Allreduce(&in, &out, 1, MPI_DOUBLE_INT, MPI_MINLOC, MPI_COMM_WORLD), "MPI_Allreduce");
+  return {out.value, out.index};
+}
+
+long max(long mine) {
+  if (!joined) return mine;
+  Timed t;
+  long out = 0;
+  check(MPI_Allreduce(&mine, &out, 1, MPI_LONG, MPI_MAX, MPI_COMM_WORLD), "MPI_Allreduce");
+  return out;
+}
+
+double max(double mine) {
+  if (!joined) return mine;
+  Timed t;
+  double out = 0;
+  check(MPI_Allreduce(&mine, &out, 1, MPI_DOUBLE, MPI_MAX, MPI_COMM_WORLD), "MPI_Allreduce");
+  return out;
+}
+
+std::string broadcast(const std::string& text, int root) {
+  if (!joined) return text;
+  Timed t;
+  long size = my_rank == root ? static_cast<long>(text.size()) : 0;
+  check(MPI_Bcast(&size, 1, MPI_LONG, root, MPI_COMM_WORLD), "MPI_Bcast");
+  std::string out = my_rank == root ? text : std::string(static_cast<std::size_t>(size), '\0');
+  check(MPI_Bcast(out.data(), static_cast<int>(size), MPI_BYTE, root, MPI_COMM_WORLD), "MPI_Bcast");
+  return out;
+}
+
+void abort(int code) {
+  if (joined) MPI_Abort(MPI_COMM_WORLD, code);
+  std::exit(code);
+}
+
+double seconds() {
+  return spent;
+}
+
+}  // namespace tc::mpi

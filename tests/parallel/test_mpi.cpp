@@ -1,0 +1,181 @@
+// Processes change who computes, never what (issue 16): `mpirun -np N tetcontact run CASE`
+// writes the same frames, particle frames, history and summary figures as one process, bit
+// for bit, for N = 1 to 4 (oversubscribed on a 2-core machine). A failure on any rank stops
+// every rank with the one process's message and exit code; bad input stops them all at once.
+// ctest -L mpi.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "../test_util.hpp"
+
+using namespace tc;
+
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string quote(const std::string& s) {
+  return "'" + s + "'";
+}
+
+// `tetcontact ARGS` under mpirun with n processes (0: without mpirun).
+test::CliResult launch(int n, const std::string& args, const std::string& scratch) {
+  if (n == 0) return test::run_cli(args, scratch);
+  const std::string out = scratch + "/.stdout", err = scratch + "/.stderr";
+  const std::string cmd = "mpirun --allow-run-as-root --oversubscribe -np " + std::to_string(n) +
+                          " '" + TETCONTACT_BINARY + "' " + args + " >'" + out + "' 2>'" + err +
+                          "' </dev/null";
+  const int status = std::system(cmd.c_str());
+  test::CliResult r;
+  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  r.out = test::read_text(out);
+  r.err = test::read_text(err);
+  return r;
+}
+
+// The summary less what measures the machine rather than the run.
+test::Json figures(test::Json s) {
+  for (const char* k : {"wall_seconds", "timings", "threads", "parallel", "modules"}) s.erase(k);
+  return s;
+}
+
+// Runs a case as one process, then on each of `ranks` processes: every file the one process
+// wrote (frames, particle frames, series) must be the same bytes, the history the same but
+// for its wall-clock columns, the summary the same figures. Returns the one process's summary.
+test::Json same_on_any_rank_count(const std::string& name, const std::string& case_file,
+                                  const std::string& sets, const std::vector<int>& ranks) {
+  test::TempDir dir("mpi-" + name);
+  const std::string args = "run " + quote(test::source_path(case_file)) + " --quiet " + sets;
+  const auto one = launch(0, args + " --out " + quote(dir / "serial"), dir.str());
+  EXPECT_EQ(one.code, 0) << one.err;
+  const fs::path serial = dir / "serial";
+  const test::Json summary = test::read_json((serial / "summary.json").string());
+  EXPECT_EQ(test::number(summary, "/parallel/ranks"), 1);
+  for (const int n : ranks) {
+    const fs::path out = dir / std::to_string(n);
+    const auto r = launch(n, args + " --out " + quote(out.string()), dir.str());
+    EXPECT_EQ(r.code, 0) << name << " on " << n << " ranks: " << r.err;
+    int files = 0;
+    for (const auto& e : fs::recursive_directory_iterator(serial)) {
+      if (!e.is_regular_file()) continue;
+      const fs::path rel = fs::relative(e.path(), serial);
+      if (rel == "summary.json" || rel == "history.csv") continue;
+      ++files;
+      EXPECT_TRUE(test::read_text(e.path().string()) == test::read_text((out / rel).string()))
+          << name << ": " << rel << " differs on " << n << " ranks";
+    }
+    EXPECT_GT(files, 2) << name;
+    EXPECT_EQ(test::history_without_timings(serial / "history.csv"),
+              test::history_without_timings(out / "history.csv"))
+        << name << " on " << n << " ranks";
+    const test::Json other = test::read_json((out / "summary.json").string());
+    EXPECT_EQ(figures(summary), figures(other)) << name << " on " << n << " ranks";
+    // The decomposition it ran on: every tet on one rank.
+    EXPECT_EQ(test::number(other, "/parallel/ranks"), n);
+    if (n > 1) {
+      long tets = 0;
+      for (const auto& t : other.at("parallel").at("partition").at("tets")) tets += t.get<long>();
+      EXPECT_EQ(tets, static_cast<long>(test::number(summary, "/mesh/tets"))) << name;
+    }
+  }
+  return summary;
+}
+
+}  // namespace
+
+TEST(Mpi, CubesWithEdgeContactAreBitIdenticalOn1To4Ranks) {
+  const test::Json s =
+      same_on_any_rank_count("cubes", "data/cases/cubes-edge.yaml", "", {1, 2, 3, 4});
+  EXPECT_GT(test::number(s, "/contact/edge_edge"), 0);
+}
+
+TEST(Mpi, CoarseCylindersWithEdgeEdgeAndVerificationAreBitIdenticalOn2And3Ranks) {
+  const test::Json s = same_on_any_rank_count(
+      "cylinders", "data/cases/cylinders.yaml",
+      "--set contact.edge_edge=true --set contact.verify=true --set end_time=3.0e-6 "
+      "--set bodies.0.mesh.cylinder.cells_across=8 --set bodies.0.mesh.cylinder.cells_axial=8 "
+      "--set bodies.1.mesh.cylinder.cells_across=4 --set bodies.1.mesh.cylinder.cells_axial=4",
+      {2, 3});
+  EXPECT_GT(test::number(s, "/contact/edge_edge"), 0);
+  EXPECT_GT(test::number(s, "/contact/verification/pairs_checked"), 0);
+}
+
+TEST(Mpi, CoarseBallPlateWithFractureAndParticlesIsBitIdenticalOn2And3Ranks) {
+  const test::Json s = same_on_any_rank_count(
+      "ball-plate", "data/cases/ball-plate.yaml",
+      "--set bodies.0.mesh.sphere.cells_across=8 --set 'bodies.1.mesh.box.cells=[24,24,2]' "
+      "--set end_time=1.5e-6",
+      {2, 3});
+  EXPECT_GT(test::number(s, "/fracture/particles"), 50);
+  EXPECT_GT(test::number(s, "/contact/node_face"), 0);
+}
+
+TEST(Mpi, BarsAndATaylorRodWithNodalPressureAreBitIdenticalOn2And4Ranks) {
+  const test::Json bars = same_on_any_rank_count("bars", "data/cases/bars-impact.yaml",
+                                                 "--set end_time=20.0e-6", {2, 4});
+  EXPECT_GT(test::number(bars, "/contact/node_face"), 0);
+  const test::Json taylor =
+      same_on_any_rank_count("taylor", "data/cases/taylor-copper.yaml",
+                             "--set end_time=3.0e-6 --set bodies.0.mesh.cylinder.cells_across=6 "
+                             "--set bodies.0.mesh.cylinder.cells_axial=30",
+                             {2, 4});
+  EXPECT_GT(test::number(taylor, "/walls/0/max_force"), 0);
+}
+
+TEST(Mpi, AStabilityCaseIsBitIdenticalOn3Ranks) {
+  const test::Json s = same_on_any_rank_count(
+      "hypervelocity", "data/cases/stability/hypervelocity.yaml", "--set end_time=0.6e-6", {3});
+  EXPECT_GT(test::number(s, "/steps"), 10);
+}
+
+// An element that inverts on one rank stops every rank: exit 1, the one process's message
+// (naming the body and its tet), and the summary says so.
+TEST(Mpi, AnInvertedElementStopsEveryRankWithTheOneProcessMessage) {
+  test::TempDir dir("mpi-inverted");
+  std::string yaml = test::read_text(test::source_path("data/cases/micro/coincident-faces.yaml"));
+  const std::string slow = "velocity: [7, 3, -100]";
+  ASSERT_NE(yaml.find(slow), std::string::npos);
+  yaml.replace(yaml.find(slow), slow.size(), "velocity: [0, 0, -2.0e5]");  // crushes the tets
+  test::write_text(dir / "crash.yaml", yaml);
+  std::string status;
+  for (const int n : {0, 3}) {
+    const std::string out = dir / ("out" + std::to_string(n));
+    const auto r =
+        launch(n, "run " + quote(dir / "crash.yaml") + " --quiet --out " + quote(out), dir.str());
+    EXPECT_EQ(r.code, 1) << n << " ranks: " << r.err;
+    const test::Json s = test::read_json(out + "/summary.json");
+    const std::string st = s.at("status").get<std::string>();
+    EXPECT_NE(st.find("inverted"), std::string::npos) << st;
+    EXPECT_NE(st.find(", tet "), std::string::npos) << st;
+    if (n == 0) status = st;
+    EXPECT_EQ(st, status);
+    // Said once, by rank 0.
+    const std::size_t first = r.err.find("run failed");
+    EXPECT_NE(first, std::string::npos) << r.err;
+    EXPECT_EQ(r.err.find("run failed", first + 1), std::string::npos) << r.err;
+  }
+}
+
+// Bad input and a folder that exists: every rank stops with exit 2 before writing anything,
+// and the message comes once. Commands other than `run` refuse to run on several processes.
+TEST(Mpi, BadInputStopsEveryRankAndOtherCommandsRefuseSeveralProcesses) {
+  test::TempDir dir("mpi-bad-input");
+  const std::string cubes = quote(test::source_path("data/cases/cubes-edge.yaml"));
+  auto r = launch(3, "run " + quote(dir / "none.yaml") + " --out " + quote(dir / "o"), dir.str());
+  EXPECT_EQ(r.code, 2) << r.err;
+  EXPECT_NE(r.err.find("none.yaml"), std::string::npos) << r.err;
+  EXPECT_EQ(r.err.find("none.yaml"), r.err.rfind("none.yaml")) << r.err;
+  EXPECT_FALSE(fs::exists(dir / "o"));
+  r = launch(2, "run " + cubes + " --quiet --out " + quote(dir / "o"), dir.str());
+  ASSERT_EQ(r.code, 0) << r.err;
+  const std::string before = test::read_text(dir / "o/summary.json");
+  r = launch(2, "run " + cubes + " --quiet --out " + quote(dir / "o"), dir.str());  // no --force
+  EXPECT_EQ(r.code, 2) << r.err;
+  EXPECT_EQ(test::read_text(dir / "o/summary.json"), before);
+  r = launch(2, "check " + cubes, dir.str());
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("only `run` runs distributed"), std::string::npos) << r.err;
+}
