@@ -510,6 +510,7 @@ int run_case(const RunOptions& o) {
     code = 1;
   }
   progress.done();
+  sim->gather_state();  // distributed: the tets' fields whole for the summary and references
   const double communication = mpi::max(mpi::seconds());
   // The other ranks end with rank 0's code (a missed check is known to rank 0 alone).
   if (!root) return std::stoi(mpi::broadcast("", 0));

@@ -225,53 +225,53 @@ void across_ranks(const ElementScratch& scratch, ForceResult& r) {
   std::sort(r.eroding.begin(), r.eroding.end());
 }
 
-// What a pass wrote per tet, gathered from the ranks that own the tets by every rank (issue
-// 16's first increment: every process holds the whole state). Packed as doubles, each rank's
-// tets in its ascending order, unpacked by the same lists.
+// Per-tet fields sent by the ranks that own the tets to every rank: each rank packs `lists`'
+// entry for it (ascending tets), every rank unpacks all in rank order. Doubles throughout
+// (damage and flags are small integers, exact).
 enum Shared : unsigned {
-  k_forces = 1,    // the corner forces
-  k_material = 2,  // deviator, plastic strain and work, viscosity, volume
-  k_pressure = 4,  // energy, pressure, sound speed, damage
-  k_averages = 8,  // the nodal averages' inputs (tet_energy, tet_dvol, tet_averaged)
+  k_balance =
+      1,  // what the balance sums and fracture read: energies, plastic and viscous work, damage
+  k_averages = 2,  // the nodal averages' inputs (volume, tet_energy, tet_averaged)
+  k_whole = 4,     // everything else a tet holds (frames, references, the summary)
 };
 
-void share_tets(ElementScratch& scratch, State& st, unsigned what) {
-  if (!distributed(scratch)) return;
+void share_tets(ElementScratch& scratch, State& st, unsigned what,
+                const std::vector<std::vector<Index>>& lists) {
   std::vector<double> values;
   const auto fields = [&](std::size_t t, auto&& io) {
-    if (what & k_forces)
-      for (int c = 0; c < 4; ++c)
-        for (int d = 0; d < 3; ++d) io(scratch.tet_force[4 * t + c][d]);
-    if (what & k_material) {
-      for (int c = 0; c < 6; ++c) io(st.s[t][c]);
-      for (auto* f : {&st.eps_p, &st.w_plastic, &st.q, &st.trace_d, &st.w_viscous, &st.vol})
-        io((*f)[t]);
-    }
-    if (what & k_pressure) {
+    if (what & (k_balance | k_whole)) {
       io(st.e_int[t]);
-      io(st.p[t]);
-      io(st.sound2[t]);
+      io(st.w_plastic[t]);
+      io(st.w_viscous[t]);
       double dmg = static_cast<double>(st.damage[t]);
       io(dmg);
       st.damage[t] = static_cast<Damage>(static_cast<int>(dmg));
     }
     if (what & k_averages) {
+      io(st.vol[t]);
       io(scratch.tet_energy[t]);
-      io(scratch.tet_dvol[t]);
       double averaged = scratch.tet_averaged[t];
       io(averaged);
       scratch.tet_averaged[t] = static_cast<char>(averaged);
     }
+    if (what & k_whole) {
+      for (int c = 0; c < 6; ++c) io(st.s[t][c]);
+      io(st.p[t]);
+      io(st.q[t]);
+      io(st.eps_p[t]);
+      io(st.sound2[t]);
+      io(st.trace_d[t]);
+      io(st.vol[t]);
+    }
   };
-  for (const Index t : scratch.rank_tets[scratch.rank])
-    fields(t, [&](double& v) { values.push_back(v); });
+  for (const Index t : lists[scratch.rank]) fields(t, [&](double& v) { values.push_back(v); });
   std::vector<char> mine(values.size() * sizeof(double));
   std::memcpy(mine.data(), values.data(), mine.size());
   const std::vector<char> all = mpi::all_gather(mine, nullptr);
   values.resize(all.size() / sizeof(double));
   std::memcpy(values.data(), all.data(), all.size());
   std::size_t k = 0;
-  for (const std::vector<Index>& tets : scratch.rank_tets)
+  for (const std::vector<Index>& tets : lists)
     for (const Index t : tets) fields(t, [&](double& v) { v = values[k++]; });
 }
 
@@ -299,16 +299,83 @@ void build_incidence(const std::vector<Tet>& tets, std::size_t nodes, ElementScr
 
 // F_a = Σ over the cells around a (ascending) of their corner forces: the serial scatter's sum.
 // Nodes past the mesh's (particles) carry none.
-void gather_forces(std::size_t mesh_nodes, const ElementScratch& scratch, State& st) {
-  parallel::for_each(st.f.size(), [&](std::size_t a) {
-    Vec3 f = Vec3::Zero();
-    if (a < mesh_nodes)
-      for (Index e = scratch.incidence_begin[a]; e < scratch.incidence_begin[a + 1]; ++e) {
-        const Index corner = scratch.incidence[e];
-        if (st.damage[corner >> 2] != Damage::particle) f += scratch.tet_force[corner];
+inline Vec3 gathered_force(std::size_t a, std::size_t mesh_nodes, const ElementScratch& scratch,
+                           const State& st) {
+  Vec3 f = Vec3::Zero();
+  if (a < mesh_nodes)
+    for (Index e = scratch.incidence_begin[a]; e < scratch.incidence_begin[a + 1]; ++e) {
+      const Index corner = scratch.incidence[e];
+      if (st.damage[corner >> 2] != Damage::particle) f += scratch.tet_force[corner];
+    }
+  return f;
+}
+
+// Who sends what for the nodal sums (ElementScratch::rank_nodes, ...), once per mesh.
+void build_distribution(const std::vector<Tet>& tets, std::size_t mesh_nodes,
+                        ElementScratch& scratch) {
+  if (!scratch.rank_nodes.empty()) return;
+  const std::size_t ranks = scratch.rank_tets.size();
+  std::vector<int> tet_rank(tets.size(), 0);
+  for (std::size_t r = 0; r < ranks; ++r)
+    for (const Index t : scratch.rank_tets[r]) tet_rank[t] = static_cast<int>(r);
+  // A node's rank: the one owning all its tets; −1 when shared (a node in no tet: rank 0).
+  std::vector<int> node_rank(mesh_nodes, 0);
+  for (std::size_t a = 0; a < mesh_nodes; ++a) {
+    const Index b = scratch.incidence_begin[a], e = scratch.incidence_begin[a + 1];
+    if (b == e) continue;
+    node_rank[a] = tet_rank[scratch.incidence[b] >> 2];
+    for (Index k = b + 1; k < e; ++k)
+      if (tet_rank[scratch.incidence[k] >> 2] != node_rank[a]) node_rank[a] = -1;
+  }
+  scratch.rank_nodes.assign(ranks, {});
+  scratch.rank_shared_corners.assign(ranks, {});
+  scratch.rank_frontier_tets.assign(ranks, {});
+  scratch.shared_nodes.clear();
+  for (std::size_t a = 0; a < mesh_nodes; ++a)
+    if (node_rank[a] >= 0)
+      scratch.rank_nodes[node_rank[a]].push_back(static_cast<Index>(a));
+    else
+      scratch.shared_nodes.push_back(static_cast<Index>(a));
+  for (std::size_t t = 0; t < tets.size(); ++t) {
+    bool frontier = false;
+    for (int c = 0; c < 4; ++c)
+      if (node_rank[tets[t][c]] < 0) {
+        scratch.rank_shared_corners[tet_rank[t]].push_back(static_cast<Index>(4 * t + c));
+        frontier = true;
       }
-    st.f[a] = f;
+    if (frontier) scratch.rank_frontier_tets[tet_rank[t]].push_back(static_cast<Index>(t));
+  }
+}
+
+void gather_forces(std::size_t mesh_nodes, ElementScratch& scratch, State& st) {
+  if (!distributed(scratch)) {
+    parallel::for_each(
+        st.f.size(), [&](std::size_t a) { st.f[a] = gathered_force(a, mesh_nodes, scratch, st); });
+    return;
+  }
+  // Distributed: this rank sums the nodes all of whose tets it owns and sends the sums with
+  // its corner forces at shared nodes; every rank then sums the shared nodes, in tet order.
+  const int me = scratch.rank;
+  const std::vector<Index>& nodes = scratch.rank_nodes[me];
+  const std::vector<Index>& corners = scratch.rank_shared_corners[me];
+  std::vector<Vec3> mine(nodes.size() + corners.size());
+  parallel::for_each(nodes.size(), [&](std::size_t i) {
+    mine[i] = gathered_force(nodes[i], mesh_nodes, scratch, st);
   });
+  for (std::size_t i = 0; i < corners.size(); ++i)
+    mine[nodes.size() + i] = scratch.tet_force[corners[i]];
+  std::vector<char> bytes(mine.size() * sizeof(Vec3));
+  std::memcpy(bytes.data(), mine.data(), bytes.size());
+  const std::vector<char> all = mpi::all_gather(bytes, nullptr);
+  std::vector<Vec3> values(all.size() / sizeof(Vec3));
+  std::memcpy(values.data(), all.data(), all.size());
+  std::size_t k = 0;
+  for (std::size_t r = 0; r < scratch.rank_tets.size(); ++r) {
+    for (const Index a : scratch.rank_nodes[r]) st.f[a] = values[k++];
+    for (const Index c : scratch.rank_shared_corners[r]) scratch.tet_force[c] = values[k++];
+  }
+  for (const Index a : scratch.shared_nodes) st.f[a] = gathered_force(a, mesh_nodes, scratch, st);
+  for (std::size_t a = mesh_nodes; a < st.f.size(); ++a) st.f[a].setZero();
 }
 
 // The squared minimum of scatter_forces back to a time step.
@@ -318,6 +385,10 @@ inline ForceResult finish_forces(ForceResult r) {
 }
 
 }  // namespace
+
+void share_whole_state(ElementScratch& scratch, State& st) {
+  if (distributed(scratch)) share_tets(scratch, st, k_whole, scratch.rank_tets);
+}
 
 void init_sound_speed(const std::vector<Material>& materials, State& st) {
   for (std::size_t t = 0; t < st.vol.size(); ++t) {
@@ -331,6 +402,7 @@ ForceResult compute_forces(const std::vector<Tet>& tets, const ElementOptions& o
                            ElementScratch& scratch) {
   const std::size_t mesh_nodes = static_cast<std::size_t>(st.first_particle);
   build_incidence(tets, mesh_nodes, scratch);
+  if (distributed(scratch)) build_distribution(tets, mesh_nodes, scratch);
   const MyTets mine(scratch, tets.size());
   std::vector<ForceResult> blocks = block_results(mine.size());
   collective_pass(scratch, [&] {
@@ -349,7 +421,6 @@ ForceResult compute_forces(const std::vector<Tet>& tets, const ElementOptions& o
   r.dt_stable = std::numeric_limits<double>::infinity();
   merge(r, blocks);
   across_ranks(scratch, r);
-  share_tets(scratch, st, k_forces);
   gather_forces(mesh_nodes, scratch, st);
   return finish_forces(r);
 }
@@ -359,6 +430,7 @@ ForceResult update_material(const std::vector<Tet>& tets, const std::vector<Mate
                             ElementScratch& scratch) {
   const std::size_t mesh_nodes = static_cast<std::size_t>(st.first_particle);
   build_incidence(tets, mesh_nodes, scratch);
+  if (distributed(scratch)) build_distribution(tets, mesh_nodes, scratch);
   ForceResult forces;
   forces.dt_stable = std::numeric_limits<double>::infinity();
   const auto anp = [&](Index mat) {
@@ -501,11 +573,13 @@ ForceResult update_material(const std::vector<Tet>& tets, const std::vector<Mate
   });
   merge(forces, blocks);
   across_ranks(scratch, forces);
-  share_tets(scratch, st, k_forces | k_material | k_pressure | (any_anp ? k_averages : 0u));
   if (!any_anp) {
     gather_forces(mesh_nodes, scratch, st);
+    if (distributed(scratch)) share_tets(scratch, st, k_balance, scratch.rank_tets);
     return finish_forces(forces);
   }
+  // Distributed: the inputs of the nodal averages at shared nodes, from the tets around them.
+  if (distributed(scratch)) share_tets(scratch, st, k_averages, scratch.rank_frontier_tets);
 
   // Pass 2: nodal volumes and energies gathered from the cells in the averages (a quarter of
   // each), then nodal pressures from them (per reference volume).
@@ -564,8 +638,8 @@ ForceResult update_material(const std::vector<Tet>& tets, const std::vector<Mate
   merge(third, blocks);
   across_ranks(scratch, third);
   merge(forces, {third});
-  share_tets(scratch, st, k_forces | k_pressure);
   gather_forces(mesh_nodes, scratch, st);
+  if (distributed(scratch)) share_tets(scratch, st, k_balance, scratch.rank_tets);
   return finish_forces(forces);
 }
 

@@ -57,11 +57,15 @@ void OutputWriter::observe(const State& st, const Sample& s) {
     h << '\n';
     ++rows_;
   }
-  // A frame at the first sample at or after each multiple of the interval, and at the end.
-  if (s.t >= next_frame_ - 1e-9 * spec_.interval || final) {
+  if (frame_due(s)) {
     write_frame(st, s.t, probe_ && spec_.penetration_every_step ? &depth : nullptr);
     while (next_frame_ <= s.t + 1e-9 * spec_.interval) next_frame_ += spec_.interval;
   }
+}
+
+// A frame at the first sample at or after each multiple of the interval, and at the end.
+bool OutputWriter::frame_due(const Sample& s) const {
+  return s.t >= next_frame_ - 1e-9 * spec_.interval || s.t >= end_time_;
 }
 
 // The penetration at a time level: the run's maxima and last measure updated; the per-node

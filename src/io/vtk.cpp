@@ -52,7 +52,30 @@ class Piece {
             std::to_string(m) + "\">\n";
   }
 
-  void text(const char* s) { out_ += s; }
+  // A section (PointData, CellData, Points, Cells) around the arrays written in `body`; the
+  // arrays of the first three are recorded for a .pvtu's declarations.
+  template <class Body>
+  void section(const char* name, Body&& body) {
+    section_ = name;
+    out_ += std::string("      <") + name + ">\n";
+    body();
+    out_ += std::string("      </") + name + ">\n";
+    section_.clear();
+  }
+
+  // The .pvtu declarations of the arrays written: PPointData, PCellData, PPoints.
+  std::string declarations() const {
+    std::string out;
+    for (const char* sec : {"PointData", "CellData", "Points"}) {
+      out += std::string("    <P") + sec + ">\n";
+      for (const Declared& d : declared_)
+        if (d.section == sec)
+          out += "      <PDataArray type=\"" + d.type + "\" Name=\"" + d.name +
+                 "\" NumberOfComponents=\"" + std::to_string(d.components) + "\"/>\n";
+      out += std::string("    </P") + sec + ">\n";
+    }
+    return out;
+  }
 
   // `count` tuples of `per_line` values; the array declares `components` per tuple (the cell
   // connectivity is a flat array of one component, written four node ids a line).
@@ -60,6 +83,7 @@ class Piece {
   void array(const char* type, const char* name, int per_line, std::size_t count, F&& value,
              int components = 0) {
     if (components == 0) components = per_line;
+    if (section_ != "Cells") declared_.push_back({section_, type, name, components});
     out_ += "        <DataArray type=\"";
     out_ += type;
     out_ += "\" Name=\"";
@@ -137,104 +161,164 @@ class Piece {
     return packed;
   }
 
+  struct Declared {
+    std::string section, type, name;
+    int components;
+  };
   VtuFormat format_;
   std::string out_, appended_;
+  std::string section_;
+  std::vector<Declared> declared_;
 };
+
+// A frame's grid: the cells `tets` (mesh tets, not particles) and the nodes they use, or the
+// whole mesh (tets null: every node, the cells still cells). A piece (tets given) numbers its
+// nodes ascending in the mesh's order and carries their global numbers.
+Piece frame_piece(const Model& model, const State& st, const std::vector<std::string>& fields,
+                  const std::vector<double>& penetration_depth, VtuFormat format,
+                  const std::vector<Index>* tets) {
+  const Mesh& mesh = model.mesh;
+  const auto still_cell = [&](Index t) {
+    return st.damage.size() != mesh.tets.size() || st.damage[t] != Damage::particle;
+  };
+  std::vector<Index> cells;
+  cells.reserve(tets ? tets->size() : mesh.tets.size());
+  if (tets) {
+    for (const Index t : *tets)
+      if (still_cell(t)) cells.push_back(t);
+  } else {
+    for (Index t = 0; t < mesh.tet_count(); ++t)
+      if (still_cell(t)) cells.push_back(t);
+  }
+  // The nodes: all the mesh's (particles are a series of their own), or a piece's own.
+  std::vector<Index> nodes;
+  std::vector<Index> local;  // a piece: mesh node → its number in the piece
+  if (tets) {
+    for (const Index t : cells)
+      for (const Index k : mesh.tets[t]) nodes.push_back(k);
+    std::sort(nodes.begin(), nodes.end());
+    nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
+    local.assign(mesh.x.size(), -1);
+    for (std::size_t i = 0; i < nodes.size(); ++i) local[nodes[i]] = static_cast<Index>(i);
+  }
+  const std::size_t n = tets ? nodes.size() : mesh.x.size();
+  const auto node = [&](std::size_t i) { return tets ? nodes[i] : static_cast<Index>(i); };
+  const auto corner = [&](Index k) { return tets ? local[k] : k; };
+  const std::size_t m = cells.size();
+  Piece out(format, n, m);
+
+  out.section("PointData", [&] {
+    if (wants(fields, "displacement"))
+      out.array("Float64", "displacement", 3, n,
+                [&](std::size_t i, int c) { return st.x[node(i)][c] - mesh.x[node(i)][c]; });
+    if (wants(fields, "velocity"))
+      out.array("Float64", "velocity", 3, n,
+                [&](std::size_t i, int c) { return centred_velocity(st, node(i))[c]; });
+    if (!penetration_depth.empty())
+      out.array("Float64", "penetration_depth", 1, n,
+                [&](std::size_t i, int) { return penetration_depth[node(i)]; });
+    if (wants(fields, "body"))
+      out.array("Int32", "body", 1, n,
+                [&](std::size_t i, int) { return static_cast<double>(mesh.node_body[node(i)]); });
+    if (tets)
+      out.array("Int64", "global_node", 1, n,
+                [&](std::size_t i, int) { return static_cast<double>(node(i)); });
+  });
+
+  out.section("CellData", [&] {
+    if (wants(fields, "stress"))
+      out.array("Float64", "stress", 6, m, [&](std::size_t i, int c) {
+        const Index t = cells[i];
+        return st.s[t][c] - (c < 3 ? st.p[t] : 0.0);
+      });
+    if (wants(fields, "pressure"))
+      out.array("Float64", "pressure", 1, m, [&](std::size_t i, int) { return st.p[cells[i]]; });
+    if (wants(fields, "von_mises"))
+      out.array("Float64", "von_mises", 1, m,
+                [&](std::size_t i, int) { return von_mises(st.s[cells[i]]); });
+    if (wants(fields, "plastic_strain"))
+      out.array("Float64", "plastic_strain", 1, m,
+                [&](std::size_t i, int) { return st.eps_p[cells[i]]; });
+    if (wants(fields, "internal_energy"))  // J/m³ of reference volume
+      out.array("Float64", "internal_energy", 1, m,
+                [&](std::size_t i, int) { return st.e_int[cells[i]] / st.vol0[cells[i]]; });
+    if (wants(fields, "viscosity"))
+      out.array("Float64", "viscosity", 1, m, [&](std::size_t i, int) { return st.q[cells[i]]; });
+    // 0 intact, 1 damaged, 2 destroyed
+    if (wants(fields, "damage") && st.damage.size() == mesh.tets.size())
+      out.array("Int32", "damage", 1, m,
+                [&](std::size_t i, int) { return static_cast<double>(st.damage[cells[i]]); });
+    if (wants(fields, "body"))
+      out.array("Int32", "body", 1, m,
+                [&](std::size_t i, int) { return static_cast<double>(mesh.tet_body[cells[i]]); });
+    if (tets)
+      out.array("Int64", "global_tet", 1, m,
+                [&](std::size_t i, int) { return static_cast<double>(cells[i]); });
+  });
+
+  out.section("Points", [&] {
+    out.array("Float64", "Points", 3, n, [&](std::size_t i, int c) { return st.x[node(i)][c]; });
+  });
+  out.section("Cells", [&] {
+    out.array(
+        "Int64", "connectivity", 4, m,
+        [&](std::size_t i, int c) { return static_cast<double>(corner(mesh.tets[cells[i]][c])); },
+        1);
+    out.array("Int64", "offsets", 1, m,
+              [&](std::size_t t, int) { return static_cast<double>(4 * (t + 1)); });
+    out.array("UInt8", "types", 1, m, [](std::size_t, int) { return 10.0; });  // VTK_TETRA
+  });
+  return out;
+}
 
 }  // namespace
 
 std::string vtu_frame(const Model& model, const State& st, const std::vector<std::string>& fields,
                       const std::vector<double>& penetration_depth, VtuFormat format) {
-  const Mesh& mesh = model.mesh;
-  // The mesh's nodes (particles are a series of their own) and its cells that are still cells.
-  const std::size_t n = mesh.x.size();
-  std::vector<Index> cells;
-  cells.reserve(mesh.tets.size());
-  for (Index t = 0; t < mesh.tet_count(); ++t)
-    if (st.damage.size() != mesh.tets.size() || st.damage[t] != Damage::particle)
-      cells.push_back(t);
-  const std::size_t m = cells.size();
-  Piece out(format, n, m);
+  return frame_piece(model, st, fields, penetration_depth, format, nullptr).finish();
+}
 
-  out.text("      <PointData>\n");
-  if (wants(fields, "displacement"))
-    out.array("Float64", "displacement", 3, n,
-              [&](std::size_t i, int c) { return st.x[i][c] - mesh.x[i][c]; });
-  if (wants(fields, "velocity"))
-    out.array("Float64", "velocity", 3, n,
-              [&](std::size_t i, int c) { return centred_velocity(st, static_cast<Index>(i))[c]; });
-  if (!penetration_depth.empty())
-    out.array("Float64", "penetration_depth", 1, n,
-              [&](std::size_t i, int) { return penetration_depth[i]; });
-  if (wants(fields, "body"))
-    out.array("Int32", "body", 1, n,
-              [&](std::size_t i, int) { return static_cast<double>(mesh.node_body[i]); });
-  out.text("      </PointData>\n");
+std::string vtu_piece(const Model& model, const State& st, const std::vector<std::string>& fields,
+                      const std::vector<double>& penetration_depth, VtuFormat format,
+                      const std::vector<Index>& tets, std::string* pvtu_arrays) {
+  Piece piece = frame_piece(model, st, fields, penetration_depth, format, &tets);
+  if (pvtu_arrays) *pvtu_arrays = piece.declarations();
+  return piece.finish();
+}
 
-  out.text("      <CellData>\n");
-  if (wants(fields, "stress"))
-    out.array("Float64", "stress", 6, m, [&](std::size_t i, int c) {
-      const Index t = cells[i];
-      return st.s[t][c] - (c < 3 ? st.p[t] : 0.0);
-    });
-  if (wants(fields, "pressure"))
-    out.array("Float64", "pressure", 1, m, [&](std::size_t i, int) { return st.p[cells[i]]; });
-  if (wants(fields, "von_mises"))
-    out.array("Float64", "von_mises", 1, m,
-              [&](std::size_t i, int) { return von_mises(st.s[cells[i]]); });
-  if (wants(fields, "plastic_strain"))
-    out.array("Float64", "plastic_strain", 1, m,
-              [&](std::size_t i, int) { return st.eps_p[cells[i]]; });
-  if (wants(fields, "internal_energy"))  // J/m³ of reference volume
-    out.array("Float64", "internal_energy", 1, m,
-              [&](std::size_t i, int) { return st.e_int[cells[i]] / st.vol0[cells[i]]; });
-  if (wants(fields, "viscosity"))
-    out.array("Float64", "viscosity", 1, m, [&](std::size_t i, int) { return st.q[cells[i]]; });
-  // 0 intact, 1 damaged, 2 destroyed
-  if (wants(fields, "damage") && st.damage.size() == mesh.tets.size())
-    out.array("Int32", "damage", 1, m,
-              [&](std::size_t i, int) { return static_cast<double>(st.damage[cells[i]]); });
-  if (wants(fields, "body"))
-    out.array("Int32", "body", 1, m,
-              [&](std::size_t i, int) { return static_cast<double>(mesh.tet_body[cells[i]]); });
-  out.text("      </CellData>\n");
-
-  out.text("      <Points>\n");
-  out.array("Float64", "Points", 3, n, [&](std::size_t i, int c) { return st.x[i][c]; });
-  out.text("      </Points>\n");
-  out.text("      <Cells>\n");
-  out.array(
-      "Int64", "connectivity", 4, m,
-      [&](std::size_t i, int c) { return static_cast<double>(mesh.tets[cells[i]][c]); }, 1);
-  out.array("Int64", "offsets", 1, m,
-            [&](std::size_t t, int) { return static_cast<double>(4 * (t + 1)); });
-  out.array("UInt8", "types", 1, m, [](std::size_t, int) { return 10.0; });  // VTK_TETRA
-  out.text("      </Cells>\n");
-  return out.finish();
+std::string pvtu_frame(const std::string& pvtu_arrays, const std::vector<std::string>& pieces) {
+  std::string out =
+      "<?xml version=\"1.0\"?>\n<VTKFile type=\"PUnstructuredGrid\" version=\"1.0\" "
+      "byte_order=\"LittleEndian\" header_type=\"UInt64\">\n  <PUnstructuredGrid "
+      "GhostLevel=\"0\">\n";
+  out += pvtu_arrays;
+  for (const std::string& p : pieces) out += "    <Piece Source=\"" + p + "\"/>\n";
+  out += "  </PUnstructuredGrid>\n</VTKFile>\n";
+  return out;
 }
 
 std::string vtu_particles(const Model& model, const State& st, VtuFormat format) {
   const std::size_t n = static_cast<std::size_t>(st.particle_count());
   const auto node = [&](std::size_t i) { return st.first_particle + static_cast<Index>(i); };
   Piece out(format, n, n);
-  out.text("      <PointData>\n");
-  out.array("Float64", "radius", 1, n, [&](std::size_t i, int) { return st.particle_radius[i]; });
-  out.array("Float64", "mass", 1, n, [&](std::size_t i, int) { return st.m[node(i)]; });
-  out.array("Float64", "velocity", 3, n,
-            [&](std::size_t i, int c) { return centred_velocity(st, node(i))[c]; });
-  out.array("Float64", "energy", 1, n, [&](std::size_t i, int) { return st.particle_energy[i]; });
-  out.array("Int32", "body", 1, n, [&](std::size_t i, int) {
-    return static_cast<double>(model.mesh.tet_body[st.particle_tet[i]]);
+  out.section("PointData", [&] {
+    out.array("Float64", "radius", 1, n, [&](std::size_t i, int) { return st.particle_radius[i]; });
+    out.array("Float64", "mass", 1, n, [&](std::size_t i, int) { return st.m[node(i)]; });
+    out.array("Float64", "velocity", 3, n,
+              [&](std::size_t i, int c) { return centred_velocity(st, node(i))[c]; });
+    out.array("Float64", "energy", 1, n, [&](std::size_t i, int) { return st.particle_energy[i]; });
+    out.array("Int32", "body", 1, n, [&](std::size_t i, int) {
+      return static_cast<double>(model.mesh.tet_body[st.particle_tet[i]]);
+    });
   });
-  out.text("      </PointData>\n");
-  out.text("      <Points>\n");
-  out.array("Float64", "Points", 3, n, [&](std::size_t i, int c) { return st.x[node(i)][c]; });
-  out.text("      </Points>\n");
-  out.text("      <Cells>\n");
-  out.array("Int64", "connectivity", 1, n, [](std::size_t i, int) { return double(i); });
-  out.array("Int64", "offsets", 1, n, [](std::size_t i, int) { return double(i + 1); });
-  out.array("UInt8", "types", 1, n, [](std::size_t, int) { return 1.0; });  // VTK_VERTEX
-  out.text("      </Cells>\n");
+  out.section("Points", [&] {
+    out.array("Float64", "Points", 3, n, [&](std::size_t i, int c) { return st.x[node(i)][c]; });
+  });
+  out.section("Cells", [&] {
+    out.array("Int64", "connectivity", 1, n, [](std::size_t i, int) { return double(i); });
+    out.array("Int64", "offsets", 1, n, [](std::size_t i, int) { return double(i + 1); });
+    out.array("UInt8", "types", 1, n, [](std::size_t, int) { return 1.0; });  // VTK_VERTEX
+  });
   return out.finish();
 }
 

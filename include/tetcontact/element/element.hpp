@@ -52,11 +52,18 @@ struct ElementScratch {
   std::vector<double> tet_energy;      // per tet: Eⁿ, its share of the nodal energy
   std::vector<char> tet_averaged;      // per tet: in the nodal averages this step
   // Distributed runs (issue 16): every rank's tets, ascending, and this process's rank. Each
-  // process updates its own tets; what they wrote is then gathered by every process, so that
-  // all hold the whole state, bit for bit what one process computes (element.cpp,
-  // share_tets). Empty: one process, all the tets.
+  // process updates its own tets, and every process then receives what the whole step needs
+  // of the others' (element.cpp): the nodal forces, and per tet the energies and damage of the
+  // balance. Empty: one process, all the tets.
   std::vector<std::vector<Index>> rank_tets;
   int rank = 0;
+  // Built from rank_tets once: per rank, the nodes all of whose tets it owns (it sums their
+  // forces and sends the sums), the corners of its tets at nodes shared with another rank
+  // (sent as they are, and every rank sums those nodes in tet order, as one process does),
+  // and its tets with a shared node (their inputs to the nodal averages are sent); the
+  // shared nodes.
+  std::vector<std::vector<Index>> rank_nodes, rank_shared_corners, rank_frontier_tets;
+  std::vector<Index> shared_nodes;
 };
 
 struct ForceResult {
@@ -64,6 +71,11 @@ struct ForceResult {
   Index critical_tet = -1;     // the tet that sets it
   std::vector<Index> eroding;  // tets whose stable step fell below the erosion limit
 };
+
+/// A distributed run (scratch.rank_tets set): every per-tet field gathered from the rank that
+/// owns the tet, so that every process holds the whole state (before a frame, at the end).
+/// Collective; nothing on one process.
+void share_whole_state(ElementScratch& scratch, State& st);
 
 /// Internal nodal forces F at the current positions from σ = s − (p + q) I, and the stable
 /// time step. For a constant-strain tet the force on node i is

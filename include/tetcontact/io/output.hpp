@@ -22,6 +22,8 @@ class OutputWriter : public Observer {
   OutputWriter(const Model& model, const OutputSpec& spec, std::string dir, double end_time,
                const StepProfile* profile);
   void observe(const State& st, const Sample& sample) override;
+  /// At the samples that write a frame.
+  bool reads_tets(const Sample& sample) const override { return frame_due(sample); }
   /// Writes case.pvd and moves history.csv into place. Call after the run, also a failed one:
   /// what was written is true data up to the failure.
   void close();
@@ -41,6 +43,7 @@ class OutputWriter : public Observer {
   long penetration_samples() const { return penetration_samples_; }
 
  private:
+  bool frame_due(const Sample& s) const;
   void write_frame(const State& st, double t, std::vector<double>* depth);
   std::vector<double> measure_penetration(const State& st);
   long penetration_samples_ = 0;

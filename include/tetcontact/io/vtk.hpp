@@ -25,6 +25,19 @@ std::string vtu_frame(const Model& model, const State& st, const std::vector<std
                       const std::vector<double>& penetration_depth = {},
                       VtuFormat format = VtuFormat::binary);
 
+/// One rank's piece of a frame in a distributed run: the cells among `tets` (not turned into
+/// particles) and the nodes they use, numbered ascending in the mesh's order; the arrays of
+/// vtu_frame plus point data `global_node` and cell data `global_tet` (the mesh's numbers, so
+/// that the pieces can be joined and compared with one process's frame). `pvtu_arrays`, when
+/// given, gets the declarations of its arrays for pvtu_frame.
+std::string vtu_piece(const Model& model, const State& st, const std::vector<std::string>& fields,
+                      const std::vector<double>& penetration_depth, VtuFormat format,
+                      const std::vector<Index>& tets, std::string* pvtu_arrays);
+
+/// The .pvtu that joins a frame's pieces (file names relative to it), with the arrays a piece
+/// declared (vtu_piece). Shared nodes appear in each piece that uses them.
+std::string pvtu_frame(const std::string& pvtu_arrays, const std::vector<std::string>& pieces);
+
 /// The particles at t^n as a .vtu of vertices. Point data: radius (m), mass (kg), velocity
 /// (time-centred), energy (J, the internal energy each carries), body (the one it came from).
 std::string vtu_particles(const Model& model, const State& st,

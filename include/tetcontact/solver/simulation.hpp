@@ -110,6 +110,9 @@ class Simulation {
   /// The decomposition of a distributed run (issue 16; ranks = 1 on one process): each rank
   /// updates the tets METIS gave it.
   const Partition& partition() const { return partition_; }
+  /// Distributed: gathers every tet's fields on every rank (collective; the run's end, before
+  /// the summary and references read them). Nothing on one process.
+  void gather_state();
 
  private:
   void predict_stage();
