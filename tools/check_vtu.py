@@ -8,6 +8,10 @@ mesh's tets, with radius, mass, velocity, energy and body, finite, radius and ma
     check_vtu.py OUTDIR                               check an existing result folder
     check_vtu.py --run BINARY CASE OUTDIR [END_TIME]  run a short version of CASE first
                                                       (to END_TIME, default 2e-5 s)
+    check_vtu.py --same SERIAL_DIR DISTRIBUTED_DIR    a distributed run's frames (.pvtu of
+                                                      per-rank pieces) hold one process's
+                                                      values bit for bit, node by node and
+                                                      cell by cell (their global numbers)
     check_vtu.py --formats BINARY CASE OUTDIR [END_TIME]
                                                       run it with output.format ascii, binary
                                                       and compressed; each folder must pass the
@@ -37,8 +41,9 @@ def check(cond, what):
 
 
 def read(path, name):
-    """The grid of one .vtu, checked to be readable by VTK."""
-    reader = vtk.vtkXMLUnstructuredGridReader()
+    """The grid of one .vtu (or the pieces a .pvtu joins), checked to be readable by VTK."""
+    reader = (vtk.vtkXMLPUnstructuredGridReader() if path.endswith(".pvtu")
+              else vtk.vtkXMLUnstructuredGridReader())
     reader.SetFileName(path)
     reader.Update()
     check(reader.GetErrorCode() == 0, f"{name}: VTK reads it")
@@ -71,7 +76,8 @@ def all_arrays(path):
     """Every point, cell and point-coordinate array of a .vtu as VTK reads it."""
     grid = read(path, os.path.basename(path))
     out = {"Points": vtk_to_numpy(grid.GetPoints().GetData()).copy(),
-           "types": vtk_to_numpy(grid.GetCellTypesArray()).copy()}
+           "types": vtk_to_numpy(grid.GetCellTypesArray()).copy(),
+           "connectivity": vtk_to_numpy(grid.GetCells().GetConnectivityArray()).reshape(-1, 4)}
     for kind, data in (("point", grid.GetPointData()), ("cell", grid.GetCellData())):
         for i in range(data.GetNumberOfArrays()):
             out[f"{kind}:{data.GetArrayName(i)}"] = vtk_to_numpy(data.GetArray(i)).copy()
@@ -105,7 +111,50 @@ def formats(argv):
     return 1 if checks["failed"] else 0
 
 
+def same(serial, dist):
+    """A distributed run's frames (.pvtu of per-rank pieces) against one process's (.vtu): VTK
+    reads the same values, bit for bit, every node and cell by its global number; the particle
+    frames, history and summary are the caller's."""
+    def series(out):
+        root = ET.parse(os.path.join(out, "case.pvd")).getroot().find("Collection")
+        return [(d.get("timestep"), d.get("file")) for d in root.findall("DataSet")]
+    one, many = series(serial), series(dist)
+    check([t for t, _ in one] == [t for t, _ in many], "the same frame times")
+    for (t, a), (_, b) in zip(one, many):
+        ref = all_arrays(os.path.join(serial, a))
+        got = all_arrays(os.path.join(dist, b))
+        if not b.endswith(".pvtu"):  # one rank: the whole frame, as one process writes it
+            check(sorted(got) == sorted(ref) and
+                  all(got[k].tobytes() == ref[k].tobytes() for k in ref), f"{b}: bit-identical")
+            continue
+        nodes = got.pop("point:global_node").astype(int)
+        tets = got.pop("cell:global_tet").astype(int)
+        # One process's cells are the tets still cells, ascending: the k-th is the k-th of the
+        # sorted global numbers.
+        order = sorted(set(tets.tolist()))
+        check(len(order) == len(tets), f"{b}: each cell in one piece")
+        cell = {g: k for k, g in enumerate(order)}
+        cells = [cell[g] for g in tets]
+        check(len(order) == len(ref["types"]), f"{b}: {len(ref['types'])} cells")
+        check(len(set(nodes.tolist())) == len(ref["Points"]), f"{b}: every node in a piece")
+        check(sorted(got) == sorted(ref), f"{b}: the same arrays")
+        for k in ref:
+            if k not in got:
+                continue
+            if k == "connectivity":  # the pieces' own node numbers, as the mesh's
+                check((nodes[got[k]] == ref[k][cells]).all(), f"{b}: the same cells' nodes")
+                continue
+            rows = nodes if k.startswith("point:") or k == "Points" else cells
+            check(got[k].dtype == ref[k].dtype and
+                  got[k].tobytes() == ref[k][rows].tobytes(), f"{b}: {k} bit-identical")
+    print(f"check_vtu: {dist} against {serial}: {checks['passed']} passed, "
+          f"{checks['failed']} failed")
+    return 1 if checks["failed"] else 0
+
+
 def main(argv):
+    if argv[:1] == ["--same"]:
+        return same(*argv[1:3])
     if argv[:1] == ["--formats"]:
         return formats(argv[1:])
     if argv[:1] == ["--run"]:
@@ -145,7 +194,12 @@ def check_folder(out):
               "the last particle frame holds summary.fracture.particles")
     for t, name in frames:
         grid = read(os.path.join(out, name), name)
-        check(grid.GetNumberOfPoints() == nodes, f"{name}: {nodes} points")
+        pieces = grid.GetPointData().GetArray("global_node")
+        if name.endswith(".pvtu"):  # pieces: each shared node in every piece that uses it
+            check(pieces is not None and len(set(vtk_to_numpy(pieces).tolist())) == nodes,
+                  f"{name}: the pieces hold the {nodes} nodes")
+        else:
+            check(grid.GetNumberOfPoints() == nodes, f"{name}: {nodes} points")
         cells = tets - particles.get(t, 0)  # cells turned into particles leave the mesh
         check(grid.GetNumberOfCells() == cells, f"{name}: {cells} cells")
         types = vtk_to_numpy(grid.GetCellTypesArray())

@@ -223,6 +223,31 @@ def mpi(binary, work):
               f"{a['timings']['elements']:.1f} s / {c['timings']['elements']:.1f} s | "
               f"{c['parallel']['communication_seconds']:.2f} s | {'yes' if same else 'NO'} |",
               flush=True)
+    # Weak scaling: the Taylor rod on 1 rank, and twice as long (twice the tets, the same cells)
+    # on 2 ranks, 1 thread each.
+    print()
+    print("| weak scaling | tets | steps | wall | elements | communication | efficiency |")
+    print("|---|---|---|---|---|---|---|")
+    rows = []
+    for ranks, height, cells, z in ((1, "32.4e-3", 40, "16.2e-3"), (2, "64.8e-3", 80, "32.4e-3")):
+        out = os.path.join(work, f"weak-{ranks}")
+        launcher = [] if ranks == 1 else ["mpirun", "--allow-run-as-root", "--oversubscribe",
+                                          "-np", str(ranks)]
+        cmd = launcher + [binary, "run", os.path.join(ROOT, "data/cases/taylor-copper.yaml"),
+                          "--quiet", "--force", "--threads", "1", "--out", out,
+                          "--set", "end_time=20.0e-6",
+                          "--set", f"bodies.0.mesh.cylinder.height={height}",
+                          "--set", f"bodies.0.mesh.cylinder.cells_axial={cells}",
+                          "--set", f"bodies.0.transform.0.translate=[0,0,{z}]"]
+        subprocess.run(cmd, check=True)
+        with open(os.path.join(out, "summary.json")) as f:
+            rows.append((ranks, json.load(f)))
+    base = rows[0][1]["wall_seconds"]
+    for ranks, r in rows:
+        print(f"| Taylor rod, {ranks} rank{'s' if ranks > 1 else ''} | {r['mesh']['tets']:,} | "
+              f"{r['steps']:,} | {r['wall_seconds']:.1f} s | {r['timings']['elements']:.1f} s | "
+              f"{r['parallel']['communication_seconds']:.2f} s | "
+              f"{base / r['wall_seconds'] * 100:.0f} % |", flush=True)
 
 
 VERIFY_ROWS = [  # (what, case, --set values)

@@ -482,19 +482,18 @@ int run_case(const RunOptions& o) {
     return static_cast<int>(worst);
 
   const auto t0 = Clock::now();
-  std::unique_ptr<OutputWriter> writer_on_root;
+  // Every rank writes its piece of the frames (distributed); rank 0 the rest.
+  OutputWriter writer(sim->model(), c.output, dir, c.end_time, &sim->profile(),
+                      {mpi::rank(), mpi::ranks(), sim->rank_tets()});
+  sim->add_observer(&writer, mpi::ranks() > 1 ? "output:pvtu+history" : "output:vtu+history");
+  // Interpenetration at every frame, independent of the contact code (bodies ≥ 2, or
+  // particles: a particle may not be inside any body). Distributed: measured by every rank
+  // alike, for its piece's nodes.
   std::unique_ptr<PenetrationProbe> probe;
-  if (root) {
-    writer_on_root =
-        std::make_unique<OutputWriter>(sim->model(), c.output, dir, c.end_time, &sim->profile());
-    sim->add_observer(writer_on_root.get(), "output:vtu+history");
-    // Interpenetration at every frame, independent of the contact code (bodies ≥ 2, or
-    // particles: a particle may not be inside any body).
-    if (sim->model().mesh.bodies.size() >= 2 || sim->model().particles) {
-      probe = std::make_unique<PenetrationProbe>(sim->model());
-      writer_on_root->set_penetration_probe(probe.get());
-      sim->add_module("diagnostics:penetration");
-    }
+  if (sim->model().mesh.bodies.size() >= 2 || sim->model().particles) {
+    probe = std::make_unique<PenetrationProbe>(sim->model());
+    writer.set_penetration_probe(probe.get());
+    sim->add_module("diagnostics:penetration");
   }
   Progress progress(o.quiet || !root, c.end_time);
   std::string status = "ok";
@@ -515,8 +514,8 @@ int run_case(const RunOptions& o) {
   // The other ranks end with rank 0's code (a missed check is known to rank 0 alone).
   if (!root) return std::stoi(mpi::broadcast("", 0));
   try {
-    code = report_run(o, c, *sim, *writer_on_root, dir, status, code, seconds_since(t0),
-                      communication, warnings);
+    code = report_run(o, c, *sim, writer, dir, status, code, seconds_since(t0), communication,
+                      warnings);
   } catch (...) {
     mpi::broadcast("1", 0);
     throw;

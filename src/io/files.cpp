@@ -39,7 +39,7 @@ void prepare_output_dir(const std::string& dir, bool force) {
                           ": output directory is not empty; choose another --out or pass "
                           "--force to replace the results of a previous run");
       static const std::regex ours(
-          R"((case\.pvd|frame_\d+\.vtu|particles\.pvd|particles_\d+\.vtu|history\.csv|summary\.json|sweep\.csv)(\.tmp)?)");
+          R"((case\.pvd|frame_\d+(_r\d+)?\.vtu|frame_\d+\.pvtu|particles\.pvd|particles_\d+\.vtu|history\.csv|summary\.json|sweep\.csv)(\.tmp)?)");
       for (const auto& entry : fs::directory_iterator(dir))
         if (entry.is_regular_file() && std::regex_match(entry.path().filename().string(), ours))
           fs::remove(entry.path());

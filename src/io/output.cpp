@@ -4,18 +4,22 @@
 #include <cstdio>
 
 #include "tetcontact/io/vtk.hpp"
+#include "tetcontact/parallel/mpi.hpp"
 
 namespace tc {
 
 OutputWriter::OutputWriter(const Model& model, const OutputSpec& spec, std::string dir,
-                           double end_time, const StepProfile* profile)
+                           double end_time, const StepProfile* profile, const OutputPiece& piece)
     : model_(model),
       spec_(spec),
       dir_(std::move(dir)),
       end_time_(end_time),
       profile_(profile),
-      history_(dir_ + "/history.csv") {
-  auto& h = history_.stream();
+      piece_(piece) {
+  for (const auto& stage : profile_->stages) stage_seconds_.push_back(stage.second);
+  if (piece_.rank != 0) return;  // the history is rank 0's
+  history_ = std::make_unique<AtomicFile>(dir_ + "/history.csv");
+  auto& h = history_->stream();
   h << "step,t,dt,kinetic,internal,plastic_work,viscous_work,boundary_work,wall_work,total,"
        "balance_error,momentum_x,momentum_y,momentum_z";
   for (const RigidWall& w : model_.walls) h << ",wall_force_" << w.name;
@@ -23,10 +27,7 @@ OutputWriter::OutputWriter(const Model& model, const OutputSpec& spec, std::stri
   if (model_.element.fracture) h << ",damaged,destroyed";
   if (model_.particles) h << ",particles,particle_mass";
   if (spec_.penetration_every_step) h << ",nodes_inside,crossings";
-  for (const auto& [name, seconds] : profile_->stages) {
-    h << ",seconds_" << name;
-    stage_seconds_.push_back(seconds);
-  }
+  for (const auto& stage : profile_->stages) h << ",seconds_" << stage.first;
   h << '\n';
 }
 
@@ -34,8 +35,8 @@ void OutputWriter::observe(const State& st, const Sample& s) {
   const bool final = s.t >= end_time_;
   std::vector<double> depth;
   if (probe_ && spec_.penetration_every_step) depth = measure_penetration(st);
-  if (s.step % spec_.history_every == 0 || final) {
-    auto& h = history_.stream();
+  if (history_ && (s.step % spec_.history_every == 0 || final)) {
+    auto& h = history_->stream();
     h << s.step;
     for (double v :
          {s.t, s.dt, s.kinetic, s.internal, s.plastic_work, s.viscous_work, s.boundary.work,
@@ -91,8 +92,31 @@ void OutputWriter::write_frame(const State& st, double t, std::vector<double>* d
     depth = std::move(*depth_measured);
   else if (probe_)
     depth = measure_penetration(st);
-  write_file_atomic(dir_ + "/" + name, vtu_frame(model_, st, spec_.fields, depth, spec_.format));
+  if (piece_.ranks == 1) {
+    write_file_atomic(dir_ + "/" + name, vtu_frame(model_, st, spec_.fields, depth, spec_.format));
+  } else {
+    // Each rank its piece; once all are written (the collective), rank 0 the file that joins
+    // them.
+    const std::size_t frame = frames_.size();
+    const auto piece_name = [&](int rank) {
+      char p[48];
+      std::snprintf(p, sizeof p, "frame_%04zu_r%d.vtu", frame, rank);
+      return std::string(p);
+    };
+    std::string arrays;
+    write_file_atomic(
+        dir_ + "/" + piece_name(piece_.rank),
+        vtu_piece(model_, st, spec_.fields, depth, spec_.format, *piece_.tets, &arrays));
+    mpi::max(0L);
+    std::snprintf(name, sizeof name, "frame_%04zu.pvtu", frame);
+    if (piece_.rank == 0) {
+      std::vector<std::string> pieces;
+      for (int r = 0; r < piece_.ranks; ++r) pieces.push_back(piece_name(r));
+      write_file_atomic(dir_ + "/" + name, pvtu_frame(arrays, pieces));
+    }
+  }
   frames_.emplace_back(t, name);
+  if (piece_.rank != 0) return;  // the series and the particles are rank 0's
   // Keep the series current so that a run stopped midway still opens in ParaView.
   write_file_atomic(dir_ + "/case.pvd", pvd_series(frames_));
   if (model_.particles) {  // the particles: a point series of their own, frame for frame
@@ -104,7 +128,7 @@ void OutputWriter::write_frame(const State& st, double t, std::vector<double>* d
 }
 
 void OutputWriter::close() {
-  history_.commit();
+  if (history_) history_->commit();
 }
 
 }  // namespace tc

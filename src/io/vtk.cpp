@@ -194,7 +194,9 @@ Piece frame_piece(const Model& model, const State& st, const std::vector<std::st
   std::vector<Index> nodes;
   std::vector<Index> local;  // a piece: mesh node → its number in the piece
   if (tets) {
-    for (const Index t : cells)
+    // The nodes of all its tets, cells still or not: a node left by cells turned into
+    // particles stays in the frame, as in one process's.
+    for (const Index t : *tets)
       for (const Index k : mesh.tets[t]) nodes.push_back(k);
     std::sort(nodes.begin(), nodes.end());
     nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());

@@ -459,14 +459,9 @@ RunFigures Simulation::run_figures() const {
   return r;
 }
 
+// Observers see the nodes whole, and per tet the balance's fields; in a distributed run the
+// tets' other fields only for this rank's tets (OutputWriter writes its piece).
 void Simulation::output_stage() {
-  if (!scratch_.rank_tets.empty()) {
-    // Distributed: the tets' fields are whole on every rank only when an observer (on any
-    // rank: rank 0 writes) reads them.
-    bool reads = false;
-    for (const Observer* o : observers_) reads = reads || o->reads_tets(last_);
-    if (mpi::max(static_cast<long>(reads)) != 0) share_whole_state(scratch_, state_);
-  }
   for (Observer* o : observers_) o->observe(state_, last_);
 }
 

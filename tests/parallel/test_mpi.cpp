@@ -42,9 +42,19 @@ test::Json figures(test::Json s) {
   return s;
 }
 
-// Runs a case as one process, then on each of `ranks` processes: every file the one process
-// wrote (frames, particle frames, series) must be the same bytes, the history the same but
-// for its wall-clock columns, the summary the same figures. Returns the one process's summary.
+// tools/check_vtu.py ARGS (VTK's own readers): its exit code.
+int check_vtu(const std::string& args) {
+  const std::string cmd =
+      "/usr/bin/python3 '" + test::source_path("tools/check_vtu.py") + "' " + args + " >/dev/null";
+  const int status = std::system(cmd.c_str());
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+// Runs a case as one process, then on each of `ranks` processes: the frames (per-rank pieces
+// joined by a .pvtu) must hold the one process's values bit for bit, node by node and cell by
+// cell, as VTK reads them; every other file (particle frames and their series) the same bytes,
+// the history the same but for its wall-clock columns, the summary the same figures. Returns
+// the one process's summary.
 test::Json same_on_any_rank_count(const std::string& name, const std::string& case_file,
                                   const std::string& sets, const std::vector<int>& ranks) {
   test::TempDir dir("mpi-" + name);
@@ -62,12 +72,16 @@ test::Json same_on_any_rank_count(const std::string& name, const std::string& ca
     for (const auto& e : fs::recursive_directory_iterator(serial)) {
       if (!e.is_regular_file()) continue;
       const fs::path rel = fs::relative(e.path(), serial);
-      if (rel == "summary.json" || rel == "history.csv") continue;
+      const std::string file = rel.string();
+      if (file == "summary.json" || file == "history.csv" || file == "case.pvd" ||
+          file.rfind("frame_", 0) == 0)
+        continue;
       ++files;
       EXPECT_TRUE(test::read_text(e.path().string()) == test::read_text((out / rel).string()))
           << name << ": " << rel << " differs on " << n << " ranks";
     }
-    EXPECT_GT(files, 2) << name;
+    EXPECT_EQ(check_vtu("--same '" + serial.string() + "' '" + out.string() + "'"), 0)
+        << name << " on " << n << " ranks: the frames differ (check_vtu.py --same)";
     EXPECT_EQ(test::history_without_timings(serial / "history.csv"),
               test::history_without_timings(out / "history.csv"))
         << name << " on " << n << " ranks";
@@ -90,6 +104,36 @@ TEST(Mpi, CubesWithEdgeContactAreBitIdenticalOn1To4Ranks) {
   const test::Json s =
       same_on_any_rank_count("cubes", "data/cases/cubes-edge.yaml", "", {1, 2, 3, 4});
   EXPECT_GT(test::number(s, "/contact/edge_edge"), 0);
+}
+
+// The pieces and the .pvtu that joins them open in VTK's reader (the one ParaView uses) and
+// pass check_vtu.py's checks (every node in a piece, every cell once, arrays and volumes).
+TEST(Mpi, PiecesAndPvtuOpenInVtksReader) {
+  test::TempDir dir("mpi-pvtu");
+  const std::string out = dir / "o";
+  const auto r = launch(3,
+                        "run " + quote(test::source_path("data/cases/spall-plate.yaml")) +
+                            " --quiet --set end_time=2.0e-6 --set output.interval=1.0e-6 --set "
+                            "'output.fields=[displacement,velocity,stress,pressure,body,von_mises]'"
+                            " --out " +
+                            quote(out),
+                        dir.str());
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_TRUE(fs::exists(out + "/frame_0001.pvtu"));
+  for (const char* piece : {"frame_0001_r0.vtu", "frame_0001_r1.vtu", "frame_0001_r2.vtu"})
+    EXPECT_TRUE(fs::exists(out + "/" + piece)) << piece;
+  EXPECT_FALSE(fs::exists(out + "/frame_0001.vtu"));
+  EXPECT_EQ(check_vtu("'" + out + "'"), 0);
+  // The checks can fail: a piece missing.
+  fs::remove(out + "/frame_0001_r1.vtu");
+  EXPECT_NE(check_vtu("'" + out + "'"), 0);
+  // The partition the run used, in its summary: every tet on one rank, imbalance measured.
+  const test::Json s = test::read_json(out + "/summary.json");
+  long tets = 0;
+  for (const auto& t : s.at("parallel").at("partition").at("tets")) tets += t.get<long>();
+  EXPECT_EQ(tets, static_cast<long>(test::number(s, "/mesh/tets")));
+  EXPECT_GE(test::number(s, "/parallel/partition/tet_imbalance"), 1.0);
+  EXPECT_EQ(s.at("parallel").at("partition").at("shared_nodes").size(), 3u);
 }
 
 TEST(Mpi, CoarseCylindersWithEdgeEdgeAndVerificationAreBitIdenticalOn2And3Ranks) {
@@ -175,6 +219,15 @@ TEST(Mpi, BadInputStopsEveryRankAndOtherCommandsRefuseSeveralProcesses) {
   r = launch(2, "run " + cubes + " --quiet --out " + quote(dir / "o"), dir.str());  // no --force
   EXPECT_EQ(r.code, 2) << r.err;
   EXPECT_EQ(test::read_text(dir / "o/summary.json"), before);
+  // --force clears a distributed run's files too: no piece of a 3-rank run stays beside a
+  // 2-rank one.
+  r = launch(3, "run " + cubes + " --quiet --force --out " + quote(dir / "o"), dir.str());
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_TRUE(fs::exists(dir / "o/frame_0000_r2.vtu"));
+  r = launch(2, "run " + cubes + " --quiet --force --out " + quote(dir / "o"), dir.str());
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_FALSE(fs::exists(dir / "o/frame_0000_r2.vtu"));
+  EXPECT_TRUE(fs::exists(dir / "o/frame_0000_r1.vtu"));
   r = launch(2, "check " + cubes, dir.str());
   EXPECT_EQ(r.code, 2);
   EXPECT_NE(r.err.find("only `run` runs distributed"), std::string::npos) << r.err;

@@ -15,15 +15,21 @@
 
 namespace tc {
 
+/// A distributed run's share of the output (issue 16): each rank writes the piece of its
+/// tets at every frame (frame_NNNN_rR.vtu); rank 0 joins them in frame_NNNN.pvtu and writes
+/// the series, the history and the particles. Default: one process, whole frames.
+struct OutputPiece {
+  int rank = 0, ranks = 1;
+  const std::vector<Index>* tets = nullptr;  // this rank's tets (ranks > 1)
+};
+
 class OutputWriter : public Observer {
  public:
   /// `dir` must have been prepared (prepare_output_dir). `profile` supplies the stage timings
   /// written to the history.
   OutputWriter(const Model& model, const OutputSpec& spec, std::string dir, double end_time,
-               const StepProfile* profile);
+               const StepProfile* profile, const OutputPiece& piece = {});
   void observe(const State& st, const Sample& sample) override;
-  /// At the samples that write a frame.
-  bool reads_tets(const Sample& sample) const override { return frame_due(sample); }
   /// Writes case.pvd and moves history.csv into place. Call after the run, also a failed one:
   /// what was written is true data up to the failure.
   void close();
@@ -54,8 +60,9 @@ class OutputWriter : public Observer {
   std::string dir_;
   double end_time_;
   const StepProfile* profile_;
-  AtomicFile history_;
-  std::vector<double> stage_seconds_;  // at the previous history row
+  OutputPiece piece_;
+  std::unique_ptr<AtomicFile> history_;  // rank 0's
+  std::vector<double> stage_seconds_;    // at the previous history row
   long rows_ = 0;
   double next_frame_ = 0.0;
   std::vector<std::pair<double, std::string>> frames_, particle_frames_;

@@ -26,7 +26,7 @@ std::string vtu_frame(const Model& model, const State& st, const std::vector<std
                       VtuFormat format = VtuFormat::binary);
 
 /// One rank's piece of a frame in a distributed run: the cells among `tets` (not turned into
-/// particles) and the nodes they use, numbered ascending in the mesh's order; the arrays of
+/// particles) and the nodes of `tets`, numbered ascending in the mesh's order; the arrays of
 /// vtu_frame plus point data `global_node` and cell data `global_tet` (the mesh's numbers, so
 /// that the pieces can be joined and compared with one process's frame). `pvtu_arrays`, when
 /// given, gets the declarations of its arrays for pvtu_frame.

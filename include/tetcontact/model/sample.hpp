@@ -65,9 +65,6 @@ class Observer {
  public:
   virtual ~Observer() = default;
   virtual void observe(const State& st, const Sample& sample) = 0;
-  /// Whether observe() at this sample reads the tets' fields beyond those of the balance
-  /// (stress, pressure, plastic strain...): a distributed run then gathers them first.
-  virtual bool reads_tets(const Sample&) const { return false; }
 };
 
 }  // namespace tc

@@ -113,6 +113,10 @@ class Simulation {
   /// Distributed: gathers every tet's fields on every rank (collective; the run's end, before
   /// the summary and references read them). Nothing on one process.
   void gather_state();
+  /// Distributed: this rank's tets (ascending); null on one process.
+  const std::vector<Index>* rank_tets() const {
+    return scratch_.rank_tets.empty() ? nullptr : &scratch_.rank_tets[scratch_.rank];
+  }
 
  private:
   void predict_stage();
