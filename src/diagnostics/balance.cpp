@@ -23,7 +23,21 @@ void account(const std::vector<Vec3>& impulse, const State& st, double f,
 
 }  // namespace
 
-Sample sample_balance(const State& st, const Sample* previous) {
+TetSums tet_sums(const State& st, const std::vector<Index>* tets) {
+  TetSums sums;
+  const auto add = [&](std::size_t t) {
+    sums.internal.add(st.e_int[t]);
+    sums.plastic_work.add(st.w_plastic[t]);
+    sums.viscous_work.add(st.w_viscous[t]);
+  };
+  if (tets)
+    for (const Index t : *tets) add(static_cast<std::size_t>(t));
+  else
+    for (std::size_t t = 0; t < st.e_int.size(); ++t) add(t);
+  return sums;
+}
+
+Sample sample_balance(const State& st, const Sample* previous, const TetSums* sums) {
   Sample s;
   s.step = st.step;
   s.t = st.t;
@@ -37,11 +51,12 @@ Sample sample_balance(const State& st, const Sample* previous) {
     s.momentum += p;
     s.momentum_scale += p.norm();
   }
-  for (std::size_t t = 0; t < st.e_int.size(); ++t) {
-    s.internal += st.e_int[t];
-    s.plastic_work += st.w_plastic[t];
-    s.viscous_work += st.w_viscous[t];
-  }
+  // The tets' energies summed exactly, then rounded once (the same for any order of the tets).
+  const TetSums own = sums ? TetSums{} : tet_sums(st);
+  const TetSums& tets = sums ? *sums : own;
+  s.internal = tets.internal.value();
+  s.plastic_work = tets.plastic_work.value();
+  s.viscous_work = tets.viscous_work.value();
   for (const Damage d : st.damage) {
     s.damaged += d == Damage::damaged;
     s.destroyed += d == Damage::destroyed;

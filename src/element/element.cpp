@@ -229,17 +229,15 @@ void across_ranks(const ElementScratch& scratch, ForceResult& r) {
 // entry for it (ascending tets), every rank unpacks all in rank order. Doubles throughout
 // (damage and flags are small integers, exact).
 enum Shared : unsigned {
-  k_balance =
-      1,  // what the balance sums and fracture read: energies, plastic and viscous work, damage
-  k_averages = 2,  // the nodal averages' inputs (volume, tet_energy, tet_averaged)
-  k_whole = 4,     // everything else a tet holds (frames, references, the summary)
+  k_averages = 1,  // the nodal averages' inputs (volume, tet_energy, tet_averaged)
+  k_whole = 2,     // everything a tet holds (for the summary and references at the end)
 };
 
 void share_tets(ElementScratch& scratch, State& st, unsigned what,
                 const std::vector<std::vector<Index>>& lists) {
   std::vector<double> values;
   const auto fields = [&](std::size_t t, auto&& io) {
-    if (what & (k_balance | k_whole)) {
+    if (what & k_whole) {
       io(st.e_int[t]);
       io(st.w_plastic[t]);
       io(st.w_viscous[t]);
@@ -273,6 +271,30 @@ void share_tets(ElementScratch& scratch, State& st, unsigned what,
   std::size_t k = 0;
   for (const std::vector<Index>& tets : lists)
     for (const Index t : tets) fields(t, [&](double& v) { v = values[k++]; });
+}
+
+// Every step: this rank's damaged and destroyed tets, with their damage and energy, to every
+// rank. A tet never turns intact again, and turns into a particle on every rank at once
+// (fracture), so every rank then holds every tet's damage (the balance counts it, fracture
+// reads it) and the energy of each cell a conversion into a particle may take. The balance's sums
+// need nothing more: each rank sums its own tets exactly and the partials are merged
+// (Simulation::sample_stage).
+void share_damaged(const ElementScratch& scratch, State& st) {
+  std::vector<double> values;
+  for (const Index t : scratch.rank_tets[scratch.rank])
+    if (st.damage[t] == Damage::damaged || st.damage[t] == Damage::destroyed)
+      values.insert(values.end(),
+                    {static_cast<double>(t), static_cast<double>(st.damage[t]), st.e_int[t]});
+  std::vector<char> mine(values.size() * sizeof(double));
+  std::memcpy(mine.data(), values.data(), mine.size());
+  const std::vector<char> all = mpi::all_gather(mine, nullptr);
+  values.resize(all.size() / sizeof(double));
+  std::memcpy(values.data(), all.data(), all.size());
+  for (std::size_t k = 0; k + 2 < values.size(); k += 3) {
+    const auto t = static_cast<std::size_t>(values[k]);
+    st.damage[t] = static_cast<Damage>(static_cast<int>(values[k + 1]));
+    st.e_int[t] = values[k + 2];
+  }
 }
 
 std::vector<ForceResult> block_results(std::size_t tets) {
@@ -575,7 +597,7 @@ ForceResult update_material(const std::vector<Tet>& tets, const std::vector<Mate
   across_ranks(scratch, forces);
   if (!any_anp) {
     gather_forces(mesh_nodes, scratch, st);
-    if (distributed(scratch)) share_tets(scratch, st, k_balance, scratch.rank_tets);
+    if (distributed(scratch)) share_damaged(scratch, st);
     return finish_forces(forces);
   }
   // Distributed: the inputs of the nodal averages at shared nodes, from the tets around them.
@@ -639,7 +661,7 @@ ForceResult update_material(const std::vector<Tet>& tets, const std::vector<Mate
   across_ranks(scratch, third);
   merge(forces, {third});
   gather_forces(mesh_nodes, scratch, st);
-  if (distributed(scratch)) share_tets(scratch, st, k_balance, scratch.rank_tets);
+  if (distributed(scratch)) share_damaged(scratch, st);
   return finish_forces(forces);
 }
 

@@ -2,9 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <optional>
 #include <set>
 #include <sstream>
+#include <type_traits>
 
 #include "tetcontact/parallel/mpi.hpp"
 #include "tetcontact/parallel/parallel.hpp"
@@ -401,8 +403,29 @@ double Simulation::balance_error(const Sample& s) const {
   return std::abs(s.total - s.external_work() - s.contact.work - first_.total) / energy_scale_;
 }
 
+// Distributed: each rank's exact sums over its own tets, merged (exactly: the same bits as one
+// process's sum over all tets).
+TetSums Simulation::tet_sums_over_ranks() const {
+  static_assert(std::is_trivially_copyable_v<TetSums>);
+  const TetSums mine = tet_sums(state_, rank_tets());
+  std::vector<char> bytes(sizeof(TetSums));
+  std::memcpy(bytes.data(), &mine, sizeof(TetSums));
+  const std::vector<char> all = mpi::all_gather(bytes, nullptr);
+  TetSums sums;
+  for (std::size_t r = 0; r * sizeof(TetSums) < all.size(); ++r) {
+    TetSums part;
+    std::memcpy(&part, all.data() + r * sizeof(TetSums), sizeof(TetSums));
+    sums.internal.merge(part.internal);
+    sums.plastic_work.merge(part.plastic_work);
+    sums.viscous_work.merge(part.viscous_work);
+  }
+  return sums;
+}
+
 void Simulation::sample_stage() {
-  Sample s = sample_balance(state_, have_sample_ ? &last_ : nullptr);
+  std::optional<TetSums> sums;
+  if (rank_tets()) sums = tet_sums_over_ranks();
+  Sample s = sample_balance(state_, have_sample_ ? &last_ : nullptr, sums ? &*sums : nullptr);
   if (!std::isfinite(s.kinetic) || !std::isfinite(s.momentum.sum())) {
     std::ostringstream os;
     os << "non-finite velocity at t = " << state_.t << " s (step " << state_.step << ")";

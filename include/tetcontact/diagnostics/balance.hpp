@@ -9,6 +9,7 @@
 #include "tetcontact/model/model.hpp"
 #include "tetcontact/model/sample.hpp"
 #include "tetcontact/model/state.hpp"
+#include "tetcontact/parallel/exact_sum.hpp"
 
 namespace tc {
 
@@ -25,7 +26,16 @@ namespace tc {
 /// bookkeeping the share f J^n·U^n falls at t^n and the rest at t^{n+1}, and its momentum
 /// f J^n at t^n and (1 − f) J^n at t^{n+1}. So `previous` must be the sample of the step
 /// before (nullptr for the first).
-Sample sample_balance(const State& st, const Sample* previous);
+/// The sums over tets the balance reads, exact (parallel/exact_sum.hpp): the same bits for any
+/// order of the tets, so a distributed run adds its own and merges the ranks' partials.
+struct TetSums {
+  ExactSum internal, plastic_work, viscous_work;
+};
+/// Over `tets` (all the tets when null).
+TetSums tet_sums(const State& st, const std::vector<Index>* tets = nullptr);
+
+/// `sums`: the tets' sums when the caller made them (a distributed run); else made here.
+Sample sample_balance(const State& st, const Sample* previous, const TetSums* sums = nullptr);
 
 /// Momentum balance over a run, relative: |P_last − P_first − external impulse| over the larger
 /// momentum scale (0 when nothing moves).

@@ -122,6 +122,7 @@ class Simulation {
   void predict_stage();
 
   void sample_stage();
+  TetSums tet_sums_over_ranks() const;
   void output_stage();
   void commit_stage();
   void elements_stage();

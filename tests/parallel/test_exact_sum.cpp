@@ -1,0 +1,127 @@
+// The exact sum against GMP's rationals (every double is one): the value is the exact sum
+// rounded to the nearest double, ties to even; and it is the same bits for any order of the
+// terms and any split into merged partial sums (what a distributed run does).
+#include <gmpxx.h>
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <limits>
+#include <random>
+#include <vector>
+
+#include "tetcontact/parallel/exact_sum.hpp"
+
+using tc::ExactSum;
+
+namespace {
+
+mpq_class exact(double x) {
+  mpq_class q;
+  mpq_set_d(q.get_mpq_t(), x);
+  return q;
+}
+
+// r is the exact value rounded to nearest, ties to even.
+::testing::AssertionResult rounds_correctly(const mpq_class& sum, double r) {
+  if (!std::isfinite(r)) return ::testing::AssertionFailure() << "not finite: " << r;
+  const mpq_class d = abs(sum - exact(r));
+  for (const double n : {std::nextafter(r, -INFINITY), std::nextafter(r, INFINITY)}) {
+    if (!std::isfinite(n)) continue;
+    const mpq_class dn = abs(sum - exact(n));
+    if (dn < d) return ::testing::AssertionFailure() << r << " is not the nearest (" << n << ")";
+    if (dn == d && (std::bit_cast<std::uint64_t>(r) & 1))
+      return ::testing::AssertionFailure() << r << ": a tie not rounded to even (" << n << ")";
+  }
+  return ::testing::AssertionSuccess();
+}
+
+double term(std::mt19937_64& rng) {
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  std::uniform_int_distribution<int> exponent(-1074, 1000), kind(0, 9);
+  switch (kind(rng)) {
+    case 0:  // a subnormal
+      return std::ldexp(unit(rng), -1060);
+    case 1:  // a huge value
+      return std::ldexp(unit(rng), 1000);
+    case 2:
+    case 3:  // near 1 (most sums: cancellations between them)
+      return 1.0 + std::ldexp(unit(rng), -40);
+    default:
+      return std::ldexp(unit(rng), exponent(rng) / 8);
+  }
+}
+
+}  // namespace
+
+TEST(ExactSum, RoundsTheExactSumToNearestEven) {
+  std::mt19937_64 rng(7);
+  for (int trial = 0; trial < 400; ++trial) {
+    const int n = 1 + trial % 60;
+    std::vector<double> xs;
+    for (int i = 0; i < n; ++i) xs.push_back(term(rng));
+    if (trial % 3 == 0)  // cancellation down to the last terms
+      for (int i = 0; i < n; ++i) xs.push_back(-xs[i] * (i % 2 ? 1.0 : 1.0 + 0x1p-52));
+    ExactSum s;
+    mpq_class sum = 0;
+    for (const double x : xs) s.add(x), sum += exact(x);
+    EXPECT_TRUE(rounds_correctly(sum, s.value())) << "trial " << trial;
+  }
+}
+
+TEST(ExactSum, HandlesTiesZerosSubnormalsAndNonFiniteValues) {
+  ExactSum zero;
+  EXPECT_EQ(std::bit_cast<std::uint64_t>(zero.value()), 0u);
+  // 1 + 2^-53 is a tie between 1 and 1 + 2^-52: to even, 1; with 2^-200 more, above the tie.
+  ExactSum tie;
+  tie.add(1.0);
+  tie.add(0x1p-53);
+  EXPECT_EQ(tie.value(), 1.0);
+  tie.add(0x1p-200);
+  EXPECT_EQ(tie.value(), 1.0 + 0x1p-52);
+  // (1 + 2^-52) + 2^-53: a tie to the even 1 + 2^-51.
+  ExactSum odd;
+  odd.add(1.0 + 0x1p-52);
+  odd.add(0x1p-53);
+  EXPECT_EQ(odd.value(), 1.0 + 0x1p-51);
+  // Naive summation loses the small term; the exact sum keeps it.
+  ExactSum big;
+  for (const double x : {1e100, 1.0, -1e100}) big.add(x);
+  EXPECT_EQ(big.value(), 1.0);
+  ExactSum sub;
+  sub.add(std::numeric_limits<double>::denorm_min());
+  sub.add(std::numeric_limits<double>::denorm_min());
+  sub.add(-0x1p-1073 * 3);
+  EXPECT_EQ(sub.value(), -0x1p-1072);  // 2 · 2^-1074 − 3 · 2^-1073
+  ExactSum inf;
+  inf.add(1.0);
+  inf.add(INFINITY);
+  EXPECT_EQ(inf.value(), INFINITY);
+  inf.add(-INFINITY);
+  EXPECT_TRUE(std::isnan(inf.value()));
+}
+
+TEST(ExactSum, SameBitsForAnyOrderAndAnySplitIntoMergedPartials) {
+  std::mt19937_64 rng(11);
+  std::vector<double> xs;
+  for (int i = 0; i < 5000; ++i) xs.push_back(term(rng) * (i % 7 == 0 ? 1e-30 : 1.0));
+  ExactSum one;
+  double naive = 0.0;
+  for (const double x : xs) one.add(x), naive += x;
+  for (int trial = 0; trial < 20; ++trial) {
+    std::shuffle(xs.begin(), xs.end(), rng);
+    const int parts = 1 + trial % 5;
+    std::vector<ExactSum> partial(parts);
+    for (std::size_t i = 0; i < xs.size(); ++i) partial[(i * 7919) % parts].add(xs[i]);
+    ExactSum merged;
+    for (const ExactSum& p : partial) merged.merge(p);
+    EXPECT_EQ(std::bit_cast<std::uint64_t>(merged.value()),
+              std::bit_cast<std::uint64_t>(one.value()))
+        << "trial " << trial;
+  }
+  // The order mattered to the naive sum of the same terms (the check can fail).
+  double reordered = 0.0;
+  for (const double x : xs) reordered += x;
+  EXPECT_NE(std::bit_cast<std::uint64_t>(naive), std::bit_cast<std::uint64_t>(reordered));
+}
