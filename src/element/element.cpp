@@ -273,16 +273,18 @@ void share_tets(ElementScratch& scratch, State& st, unsigned what,
     for (const Index t : tets) fields(t, [&](double& v) { v = values[k++]; });
 }
 
-// Every step: this rank's damaged and destroyed tets, with their damage and energy, to every
-// rank. A tet never turns intact again, and turns into a particle on every rank at once
-// (fracture), so every rank then holds every tet's damage (the balance counts it, fracture
-// reads it) and the energy of each cell a conversion into a particle may take. The balance's sums
-// need nothing more: each rank sums its own tets exactly and the partials are merged
-// (Simulation::sample_stage).
-void share_damaged(const ElementScratch& scratch, State& st) {
+// Every step: this rank's damaged and destroyed tets, and those the erosion is about to
+// destroy (`eroding`: all ranks'), with their damage and energy, to every rank. A tet never turns
+// intact again, and turns into a particle on every rank at once (fracture), so every rank then
+// holds every tet's damage (the balance counts it, fracture reads it) and the energy of each cell a
+// conversion into a particle may take. The balance's sums need nothing more: each rank sums its own
+// tets exactly and the partials are merged (Simulation::sample_stage).
+void share_damaged(const ElementScratch& scratch, State& st, std::vector<Index> eroding) {
+  std::sort(eroding.begin(), eroding.end());  // both passes' lists, one after the other
   std::vector<double> values;
   for (const Index t : scratch.rank_tets[scratch.rank])
-    if (st.damage[t] == Damage::damaged || st.damage[t] == Damage::destroyed)
+    if (st.damage[t] == Damage::damaged || st.damage[t] == Damage::destroyed ||
+        std::binary_search(eroding.begin(), eroding.end(), t))
       values.insert(values.end(),
                     {static_cast<double>(t), static_cast<double>(st.damage[t]), st.e_int[t]});
   std::vector<char> mine(values.size() * sizeof(double));
@@ -597,7 +599,7 @@ ForceResult update_material(const std::vector<Tet>& tets, const std::vector<Mate
   across_ranks(scratch, forces);
   if (!any_anp) {
     gather_forces(mesh_nodes, scratch, st);
-    if (distributed(scratch)) share_damaged(scratch, st);
+    if (distributed(scratch)) share_damaged(scratch, st, forces.eroding);
     return finish_forces(forces);
   }
   // Distributed: the inputs of the nodal averages at shared nodes, from the tets around them.
@@ -661,7 +663,7 @@ ForceResult update_material(const std::vector<Tet>& tets, const std::vector<Mate
   across_ranks(scratch, third);
   merge(forces, {third});
   gather_forces(mesh_nodes, scratch, st);
-  if (distributed(scratch)) share_damaged(scratch, st);
+  if (distributed(scratch)) share_damaged(scratch, st, forces.eroding);
   return finish_forces(forces);
 }
 
