@@ -4,6 +4,7 @@
 
 #include "tetcontact/diagnostics/penetration.hpp"
 #include "tetcontact/narrowphase/exact_ccd.hpp"
+#include "tetcontact/parallel/mpi.hpp"
 #include "tetcontact/parallel/parallel.hpp"
 
 namespace tc {
@@ -203,10 +204,14 @@ Verification StepVerifier::run(const std::vector<Surface>& surfaces, const std::
   Verification r;
   r.pairs_checked = static_cast<long>(pairs.node_face.size() + pairs.edge_edge.size());
 
-  // Each pair on the threads: 0 passes, 1 fails from apart, 2 fails from touching.
+  // Each pair on the threads: 0 passes, 1 fails from apart, 2 fails from touching. In a
+  // distributed run each rank tests its slice of the pairs and the verdicts are gathered in
+  // order: every rank holds the same positions, so they are one process's verdicts.
   const std::size_t nvf = pairs.node_face.size();
   std::vector<char> verdict(nvf + pairs.edge_edge.size(), 0);
-  parallel::for_each(verdict.size(), [&](std::size_t k) {
+  const auto [first, last] = mpi::slice(verdict.size());
+  parallel::for_each(last - first, [&](std::size_t i) {
+    const std::size_t k = first + i;
     if (k < nvf) {
       const auto& [ni, fi] = pairs.node_face[k];
       const Index v = in.node_id[ni];
@@ -243,6 +248,10 @@ Verification StepVerifier::run(const std::vector<Surface>& surfaces, const std::
     };
     verdict[k] = 2 * (through(a, eb) || through(b, ea));
   });
+  if (mpi::ranks() > 1)
+    verdict = mpi::all_gather(std::vector<char>(verdict.begin() + static_cast<long>(first),
+                                                verdict.begin() + static_cast<long>(last)),
+                              nullptr);
   failed_vf_.clear();
   failed_ee_.clear();
   for (std::size_t k = 0; k < verdict.size(); ++k) {

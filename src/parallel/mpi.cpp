@@ -69,6 +69,11 @@ int local_ranks() {
   return my_local_ranks;
 }
 
+std::pair<std::size_t, std::size_t> slice(std::size_t n) {
+  const auto r = static_cast<std::size_t>(my_rank), ranks = static_cast<std::size_t>(my_ranks);
+  return {n * r / ranks, n * (r + 1) / ranks};
+}
+
 std::vector<char> all_gather(const std::vector<char>& mine, std::vector<std::size_t>* sizes) {
   if (!joined) {
     if (sizes) *sizes = {mine.size()};

@@ -12,6 +12,7 @@
 
 #include <cstddef>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace tc::mpi {
@@ -27,6 +28,11 @@ void finalize();
 int rank();         // this process, 0 when not in a job
 int ranks();        // the processes of the job, 1 when not in a job
 int local_ranks();  // the processes of the job on this machine (sharing its cores)
+
+/// This rank's share [first, last) of n items cut into equal consecutive slices in rank order
+/// (all of them when not in a job): gathering the slices' results in rank order gives them
+/// in item order.
+std::pair<std::size_t, std::size_t> slice(std::size_t n);
 
 /// Every rank's bytes, concatenated in rank order; `sizes` gets each rank's byte count.
 std::vector<char> all_gather(const std::vector<char>& mine, std::vector<std::size_t>* sizes);
