@@ -3,7 +3,6 @@
 //
 // Exit codes: 0 success, 1 run failure (summary.json says why) or a missed check, 2 bad usage
 // or bad input (nothing written).
-#include <unistd.h>
 #include <CLI/CLI.hpp>
 
 #include <cstdio>

@@ -391,8 +391,9 @@ Json parallel_json(const Simulation& sim, double communication) {
   j["ranks"] = p.ranks;
   j["threads"] = parallel::threads();
   // Issue 16's first increment: every rank holds the whole state and repeats all but the
-  // element stage, whose tets are cut between the ranks.
-  j["distributed"] = p.ranks > 1 ? Json("element stage; state replicated on every rank") : Json();
+  // element stage, whose tets are cut between the ranks, and the verification's exact tests.
+  j["distributed"] =
+      p.ranks > 1 ? Json("element stage, verification tests; state replicated") : Json();
   if (p.ranks > 1) {
     Json part = Json::object();
     Json tets = Json::array(), faces = Json::array(), nodes = Json::array(), shared = Json::array(),

@@ -209,9 +209,7 @@ Verification StepVerifier::run(const std::vector<Surface>& surfaces, const std::
   // order: every rank holds the same positions, so they are one process's verdicts.
   const std::size_t nvf = pairs.node_face.size();
   std::vector<char> verdict(nvf + pairs.edge_edge.size(), 0);
-  const auto [first, last] = mpi::slice(verdict.size());
-  parallel::for_each(last - first, [&](std::size_t i) {
-    const std::size_t k = first + i;
+  mpi::for_each_sliced(verdict, [&](std::size_t k) {
     if (k < nvf) {
       const auto& [ni, fi] = pairs.node_face[k];
       const Index v = in.node_id[ni];
@@ -248,10 +246,6 @@ Verification StepVerifier::run(const std::vector<Surface>& surfaces, const std::
     };
     verdict[k] = 2 * (through(a, eb) || through(b, ea));
   });
-  if (mpi::ranks() > 1)
-    verdict = mpi::all_gather(std::vector<char>(verdict.begin() + static_cast<long>(first),
-                                                verdict.begin() + static_cast<long>(last)),
-                              nullptr);
   failed_vf_.clear();
   failed_ee_.clear();
   for (std::size_t k = 0; k < verdict.size(); ++k) {

@@ -11,9 +11,13 @@
 #pragma once
 
 #include <cstddef>
+#include <cstring>
 #include <string>
+#include <type_traits>
 #include <utility>
 #include <vector>
+
+#include "tetcontact/parallel/parallel.hpp"
 
 namespace tc::mpi {
 
@@ -36,6 +40,21 @@ std::pair<std::size_t, std::size_t> slice(std::size_t n);
 
 /// Every rank's bytes, concatenated in rank order; `sizes` gets each rank's byte count.
 std::vector<char> all_gather(const std::vector<char>& mine, std::vector<std::size_t>* sizes);
+
+/// item(i) for every i of this rank's slice of [0, out.size()), on the threads, each writing
+/// out[i] alone; in a job the slices are then gathered in rank order, so every rank holds
+/// every result, the ones one process computes. A collective: every rank calls it alike.
+template <class T, class Item>
+void for_each_sliced(std::vector<T>& out, Item&& item) {
+  static_assert(std::is_trivially_copyable_v<T>);
+  const auto [first, last] = slice(out.size());
+  parallel::for_each(last - first, [&](std::size_t i) { item(first + i); });
+  if (ranks() == 1) return;
+  std::vector<char> mine((last - first) * sizeof(T));
+  if (!mine.empty()) std::memcpy(mine.data(), out.data() + first, mine.size());
+  const std::vector<char> all = all_gather(mine, nullptr);
+  if (!all.empty()) std::memcpy(out.data(), all.data(), all.size());
+}
 
 /// The smallest value over the ranks, with its index; equal values: the lowest index.
 struct MinAt {
