@@ -229,6 +229,15 @@ TEST(Mpi, BadInputStopsEveryRankAndOtherCommandsRefuseSeveralProcesses) {
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_FALSE(fs::exists(dir / "o/frame_0000_r2.vtu"));
   EXPECT_TRUE(fs::exists(dir / "o/frame_0000_r1.vtu"));
+  // More ranks than tets: refused before anything is written, said once.
+  r = launch(7,
+             "run " + quote(test::source_path("data/cases/elastic-vibration.yaml")) +
+                 " --quiet --set 'bodies.0.mesh.box.cells=[1,1,1]' --out " + quote(dir / "few"),
+             dir.str());
+  EXPECT_EQ(r.code, 2) << r.err;
+  EXPECT_NE(r.err.find("cannot run on 7 processes"), std::string::npos) << r.err;
+  EXPECT_EQ(r.err.find("cannot run on"), r.err.rfind("cannot run on")) << r.err;
+  EXPECT_FALSE(fs::exists(dir / "few"));
   r = launch(2, "check " + cubes, dir.str());
   EXPECT_EQ(r.code, 2);
   EXPECT_NE(r.err.find("only `run` runs distributed"), std::string::npos) << r.err;
