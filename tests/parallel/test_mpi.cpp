@@ -145,6 +145,14 @@ TEST(Mpi, CoarseCylindersWithEdgeEdgeAndVerificationAreBitIdenticalOn2To4Ranks) 
       {2, 3, 4});
   EXPECT_GT(test::number(s, "/contact/edge_edge"), 0);
   EXPECT_GT(test::number(s, "/contact/verification/pairs_checked"), 0);
+  // Ranks and threads together: 2 ranks of 2 threads against one process of 2 threads.
+  same_on_any_rank_count("cylinders-threads", "data/cases/cylinders.yaml",
+                         "--threads 2 --set contact.edge_edge=true --set contact.verify=true "
+                         "--set end_time=1.0e-6 --set bodies.0.mesh.cylinder.cells_across=8 "
+                         "--set bodies.0.mesh.cylinder.cells_axial=8 "
+                         "--set bodies.1.mesh.cylinder.cells_across=4 "
+                         "--set bodies.1.mesh.cylinder.cells_axial=4",
+                         {2});
 }
 
 TEST(Mpi, CoarseBallPlateWithFractureAndParticlesIsBitIdenticalOn2To4Ranks) {
