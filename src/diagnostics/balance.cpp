@@ -1,5 +1,7 @@
 #include "tetcontact/diagnostics/balance.hpp"
 
+#include "tetcontact/parallel/parallel.hpp"
+
 namespace tc {
 
 namespace {
@@ -23,17 +25,26 @@ void account(const std::vector<Vec3>& impulse, const State& st, double f,
 
 }  // namespace
 
+// Block by block on the threads, the blocks' exact sums merged: exact, so neither the blocks
+// nor the order matter.
 TetSums tet_sums(const State& st, const std::vector<Index>* tets) {
+  const std::size_t n = tets ? tets->size() : st.e_int.size();
+  std::vector<TetSums> blocks(parallel::block_count(n));
+  parallel::for_blocks(n, [&](std::size_t b, std::size_t begin, std::size_t end) {
+    TetSums& s = blocks[b];
+    for (std::size_t i = begin; i < end; ++i) {
+      const std::size_t t = tets ? static_cast<std::size_t>((*tets)[i]) : i;
+      s.internal.add(st.e_int[t]);
+      s.plastic_work.add(st.w_plastic[t]);
+      s.viscous_work.add(st.w_viscous[t]);
+    }
+  });
   TetSums sums;
-  const auto add = [&](std::size_t t) {
-    sums.internal.add(st.e_int[t]);
-    sums.plastic_work.add(st.w_plastic[t]);
-    sums.viscous_work.add(st.w_viscous[t]);
-  };
-  if (tets)
-    for (const Index t : *tets) add(static_cast<std::size_t>(t));
-  else
-    for (std::size_t t = 0; t < st.e_int.size(); ++t) add(t);
+  for (const TetSums& b : blocks) {
+    sums.internal.merge(b.internal);
+    sums.plastic_work.merge(b.plastic_work);
+    sums.viscous_work.merge(b.viscous_work);
+  }
   return sums;
 }
 

@@ -7,37 +7,8 @@ namespace tc {
 namespace {
 
 constexpr std::int64_t k_base = std::int64_t{1} << 32;
-// Carry before a limb could overflow: each addition adds less than 2^32 to a limb.
-constexpr std::int64_t k_carry_every = std::int64_t{1} << 30;
 
 }  // namespace
-
-// x = m 2^e with m a 53-bit integer; m 2^(e − k_low) spread over three limbs from limb
-// (e − k_low) / 32.
-void ExactSum::add(double x) {
-  if (x == 0.0) return;
-  if (!std::isfinite(x)) {
-    special += x;
-    return;
-  }
-  const std::uint64_t bits = std::bit_cast<std::uint64_t>(x);
-  const int field = static_cast<int>((bits >> 52) & 0x7ff);
-  std::uint64_t m = bits & ((std::uint64_t{1} << 52) - 1);
-  int e = -1074;
-  if (field != 0) {
-    m |= std::uint64_t{1} << 52;
-    e = field - 1075;
-  }
-  const int p = e - k_low;  // ≥ 14
-  const int i = p / 32, s = p % 32;
-  const unsigned __int128 v = static_cast<unsigned __int128>(m) << s;  // < 2^85
-  const std::int64_t parts[3] = {static_cast<std::int64_t>(v & 0xffffffffu),
-                                 static_cast<std::int64_t>((v >> 32) & 0xffffffffu),
-                                 static_cast<std::int64_t>(v >> 64)};
-  const bool negative = bits >> 63;
-  for (int k = 0; k < 3; ++k) limbs[i + k] += negative ? -parts[k] : parts[k];
-  if (++pending == k_carry_every) carry();
-}
 
 // Every limb but the top into [0, 2^32), the carries upward (floor division: negative limbs
 // borrow); the top limb keeps the sign.

@@ -9,6 +9,7 @@
 #pragma once
 
 #include <array>
+#include <bit>
 #include <cstdint>
 
 namespace tc {
@@ -20,7 +21,7 @@ class ExactSum {
   static constexpr int k_limbs = 70;
   static constexpr int k_low = -1088;
 
-  void add(double x);
+  inline void add(double x);
   /// Adds another sum's value exactly.
   void merge(const ExactSum& other);
   /// The sum rounded to the nearest double (ties to even); NaN or ±inf when a non-finite value
@@ -31,9 +32,40 @@ class ExactSum {
   std::array<std::int64_t, k_limbs> limbs{};
   double special = 0.0;      // the IEEE sum of the non-finite values added
   std::int64_t pending = 0;  // additions since the limbs were last carried
+  /// Each addition adds less than 2^33 to a limb: carried every 2^29 of them, far from 2^63.
+  static constexpr std::int64_t k_carry_every = std::int64_t{1} << 29;
 
  private:
   void carry();
 };
+
+// x = m 2^e with m a 53-bit integer: m 2^(e − k_low) spread over three limbs from limb
+// (e − k_low) / 32, each part below 2^33 (inline: the balance adds three per tet per step).
+void ExactSum::add(double x) {
+  const std::uint64_t bits = std::bit_cast<std::uint64_t>(x);
+  const unsigned field = static_cast<unsigned>(bits >> 52) & 0x7ffu;
+  if (field == 0x7ffu) {  // infinite or NaN
+    special += x;
+    return;
+  }
+  std::uint64_t m = bits & ((std::uint64_t{1} << 52) - 1);
+  int p = -1074 - k_low;  // subnormal: m 2^-1074
+  if (field != 0) {
+    m |= std::uint64_t{1} << 52;
+    p = static_cast<int>(field) - 1075 - k_low;
+  } else if (m == 0) {
+    return;  // ±0
+  }
+  const int i = p >> 5, s = p & 31;
+  const std::uint64_t lo = (m & 0xffffffffu) << s, hi = (m >> 32) << s;  // < 2^63, < 2^52
+  auto a = static_cast<std::int64_t>(lo & 0xffffffffu);
+  auto b = static_cast<std::int64_t>((lo >> 32) + (hi & 0xffffffffu));
+  auto c = static_cast<std::int64_t>(hi >> 32);
+  if (bits >> 63) a = -a, b = -b, c = -c;
+  limbs[i] += a;
+  limbs[i + 1] += b;
+  limbs[i + 2] += c;
+  if (++pending == k_carry_every) carry();
+}
 
 }  // namespace tc
