@@ -123,10 +123,10 @@ Simulation::Simulation(Model model, SolverSettings settings)
     profile_[stage] = 0.0;
   }
   if (mpi::ranks() > 1) {
-    // Distributed (issue 16, first increment): every process holds the whole state and runs
-    // the whole step, but updates only its own tets in the element stage and gathers the
-    // others' (element.cpp, share_tets). Each process cuts the mesh itself: METIS gives the
-    // same pieces for the same mesh, ranks and seed.
+    // Distributed (issue 16, first increments): every process holds the nodes' whole state
+    // and runs the whole step, but updates only its own tets in the element stage and receives
+    // what the step needs of the others' (element.cpp: nodal forces, damage). Each process
+    // cuts the mesh itself: METIS gives the same pieces for the same mesh, ranks and seed.
     try {
       partition_ = partition_mesh(model_.mesh, model_.surfaces, {.ranks = mpi::ranks()});
     } catch (const PartitionError& e) {
@@ -482,8 +482,9 @@ RunFigures Simulation::run_figures() const {
   return r;
 }
 
-// Observers see the nodes whole, and per tet the balance's fields; in a distributed run the
-// tets' other fields only for this rank's tets (OutputWriter writes its piece).
+// Observers see the nodes whole; in a distributed run a tet's fields are current only on the
+// rank that owns it (every tet's damage on all), so an observer reads its own tets
+// (OutputWriter writes its piece) and the sample's sums.
 void Simulation::output_stage() {
   for (Observer* o : observers_) o->observe(state_, last_);
 }
