@@ -4,12 +4,8 @@
 #include <iostream>
 
 #include "tetcontact/app/setup.hpp"
-#include "tetcontact/io/json.hpp"
-#include "tetcontact/mesh/partition.hpp"
 
 namespace tc {
-
-namespace {
 
 Json partition_json(const Partition& p) {
   Json j = Json::object();
@@ -30,8 +26,6 @@ Json partition_json(const Partition& p) {
   j["pieces"] = pieces;
   return j;
 }
-
-}  // namespace
 
 int partition_command(const PartitionOptions& o) {
   try {

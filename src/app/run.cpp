@@ -10,6 +10,7 @@
 #include <limits>
 #include <sstream>
 
+#include "tetcontact/app/partition.hpp"
 #include "tetcontact/app/setup.hpp"
 #include "tetcontact/diagnostics/expect.hpp"
 #include "tetcontact/diagnostics/reference.hpp"
@@ -394,29 +395,7 @@ Json parallel_json(const Simulation& sim, double communication) {
   // element stage, whose tets are cut between the ranks, and the verification's exact tests.
   j["distributed"] =
       p.ranks > 1 ? Json("element stage, verification tests; state replicated") : Json();
-  if (p.ranks > 1) {
-    Json part = Json::object();
-    Json tets = Json::array(), faces = Json::array(), nodes = Json::array(), shared = Json::array(),
-         ghosts = Json::array();
-    for (const RankPiece& r : p.pieces) {
-      tets.push_back(r.tets);
-      faces.push_back(r.boundary_faces);
-      nodes.push_back(r.nodes);
-      shared.push_back(r.shared_nodes);
-      ghosts.push_back(r.ghost_nodes);
-    }
-    part["tets"] = tets;
-    part["boundary_faces"] = faces;
-    part["nodes"] = nodes;
-    part["shared_nodes"] = shared;
-    part["ghost_nodes"] = ghosts;
-    part["cut_faces"] = p.cut_faces;
-    part["tet_imbalance"] = p.tet_imbalance;
-    part["face_imbalance"] = p.face_imbalance;
-    j["partition"] = part;
-  } else {
-    j["partition"] = Json();
-  }
+  j["partition"] = p.ranks > 1 ? partition_json(p) : Json();
   // The largest over the ranks of the seconds spent in the collectives.
   j["communication_seconds"] = communication;
   return j;

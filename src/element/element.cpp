@@ -219,7 +219,7 @@ void across_ranks(const ElementScratch& scratch, ForceResult& r) {
   r.critical_tet = static_cast<Index>(m.index);
   std::vector<char> mine(r.eroding.size() * sizeof(Index));
   std::memcpy(mine.data(), r.eroding.data(), mine.size());
-  const std::vector<char> all = mpi::all_gather(mine, nullptr);
+  const std::vector<char> all = mpi::all_gather(mine);
   r.eroding.resize(all.size() / sizeof(Index));
   std::memcpy(r.eroding.data(), all.data(), all.size());
   std::sort(r.eroding.begin(), r.eroding.end());
@@ -265,7 +265,7 @@ void share_tets(ElementScratch& scratch, State& st, unsigned what,
   for (const Index t : lists[scratch.rank]) fields(t, [&](double& v) { values.push_back(v); });
   std::vector<char> mine(values.size() * sizeof(double));
   std::memcpy(mine.data(), values.data(), mine.size());
-  const std::vector<char> all = mpi::all_gather(mine, nullptr);
+  const std::vector<char> all = mpi::all_gather(mine);
   values.resize(all.size() / sizeof(double));
   std::memcpy(values.data(), all.data(), all.size());
   std::size_t k = 0;
@@ -289,7 +289,7 @@ void share_damaged(const ElementScratch& scratch, State& st, std::vector<Index> 
                     {static_cast<double>(t), static_cast<double>(st.damage[t]), st.e_int[t]});
   std::vector<char> mine(values.size() * sizeof(double));
   std::memcpy(mine.data(), values.data(), mine.size());
-  const std::vector<char> all = mpi::all_gather(mine, nullptr);
+  const std::vector<char> all = mpi::all_gather(mine);
   values.resize(all.size() / sizeof(double));
   std::memcpy(values.data(), all.data(), all.size());
   for (std::size_t k = 0; k + 2 < values.size(); k += 3) {
@@ -390,7 +390,7 @@ void gather_forces(std::size_t mesh_nodes, ElementScratch& scratch, State& st) {
     mine[nodes.size() + i] = scratch.tet_force[corners[i]];
   std::vector<char> bytes(mine.size() * sizeof(Vec3));
   std::memcpy(bytes.data(), mine.data(), bytes.size());
-  const std::vector<char> all = mpi::all_gather(bytes, nullptr);
+  const std::vector<char> all = mpi::all_gather(bytes);
   std::vector<Vec3> values(all.size() / sizeof(Vec3));
   std::memcpy(values.data(), all.data(), all.size());
   std::size_t k = 0;

@@ -74,11 +74,8 @@ std::pair<std::size_t, std::size_t> slice(std::size_t n) {
   return {n * r / ranks, n * (r + 1) / ranks};
 }
 
-std::vector<char> all_gather(const std::vector<char>& mine, std::vector<std::size_t>* sizes) {
-  if (!joined) {
-    if (sizes) *sizes = {mine.size()};
-    return mine;
-  }
+std::vector<char> all_gather(const std::vector<char>& mine) {
+  if (!joined) return mine;
   Timed t;
   if (mine.size() > static_cast<std::size_t>(std::numeric_limits<int>::max()))
     throw std::runtime_error("MPI: a rank's piece is over 2 GiB");
@@ -97,7 +94,6 @@ std::vector<char> all_gather(const std::vector<char>& mine, std::vector<std::siz
   check(MPI_Allgatherv(mine.data(), count, MPI_BYTE, all.data(), counts.data(), displs.data(),
                        MPI_BYTE, MPI_COMM_WORLD),
         "MPI_Allgatherv");
-  if (sizes) sizes->assign(counts.begin(), counts.end());
   return all;
 }
 

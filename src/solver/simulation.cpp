@@ -410,7 +410,7 @@ TetSums Simulation::tet_sums_over_ranks() const {
   const TetSums mine = tet_sums(state_, rank_tets());
   std::vector<char> bytes(sizeof(TetSums));
   std::memcpy(bytes.data(), &mine, sizeof(TetSums));
-  const std::vector<char> all = mpi::all_gather(bytes, nullptr);
+  const std::vector<char> all = mpi::all_gather(bytes);
   TetSums sums;
   for (std::size_t r = 0; r * sizeof(TetSums) < all.size(); ++r) {
     TetSums part;

@@ -91,7 +91,8 @@ test::Json same_on_any_rank_count(const std::string& name, const std::string& ca
     EXPECT_EQ(test::number(other, "/parallel/ranks"), n);
     if (n > 1) {
       long tets = 0;
-      for (const auto& t : other.at("parallel").at("partition").at("tets")) tets += t.get<long>();
+      for (const auto& piece : other.at("parallel").at("partition").at("pieces"))
+        tets += piece.at("tets").get<long>();
       EXPECT_EQ(tets, static_cast<long>(test::number(summary, "/mesh/tets"))) << name;
     }
   }
@@ -130,10 +131,13 @@ TEST(Mpi, PiecesAndPvtuOpenInVtksReader) {
   // The partition the run used, in its summary: every tet on one rank, imbalance measured.
   const test::Json s = test::read_json(out + "/summary.json");
   long tets = 0;
-  for (const auto& t : s.at("parallel").at("partition").at("tets")) tets += t.get<long>();
+  for (const auto& piece : s.at("parallel").at("partition").at("pieces"))
+    tets += piece.at("tets").get<long>();
   EXPECT_EQ(tets, static_cast<long>(test::number(s, "/mesh/tets")));
   EXPECT_GE(test::number(s, "/parallel/partition/tet_imbalance"), 1.0);
-  EXPECT_EQ(s.at("parallel").at("partition").at("shared_nodes").size(), 3u);
+  EXPECT_EQ(s.at("parallel").at("partition").at("pieces").size(), 3u);
+  for (const auto& piece : s.at("parallel").at("partition").at("pieces"))
+    EXPECT_TRUE(piece.contains("shared_nodes") && piece.contains("ghost_nodes"));
 }
 
 TEST(Mpi, CoarseCylindersWithEdgeEdgeAndVerificationAreBitIdenticalOn2To4Ranks) {

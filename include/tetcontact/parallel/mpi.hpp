@@ -38,8 +38,8 @@ int local_ranks();  // the processes of the job on this machine (sharing its cor
 /// in item order.
 std::pair<std::size_t, std::size_t> slice(std::size_t n);
 
-/// Every rank's bytes, concatenated in rank order; `sizes` gets each rank's byte count.
-std::vector<char> all_gather(const std::vector<char>& mine, std::vector<std::size_t>* sizes);
+/// Every rank's bytes, concatenated in rank order.
+std::vector<char> all_gather(const std::vector<char>& mine);
 
 /// item(i) for every i of this rank's slice of [0, out.size()), on the threads, each writing
 /// out[i] alone; in a job the slices are then gathered in rank order, so every rank holds
@@ -52,7 +52,7 @@ void for_each_sliced(std::vector<T>& out, Item&& item) {
   if (ranks() == 1) return;
   std::vector<char> mine((last - first) * sizeof(T));
   if (!mine.empty()) std::memcpy(mine.data(), out.data() + first, mine.size());
-  const std::vector<char> all = all_gather(mine, nullptr);
+  const std::vector<char> all = all_gather(mine);
   if (!all.empty()) std::memcpy(out.data(), all.data(), all.size());
 }
 
