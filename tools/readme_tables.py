@@ -202,9 +202,10 @@ MPI_CASES = [
 
 
 def mpi(binary, work):
-    """Each case as one process on 1 and 2 threads and on 2 ranks of 1 thread (mpirun): wall
-    time, the element stage, the seconds in collectives; the results must be the same."""
-    print("| case | tets | steps | 1 process, 1 thread | 1 process, 2 threads | 2 ranks × 1 thread "
+    """Each case as one process on 1 and 2 threads and on 2 ranks of 1 thread (mpirun), the
+    fastest of 3 runs each: wall time, the element stage, the seconds in collectives; the
+    results must be the same."""
+    print("| case (fastest of 3) | tets | steps | 1 process, 1 thread | 1 process, 2 threads | 2 ranks × 1 thread "
           "| elements: 1 thread / 2 ranks | verify: 1 thread / 2 ranks | communication (2 ranks) "
           "| same result |")
     print("|---|---|---|---|---|---|---|---|---|---|")
@@ -218,9 +219,12 @@ def mpi(binary, work):
                               "--threads", str(threads), "--out", out]
             for kv in sets:
                 cmd += ["--set", kv]
-            subprocess.run(cmd, check=True)
-            with open(os.path.join(out, "summary.json")) as f:
-                runs[label] = json.load(f)
+            for _ in range(3):  # the fastest of 3 (this machine's spread is ±20 %)
+                subprocess.run(cmd, check=True)
+                with open(os.path.join(out, "summary.json")) as f:
+                    r = json.load(f)
+                if label not in runs or r["wall_seconds"] < runs[label]["wall_seconds"]:
+                    runs[label] = r
         a, b, c = runs["1x1"], runs["1x2"], runs["2x1"]
         same = all(a[k] == c[k] for k in ("steps", "energy", "momentum", "bodies", "contact"))
         print(f"| {name} | {a['mesh']['tets']:,} | {a['steps']:,} | {a['wall_seconds']:.1f} s | "
@@ -231,72 +235,54 @@ def mpi(binary, work):
               f"{c['parallel']['communication_seconds']:.2f} s | {'yes' if same else 'NO'} |",
               flush=True)
     # Weak scaling: the Taylor rod on 1 rank, and twice as long (twice the tets, the same cells)
-    # on 2 ranks, 1 thread each.
+    # on 2 ranks, 1 thread each; and the machine's own ceiling: the 1-rank run twice at once as
+    # two independent processes (no communication at all: what two busy cores give when they
+    # share the machine's caches and memory). Each the fastest of 3 rounds (this machine's run
+    # to run spread is ±20 %).
     print()
-    print("| weak scaling | tets | steps | wall | elements | communication | efficiency |")
+    print("| weak scaling (fastest of 3) | tets | steps | wall | elements | communication | "
+          "efficiency |")
     print("|---|---|---|---|---|---|---|")
-    rows = []
-    for ranks, height, cells, z in ((1, "32.4e-3", 40, "16.2e-3"), (2, "64.8e-3", 80, "32.4e-3")):
-        out = os.path.join(work, f"weak-{ranks}")
-        launcher = [] if ranks == 1 else ["mpirun", "--allow-run-as-root", "--oversubscribe",
-                                          "-np", str(ranks)]
-        cmd = launcher + [binary, "run", os.path.join(ROOT, "data/cases/taylor-copper.yaml"),
-                          "--quiet", "--force", "--threads", "1", "--out", out,
-                          "--set", "end_time=20.0e-6",
-                          "--set", f"bodies.0.mesh.cylinder.height={height}",
-                          "--set", f"bodies.0.mesh.cylinder.cells_axial={cells}",
-                          "--set", f"bodies.0.transform.0.translate=[0,0,{z}]"]
-        subprocess.run(cmd, check=True)
+    taylor = os.path.join(ROOT, "data/cases/taylor-copper.yaml")
+
+    def command(out, height="32.4e-3", cells=40, z="16.2e-3"):
+        return [binary, "run", taylor, "--quiet", "--force", "--threads", "1", "--out", out,
+                "--set", "end_time=20.0e-6", "--set", f"bodies.0.mesh.cylinder.height={height}",
+                "--set", f"bodies.0.mesh.cylinder.cells_axial={cells}",
+                "--set", f"bodies.0.transform.0.translate=[0,0,{z}]"]
+
+    def summary(out):
         with open(os.path.join(out, "summary.json")) as f:
-            rows.append((ranks, json.load(f)))
-    base = rows[0][1]["wall_seconds"]
-    for ranks, r in rows:
-        print(f"| Taylor rod, {ranks} rank{'s' if ranks > 1 else ''} | {r['mesh']['tets']:,} | "
-              f"{r['steps']:,} | {r['wall_seconds']:.1f} s | {r['timings']['elements']:.1f} s | "
-              f"{r['parallel']['communication_seconds']:.2f} s | "
-              f"{base / r['wall_seconds'] * 100:.0f} % |", flush=True)
+            return json.load(f)
 
-
-VERIFY_ROWS = [  # (what, case, --set values)
-    ("cubes-edge, every step", "data/cases/cubes-edge.yaml",
-     ["contact.verify=true", "diagnostics.every_step=true"]),
-    ("cubes-edge, edge–edge off, every step", "data/cases/cubes-edge.yaml",
-     ["contact.verify=false", "contact.edge_edge=false", "diagnostics.every_step=true"]),
-    ("cubes-edge, edge–edge off, every step", "data/cases/cubes-edge.yaml",
-     ["contact.verify=true", "contact.edge_edge=false", "diagnostics.every_step=true"]),
-    ("micro coincident-faces, every step", "data/cases/micro/coincident-faces.yaml",
-     ["contact.verify=true", "diagnostics.every_step=true"]),
-    ("bars-impact", "data/cases/bars-impact.yaml", ["contact.verify=false"]),
-    ("bars-impact", "data/cases/bars-impact.yaml", ["contact.verify=true"]),
-    ("bars-impact, separation 0", "data/cases/bars-impact.yaml",
-     ["contact.verify=true", "contact.separation=0"]),
-    ("bars-impact, edge–edge on", "data/cases/bars-impact.yaml",
-     ["contact.verify=true", "contact.edge_edge=true"]),
-    ("staggered-patch, edge–edge on", "data/cases/staggered-patch.yaml",
-     ["contact.verify=true", "contact.edge_edge=true"]),
-    ("touching-gap0, edge–edge on", "data/cases/stability/touching-gap0.yaml",
-     ["contact.verify=true", "contact.edge_edge=true"]),
-] + [
-    (what, case, sets + [f"contact.verify={on}", "diagnostics.every_step=true"])
-    for what, case, sets in [
-        ("cylinders (edge–edge on), coarse (8 / 4 across), every step", "data/cases/cylinders.yaml",
-         ["bodies.0.mesh.cylinder.cells_across=8", "bodies.0.mesh.cylinder.cells_axial=8",
-          "bodies.1.mesh.cylinder.cells_across=4", "bodies.1.mesh.cylinder.cells_axial=4"]),
-        ("spall-plate, edge–edge on, every step", "data/cases/spall-plate.yaml",
-         ["contact.edge_edge=true"]),
-        ("taylor-symmetric, edge–edge on, coarse (6 across), to 10 µs, every step",
-         "data/cases/taylor-symmetric.yaml",
-         ["contact.edge_edge=true", "end_time=10.0e-6", "bodies.0.mesh.cylinder.cells_across=6",
-          "bodies.0.mesh.cylinder.cells_axial=30", "bodies.1.mesh.cylinder.cells_across=6",
-          "bodies.1.mesh.cylinder.cells_axial=30"]),
-    ]
-    for on in ("false", "true")
-]
-
-
-FULL_CASES = ["cubes-edge", "two-blocks-msh", "plate-impact-1d", "staggered-patch",
-              "bars-impact", "spall-plate", "taylor-copper", "cylinders", "ball-plate",
-              "taylor-symmetric", "hertz-spheres"]
+    best = {}
+    for _ in range(3):
+        runs = {}
+        subprocess.run(command(os.path.join(work, "weak-1")), check=True)
+        runs["one"] = [summary(os.path.join(work, "weak-1"))]
+        subprocess.run(["mpirun", "--allow-run-as-root", "--oversubscribe", "-np", "2"] +
+                       command(os.path.join(work, "weak-2"), "64.8e-3", 80, "32.4e-3"), check=True)
+        runs["two"] = [summary(os.path.join(work, "weak-2"))]
+        outs = [os.path.join(work, f"weak-alone-{i}") for i in range(2)]
+        procs = [subprocess.Popen(command(out)) for out in outs]
+        for p in procs:
+            assert p.wait() == 0
+        runs["pair"] = [summary(out) for out in outs]
+        for k, rs in runs.items():
+            wall = max(r["wall_seconds"] for r in rs)
+            if k not in best or wall < best[k][0]:
+                best[k] = (wall, rs)
+    base = best["one"][0]
+    for k, label in (("one", "Taylor rod, 1 rank"), ("two", "Taylor rod, 2 ranks"),
+                     ("pair", "the 1-rank run twice at once, independent (the machine's "
+                              "ceiling)")):
+        wall, rs = best[k]
+        r = rs[0]
+        tets = f"{r['mesh']['tets']:,}" if len(rs) == 1 else f"2 × {r['mesh']['tets']:,}"
+        comm = (f"{r['parallel']['communication_seconds']:.2f} s" if k != "pair" else "–")
+        print(f"| {label} | {tets} | {r['steps']:,} | {wall:.1f} s | "
+              f"{max(x['timings']['elements'] for x in rs):.1f} s | {comm} | "
+              f"{base / wall * 100:.0f} % |", flush=True)
 
 
 def verify_full(binary, work):

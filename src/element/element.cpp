@@ -182,47 +182,70 @@ bool distributed(const ElementScratch& scratch) {
   return !scratch.rank_tets.empty();
 }
 
-// A pass over this process's tets. In a distributed run a failure on any rank stops every
-// rank with the failure of the lowest tet: the one a single process meets first (for_blocks
-// rethrows the lowest block's). Any other error ends the job: the ranks could not go on in
-// step.
+// A pass over this process's tets and its result: the blocks' results merged (merge), then, in
+// a distributed run, combined over the ranks in one exchange of a fixed record a rank (the
+// lowest tet that failed, the smallest step and its tet, the number of eroding tets). A failure
+// on any rank stops every rank with the failure of the lowest tet, the one a single process
+// meets first (for_blocks rethrows the lowest block's); the step is the smallest over the
+// ranks, its tet the lowest that reaches it (ties between ranks are ties between tets); the
+// eroding tets of all ranks in tet order (gathered only when a rank has some): the serial
+// pass's result. Any other error ends the job: the ranks could not go on in step.
 template <class Pass>
-void collective_pass(const ElementScratch& scratch, Pass&& pass) {
+ForceResult collective_pass(const ElementScratch& scratch, std::vector<ForceResult>& blocks,
+                            Pass&& pass) {
+  ForceResult r;
+  r.dt_stable = std::numeric_limits<double>::infinity();
   if (!distributed(scratch)) {
     pass();
-    return;
+    merge(r, blocks);
+    return r;
   }
-  double failed = std::numeric_limits<double>::infinity();
+  struct Record {
+    double failed, dt_stable;
+    long critical_tet, eroding;
+  } mine{std::numeric_limits<double>::infinity(), 0.0, -1, 0};
   std::string what;
   try {
     pass();
   } catch (const InvertedElement& e) {
-    failed = static_cast<double>(e.tet);
+    mine.failed = static_cast<double>(e.tet);
     what = e.what();
   } catch (const std::exception& e) {
     std::fprintf(stderr, "tetcontact: internal error on rank %d: %s\n", scratch.rank, e.what());
     mpi::abort(1);
   }
-  const mpi::MinAt first = mpi::min_at({failed, scratch.rank});
-  if (std::isinf(first.value)) return;
-  throw InvertedElement(static_cast<Index>(first.value),
-                        mpi::broadcast(what, static_cast<int>(first.index)));
-}
-
-// A pass's result over the ranks: the smallest step with the lowest tet that reaches it (ties
-// between ranks are ties between tets: MINLOC keeps the lowest), and the eroding tets of all
-// ranks in tet order — the serial pass's.
-void across_ranks(const ElementScratch& scratch, ForceResult& r) {
-  if (!distributed(scratch)) return;
-  const mpi::MinAt m = mpi::min_at({r.dt_stable, r.critical_tet});
-  r.dt_stable = m.value;
-  r.critical_tet = static_cast<Index>(m.index);
-  std::vector<char> mine(r.eroding.size() * sizeof(Index));
-  std::memcpy(mine.data(), r.eroding.data(), mine.size());
-  const std::vector<char> all = mpi::all_gather(mine);
-  r.eroding.resize(all.size() / sizeof(Index));
-  std::memcpy(r.eroding.data(), all.data(), all.size());
-  std::sort(r.eroding.begin(), r.eroding.end());
+  merge(r, blocks);
+  mine.dt_stable = r.dt_stable;
+  mine.critical_tet = r.critical_tet;
+  mine.eroding = static_cast<long>(r.eroding.size());
+  const std::vector<Record> all = mpi::all_gather_value(mine);
+  int failed_rank = -1;
+  for (int q = 0; q < static_cast<int>(all.size()); ++q)
+    if (std::isfinite(all[q].failed) &&
+        (failed_rank < 0 || all[q].failed < all[failed_rank].failed))
+      failed_rank = q;
+  if (failed_rank >= 0)
+    throw InvertedElement(static_cast<Index>(all[failed_rank].failed),
+                          mpi::broadcast(what, failed_rank));
+  ForceResult out;
+  out.dt_stable = std::numeric_limits<double>::infinity();
+  std::vector<std::size_t> sizes;
+  for (const Record& q : all) {
+    if (q.dt_stable < out.dt_stable || (q.dt_stable == out.dt_stable && q.critical_tet >= 0 &&
+                                        q.critical_tet < out.critical_tet)) {
+      out.dt_stable = q.dt_stable;
+      out.critical_tet = static_cast<Index>(q.critical_tet);
+    }
+    sizes.push_back(static_cast<std::size_t>(q.eroding) * sizeof(Index));
+  }
+  if (std::all_of(sizes.begin(), sizes.end(), [](std::size_t n) { return n == 0; })) return out;
+  std::vector<char> bytes(r.eroding.size() * sizeof(Index));
+  std::memcpy(bytes.data(), r.eroding.data(), bytes.size());
+  const std::vector<char> eroding = mpi::all_gather(bytes, sizes);
+  out.eroding.resize(eroding.size() / sizeof(Index));
+  std::memcpy(out.eroding.data(), eroding.data(), eroding.size());
+  std::sort(out.eroding.begin(), out.eroding.end());
+  return out;
 }
 
 // Per-tet fields sent by the ranks that own the tets to every rank: each rank packs `lists`'
@@ -265,7 +288,14 @@ void share_tets(ElementScratch& scratch, State& st, unsigned what,
   for (const Index t : lists[scratch.rank]) fields(t, [&](double& v) { values.push_back(v); });
   std::vector<char> mine(values.size() * sizeof(double));
   std::memcpy(mine.data(), values.data(), mine.size());
-  const std::vector<char> all = mpi::all_gather(mine);
+  // Every tet sends as many values (counted on tet 0, which keeps its values): the sizes are
+  // known to every rank.
+  std::size_t per_tet = 0;
+  fields(0, [&](double&) { ++per_tet; });
+  std::vector<std::size_t> sizes;
+  for (const std::vector<Index>& tets : lists)
+    sizes.push_back(tets.size() * per_tet * sizeof(double));
+  const std::vector<char> all = mpi::all_gather(mine, sizes);
   values.resize(all.size() / sizeof(double));
   std::memcpy(values.data(), all.data(), all.size());
   std::size_t k = 0;
@@ -369,6 +399,12 @@ void build_distribution(const std::vector<Tet>& tets, std::size_t mesh_nodes,
       }
     if (frontier) scratch.rank_frontier_tets[tet_rank[t]].push_back(static_cast<Index>(t));
   }
+  std::vector<char> mine(mesh_nodes, 0);
+  for (const Index t : scratch.rank_tets[scratch.rank])
+    for (const Index a : tets[t]) mine[a] = 1;
+  scratch.my_nodes.clear();
+  for (std::size_t a = 0; a < mesh_nodes; ++a)
+    if (mine[a]) scratch.my_nodes.push_back(static_cast<Index>(a));
 }
 
 void gather_forces(std::size_t mesh_nodes, ElementScratch& scratch, State& st) {
@@ -390,9 +426,13 @@ void gather_forces(std::size_t mesh_nodes, ElementScratch& scratch, State& st) {
     mine[nodes.size() + i] = scratch.tet_force[corners[i]];
   std::vector<char> bytes(mine.size() * sizeof(Vec3));
   std::memcpy(bytes.data(), mine.data(), bytes.size());
-  const std::vector<char> all = mpi::all_gather(bytes);
+  std::vector<std::size_t> sizes;
+  for (std::size_t r = 0; r < scratch.rank_tets.size(); ++r)
+    sizes.push_back((scratch.rank_nodes[r].size() + scratch.rank_shared_corners[r].size()) *
+                    sizeof(Vec3));
+  const std::vector<char> all = mpi::all_gather(bytes, sizes);
   std::vector<Vec3> values(all.size() / sizeof(Vec3));
-  std::memcpy(values.data(), all.data(), all.size());
+  std::memcpy(static_cast<void*>(values.data()), all.data(), all.size());
   std::size_t k = 0;
   for (std::size_t r = 0; r < scratch.rank_tets.size(); ++r) {
     for (const Index a : scratch.rank_nodes[r]) st.f[a] = values[k++];
@@ -429,7 +469,7 @@ ForceResult compute_forces(const std::vector<Tet>& tets, const ElementOptions& o
   if (distributed(scratch)) build_distribution(tets, mesh_nodes, scratch);
   const MyTets mine(scratch, tets.size());
   std::vector<ForceResult> blocks = block_results(mine.size());
-  collective_pass(scratch, [&] {
+  const ForceResult r = collective_pass(scratch, blocks, [&] {
     parallel::for_blocks(mine.size(), [&](std::size_t blk, std::size_t begin, std::size_t end) {
       TetGeometry g;
       for (std::size_t i = begin; i < end; ++i) {
@@ -441,10 +481,6 @@ ForceResult compute_forces(const std::vector<Tet>& tets, const ElementOptions& o
       }
     });
   });
-  ForceResult r;
-  r.dt_stable = std::numeric_limits<double>::infinity();
-  merge(r, blocks);
-  across_ranks(scratch, r);
   gather_forces(mesh_nodes, scratch, st);
   return finish_forces(r);
 }
@@ -455,8 +491,6 @@ ForceResult update_material(const std::vector<Tet>& tets, const std::vector<Mate
   const std::size_t mesh_nodes = static_cast<std::size_t>(st.first_particle);
   build_incidence(tets, mesh_nodes, scratch);
   if (distributed(scratch)) build_distribution(tets, mesh_nodes, scratch);
-  ForceResult forces;
-  forces.dt_stable = std::numeric_limits<double>::infinity();
   const auto anp = [&](Index mat) {
     return mat < static_cast<Index>(options.average_nodal_pressure.size()) &&
            options.average_nodal_pressure[mat];
@@ -486,7 +520,7 @@ ForceResult update_material(const std::vector<Tet>& tets, const std::vector<Mate
   const double h = 0.5 * tau;
   const MyTets mine(scratch, tets.size());
   std::vector<ForceResult> blocks = block_results(mine.size());
-  collective_pass(scratch, [&] {
+  ForceResult forces = collective_pass(scratch, blocks, [&] {
     parallel::for_blocks(mine.size(), [&](std::size_t blk, std::size_t begin, std::size_t end) {
       TetGeometry gm, ge;  // mid-step and end-of-step geometry
       for (std::size_t i = begin; i < end; ++i) {
@@ -595,8 +629,6 @@ ForceResult update_material(const std::vector<Tet>& tets, const std::vector<Mate
       }
     });
   });
-  merge(forces, blocks);
-  across_ranks(scratch, forces);
   if (!any_anp) {
     gather_forces(mesh_nodes, scratch, st);
     if (distributed(scratch)) share_damaged(scratch, st, forces.eroding);
@@ -606,8 +638,11 @@ ForceResult update_material(const std::vector<Tet>& tets, const std::vector<Mate
   if (distributed(scratch)) share_tets(scratch, st, k_averages, scratch.rank_frontier_tets);
 
   // Pass 2: nodal volumes and energies gathered from the cells in the averages (a quarter of
-  // each), then nodal pressures from them (per reference volume).
-  parallel::for_each(mesh_nodes, [&](std::size_t n) {
+  // each), then nodal pressures from them (per reference volume); distributed, at the nodes of
+  // this rank's tets only (pass 3 reads no other).
+  const std::size_t averaged_nodes = distributed(scratch) ? scratch.my_nodes.size() : mesh_nodes;
+  parallel::for_each(averaged_nodes, [&](std::size_t i) {
+    const std::size_t n = distributed(scratch) ? static_cast<std::size_t>(scratch.my_nodes[i]) : i;
     const Index nm = scratch.node_material[n];
     if (nm < 0) return;
     double vol = 0.0, energy = 0.0, vol0 = 0.0;
@@ -626,7 +661,7 @@ ForceResult update_material(const std::vector<Tet>& tets, const std::vector<Mate
 
   // Pass 3: element pressure = mean of its nodes'; trapezoidal pressure work; forces.
   blocks = block_results(mine.size());
-  collective_pass(scratch, [&] {
+  const ForceResult third = collective_pass(scratch, blocks, [&] {
     parallel::for_blocks(mine.size(), [&](std::size_t blk, std::size_t begin, std::size_t end) {
       for (std::size_t i = begin; i < end; ++i) {
         const std::size_t t = mine[i];
@@ -657,10 +692,6 @@ ForceResult update_material(const std::vector<Tet>& tets, const std::vector<Mate
       }
     });
   });
-  ForceResult third;
-  third.dt_stable = std::numeric_limits<double>::infinity();
-  merge(third, blocks);
-  across_ranks(scratch, third);
   merge(forces, {third});
   gather_forces(mesh_nodes, scratch, st);
   if (distributed(scratch)) share_damaged(scratch, st, forces.eroding);

@@ -76,38 +76,28 @@ std::pair<std::size_t, std::size_t> slice(std::size_t n) {
 
 std::vector<char> all_gather(const std::vector<char>& mine) {
   if (!joined) return mine;
+  return all_gather(mine, all_gather_value(mine.size()));
+}
+
+std::vector<char> all_gather(const std::vector<char>& mine, const std::vector<std::size_t>& sizes) {
+  if (!joined) return mine;
   Timed t;
-  if (mine.size() > static_cast<std::size_t>(std::numeric_limits<int>::max()))
-    throw std::runtime_error("MPI: a rank's piece is over 2 GiB");
-  const int count = static_cast<int>(mine.size());
+  if (sizes.size() != static_cast<std::size_t>(my_ranks) || sizes[my_rank] != mine.size())
+    throw std::runtime_error("MPI: a gather's sizes do not match this rank's piece");
   std::vector<int> counts(my_ranks), displs(my_ranks);
-  check(MPI_Allgather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, MPI_COMM_WORLD),
-        "MPI_Allgather");
   long total = 0;
   for (int r = 0; r < my_ranks; ++r) {
+    if (total + static_cast<long>(sizes[r]) > std::numeric_limits<int>::max())
+      throw std::runtime_error("MPI: a gather of over 2 GiB");
+    counts[r] = static_cast<int>(sizes[r]);
     displs[r] = static_cast<int>(total);
     total += counts[r];
   }
-  if (total > std::numeric_limits<int>::max())
-    throw std::runtime_error("MPI: a gather of over 2 GiB");
   std::vector<char> all(static_cast<std::size_t>(total));
-  check(MPI_Allgatherv(mine.data(), count, MPI_BYTE, all.data(), counts.data(), displs.data(),
-                       MPI_BYTE, MPI_COMM_WORLD),
+  check(MPI_Allgatherv(mine.data(), counts[my_rank], MPI_BYTE, all.data(), counts.data(),
+                       displs.data(), MPI_BYTE, MPI_COMM_WORLD),
         "MPI_Allgatherv");
   return all;
-}
-
-MinAt min_at(MinAt mine) {
-  if (!joined) return mine;
-  Timed t;
-  // MPI_MINLOC on (double, int) breaks ties by the lower index; the index is a tet's, which
-  // fits an int (partition_mesh refuses meshes METIS cannot index).
-  struct {
-    double value;
-    int index;
-  } in{mine.value, static_cast<int>(mine.index)}, out{};
-  check(MPI_Allreduce(&in, &out, 1, MPI_DOUBLE_INT, MPI_MINLOC, MPI_COMM_WORLD), "MPI_Allreduce");
-  return {out.value, out.index};
 }
 
 long max(long mine) {

@@ -9,6 +9,7 @@
 #include "tetcontact/mesh/surface.hpp"
 #include "tetcontact/narrowphase/exact_ccd.hpp"
 #include "tetcontact/narrowphase/vertex_face.hpp"
+#include "tetcontact/parallel/mpi.hpp"
 #include "tetcontact/parallel/parallel.hpp"
 
 namespace tc {
@@ -176,7 +177,7 @@ void NodeFaceContact::refresh_lists(const State& st, ContactStepStats& stats) {
 }
 
 // Node–face contacts of the listed pairs (seed 001 §3), in the lists' order (the pairs are
-// tested on the threads, block by block; the blocks' contacts are joined in block order).
+// tested on the threads and the ranks; their points made block by block, joined in order).
 void NodeFaceContact::node_face_contacts(const State& st, std::vector<ContactPoint>& contacts) {
   const std::vector<Vec3>& x0 = st.x;
   const std::vector<Vec3>& x1 = st.x_star;
@@ -199,27 +200,37 @@ void NodeFaceContact::node_face_contacts(const State& st, std::vector<ContactPoi
         },
         parallel::k_light_block);
   }
-  std::vector<std::vector<ContactPoint>> found(parallel::block_count(cand.node_face.size()));
-  parallel::for_blocks(cand.node_face.size(), [&](std::size_t blk, std::size_t begin,
-                                                  std::size_t end) {
+  // Which listed pairs touch: the costly tests (the layer, the exact swept test), cut between
+  // the ranks of a distributed run (each tests its slice on its threads, the verdicts gathered
+  // in order: every rank then holds them all).
+  const std::size_t pairs = cand.node_face.size();
+  std::vector<char> touches(pairs, 0);
+  mpi::for_each_sliced(touches, [&](std::size_t k) {
+    const auto& [ni, fi] = cand.node_face[k];
+    const Index node = nodes_[ni];
+    const Face& f = faces_[fi];
+    if (settings_.binding_lists &&
+        !boxes_overlap(swept_box({&x0[node], &x1[node]}, settings_.margin), step_face_box_[fi]))
+      return;
+    // The layer a node may enter: the face's tet, its altitude over the face at x*.
+    const Tet& tet = mesh_.tets[face_tet_[fi]];
+    const double vol = tet_signed_volume(x1[tet[0]], x1[tet[1]], x1[tet[2]], x1[tet[3]]);
+    const double area = 0.5 * (x1[f[1]] - x1[f[0]]).cross(x1[f[2]] - x1[f[0]]).norm();
+    const double depth = area > 0.0 ? 3.0 * vol / area : 0.0;
+    // The swept test is the exact one (issue 5): the floating-point test missed or invented
+    // contacts on coplanar and degenerate configurations (the `stress` table).
+    touches[k] = behind_face(x1[node], x1[f[0]], x1[f[1]], x1[f[2]], depth) ||
+                 exact_vertex_face_ccd({x0[node], x0[f[0]], x0[f[1]], x0[f[2]], x1[node], x1[f[0]],
+                                        x1[f[1]], x1[f[2]]});
+  });
+  // Their contact points, block by block on the threads, joined in block order.
+  std::vector<std::vector<ContactPoint>> found(parallel::block_count(pairs));
+  parallel::for_blocks(pairs, [&](std::size_t blk, std::size_t begin, std::size_t end) {
     for (std::size_t k = begin; k < end; ++k) {
+      if (!touches[k]) continue;
       const auto& [ni, fi] = cand.node_face[k];
       const Index node = nodes_[ni];
       const Face& f = faces_[fi];
-      if (settings_.binding_lists &&
-          !boxes_overlap(swept_box({&x0[node], &x1[node]}, settings_.margin), step_face_box_[fi]))
-        continue;
-      // The layer a node may enter: the face's tet, its altitude over the face at x*.
-      const Tet& tet = mesh_.tets[face_tet_[fi]];
-      const double vol = tet_signed_volume(x1[tet[0]], x1[tet[1]], x1[tet[2]], x1[tet[3]]);
-      const double area = 0.5 * (x1[f[1]] - x1[f[0]]).cross(x1[f[2]] - x1[f[0]]).norm();
-      const double depth = area > 0.0 ? 3.0 * vol / area : 0.0;
-      const bool inside = behind_face(x1[node], x1[f[0]], x1[f[1]], x1[f[2]], depth);
-      // The swept test is the exact one (issue 5): the floating-point test missed or invented
-      // contacts on coplanar and degenerate configurations (the `stress` table).
-      if (!inside && !exact_vertex_face_ccd({x0[node], x0[f[0]], x0[f[1]], x0[f[2]], x1[node],
-                                             x1[f[0]], x1[f[1]], x1[f[2]]}))
-        continue;
       ContactPoint c;
       c.a_nodes[0] = node;
       c.a_w[0] = 1.0;
@@ -357,10 +368,10 @@ void NodeFaceContact::edge_edge_contacts(const State& st, ContactStepStats& stat
     }
   }
   std::sort(kept_pairs.begin(), kept_pairs.end());
-  // Then the candidates that cross during the step (exact CCD, on the threads; the contacts
-  // are then made in the lists' order).
+  // Then the candidates that cross during the step (exact CCD, on the threads, cut between the
+  // ranks like the node–face tests; the contacts are then made in the lists' order).
   std::vector<char> crosses(cand.edge_edge.size(), 0);
-  parallel::for_each(cand.edge_edge.size(), [&](std::size_t k) {
+  mpi::for_each_sliced(crosses, [&](std::size_t k) {
     const auto& [ea, eb] = cand.edge_edge[k];
     if (std::binary_search(kept_pairs.begin(), kept_pairs.end(), std::make_pair(ea, eb))) return;
     const Edge& e1 = edges_[ea];

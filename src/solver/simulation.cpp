@@ -406,15 +406,8 @@ double Simulation::balance_error(const Sample& s) const {
 // Distributed: each rank's exact sums over its own tets, merged (exactly: the same bits as one
 // process's sum over all tets).
 TetSums Simulation::tet_sums_over_ranks() const {
-  static_assert(std::is_trivially_copyable_v<TetSums>);
-  const TetSums mine = tet_sums(state_, rank_tets());
-  std::vector<char> bytes(sizeof(TetSums));
-  std::memcpy(bytes.data(), &mine, sizeof(TetSums));
-  const std::vector<char> all = mpi::all_gather(bytes);
   TetSums sums;
-  for (std::size_t r = 0; r * sizeof(TetSums) < all.size(); ++r) {
-    TetSums part;
-    std::memcpy(&part, all.data() + r * sizeof(TetSums), sizeof(TetSums));
+  for (const TetSums& part : mpi::all_gather_value(tet_sums(state_, rank_tets()))) {
     sums.internal.merge(part.internal);
     sums.plastic_work.merge(part.plastic_work);
     sums.viscous_work.merge(part.viscous_work);

@@ -61,9 +61,9 @@ struct ElementScratch {
   // forces and sends the sums), the corners of its tets at nodes shared with another rank
   // (sent as they are, and every rank sums those nodes in tet order, as one process does),
   // and its tets with a shared node (their inputs to the nodal averages are sent); the
-  // shared nodes.
+  // shared nodes; the nodes of this process's tets (the nodal averages it needs), ascending.
   std::vector<std::vector<Index>> rank_nodes, rank_shared_corners, rank_frontier_tets;
-  std::vector<Index> shared_nodes;
+  std::vector<Index> shared_nodes, my_nodes;
 };
 
 struct ForceResult {

@@ -41,6 +41,22 @@ std::pair<std::size_t, std::size_t> slice(std::size_t n);
 /// Every rank's bytes, concatenated in rank order.
 std::vector<char> all_gather(const std::vector<char>& mine);
 
+/// The same when every rank knows every rank's size (sizes[r] bytes from rank r; mine holds
+/// sizes[rank()]): one collective instead of two.
+std::vector<char> all_gather(const std::vector<char>& mine, const std::vector<std::size_t>& sizes);
+
+/// One value from every rank, in rank order (one collective).
+template <class T>
+std::vector<T> all_gather_value(const T& mine) {
+  static_assert(std::is_trivially_copyable_v<T>);
+  std::vector<char> bytes(sizeof(T));
+  std::memcpy(bytes.data(), &mine, sizeof(T));
+  const std::vector<char> all = all_gather(bytes, std::vector<std::size_t>(ranks(), sizeof(T)));
+  std::vector<T> out(all.size() / sizeof(T));
+  std::memcpy(static_cast<void*>(out.data()), all.data(), all.size());
+  return out;
+}
+
 /// item(i) for every i of this rank's slice of [0, out.size()), on the threads, each writing
 /// out[i] alone; in a job the slices are then gathered in rank order, so every rank holds
 /// every result, the ones one process computes. A collective: every rank calls it alike.
@@ -55,13 +71,6 @@ void for_each_sliced(std::vector<T>& out, Item&& item) {
   const std::vector<char> all = all_gather(mine);
   if (!all.empty()) std::memcpy(out.data(), all.data(), all.size());
 }
-
-/// The smallest value over the ranks, with its index; equal values: the lowest index.
-struct MinAt {
-  double value;
-  long index;
-};
-MinAt min_at(MinAt mine);
 
 /// The largest value over the ranks (integers: exact whatever the order).
 long max(long mine);
