@@ -169,6 +169,26 @@ Json time_step_json(const Case& c, const Simulation& sim) {
     ts["critical_volume_ratio"] = st.vol[t] / st.vol0[t];
     ts["critical_damage"] = static_cast<long>(st.damage[t]);
   }
+  // The falls of the step by a decade below the first (also among the warnings).
+  Json falls = Json::array();
+  for (const StepCollapse& f : sim.step_collapses()) {
+    Json o = Json::object();
+    o["step"] = f.step;
+    o["t"] = f.t;
+    o["dt"] = f.dt;
+    o["below_first"] = f.first_dt / f.dt;
+    o["body"] = f.body;
+    o["body_tet"] = static_cast<long>(f.body_tet);
+    o["position"] = {f.position.x(), f.position.y(), f.position.z()};
+    o["volume_ratio"] = f.volume_ratio;
+    o["pressure"] = f.pressure;
+    o["plastic_strain"] = f.plastic_strain;
+    o["damage"] = f.damage;
+    o["steps_to_end"] = f.steps_to_end;
+    falls.push_back(o);
+  }
+  ts["first"] = sim.first_dt();
+  ts["collapses"] = falls;
   return ts;
 }
 
@@ -478,10 +498,16 @@ int run_case(const RunOptions& o) {
   Progress progress(o.quiet || !root, c.end_time);
   std::string status = "ok";
   int code = 0;
+  std::size_t falls = 0;  // step collapses said so far
   try {
     while (!sim->done()) {
       sim->step();
       progress.update(sim->state());
+      for (; falls < sim->step_collapses().size(); ++falls) {
+        const std::string w = sim->step_collapses()[falls].message();
+        warnings.push_back(w);
+        if (root && !o.quiet) std::cerr << "\ntetcontact: warning: " << w << "\n";
+      }
     }
     sim->finish();
   } catch (const RunFailure& e) {  // in a distributed run: on every rank alike

@@ -173,6 +173,7 @@ Model build_model(const Case& c, std::vector<std::string>* notes) {
   model.element.viscosity_linear = c.viscosity_linear;
   model.element.viscosity_quadratic = c.viscosity_quadratic;
   model.element.fracture = c.fracture;
+  model.element.anp_stabilization = c.anp_stabilization;
   model.particles = c.fracture && c.particles;
   model.erosion_step_ratio = model.particles ? c.erosion_step_ratio : 0.0;
   for (const Material& m : model.materials)

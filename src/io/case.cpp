@@ -518,7 +518,9 @@ namespace {
 // The case's solver section: CFL, step limit, viscosity, average nodal pressure.
 void read_solver(const Reader& r, const YAML::Node& root, Case& c) {
   if (const YAML::Node s = root["solver"]) {
-    r.keys(s, "solver", {"cfl", "max_steps", "threads", "viscosity", "average_nodal_pressure"});
+    r.keys(s, "solver",
+           {"cfl", "max_steps", "threads", "viscosity", "average_nodal_pressure",
+            "anp_stabilization"});
     if (s["cfl"]) {
       c.cfl = r.number(s["cfl"], "solver.cfl");
       if (!(c.cfl > 0.0 && c.cfl <= 1.0))
@@ -552,6 +554,11 @@ void read_solver(const Reader& r, const YAML::Node& root, Case& c) {
         c.average_nodal_pressure = AnpMode::off;
       else
         r.fail(a, "solver.average_nodal_pressure", "expected auto, true or false");
+    }
+    if (const YAML::Node a = s["anp_stabilization"]) {
+      c.anp_stabilization = r.number(a, "solver.anp_stabilization");
+      if (!(c.anp_stabilization >= 0.0 && c.anp_stabilization <= 1.0))
+        r.fail(a, "solver.anp_stabilization", "must be in [0, 1], got " + a.Scalar());
     }
   }
 }

@@ -1,8 +1,10 @@
 #include "tetcontact/solver/simulation.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstring>
+#include <iomanip>
 #include <optional>
 #include <set>
 #include <sstream>
@@ -528,9 +530,66 @@ void Simulation::elements_stage() {
       os << "time step " << st.dt << " s is not positive and finite";
       throw RunFailure(os.str());
     }
+    watch_step();
   } catch (const InvertedElement& e) {
     rethrow_with_body(e);
   }
+}
+
+// A step that falls by a decade below the first is reported with the tet that sets it. In a
+// distributed run the tet's fields are current on its rank only: that rank sends them (every
+// rank meets the same fall at the same step, so the broadcast is collective).
+void Simulation::watch_step() {
+  const State& st = state_;
+  if (first_dt_ == 0.0) {
+    first_dt_ = st.dt;
+    return;
+  }
+  if (!(st.dt < first_dt_ / collapse_factor_) || critical_tet_ < 0) return;
+  while (st.dt < first_dt_ / collapse_factor_) collapse_factor_ *= 10.0;
+  const Index t = critical_tet_;
+  std::array<double, 4> fields{st.vol[t] / st.vol0[t], st.p[t], st.eps_p[t],
+                               static_cast<double>(st.damage[t])};
+  if (!scratch_.rank_tets.empty()) {
+    int owner = 0;
+    for (std::size_t r = 0; r < scratch_.rank_tets.size(); ++r)
+      if (std::binary_search(scratch_.rank_tets[r].begin(), scratch_.rank_tets[r].end(), t))
+        owner = static_cast<int>(r);
+    std::string bytes(sizeof(fields), '\0');
+    std::memcpy(bytes.data(), fields.data(), sizeof(fields));
+    bytes = mpi::broadcast(bytes, owner);
+    std::memcpy(fields.data(), bytes.data(), sizeof(fields));
+  }
+  StepCollapse c;
+  c.step = st.step;
+  c.t = st.t;
+  c.dt = st.dt;
+  c.first_dt = first_dt_;
+  c.tet = t;
+  const BodyRange& b = model_.mesh.bodies[model_.mesh.tet_body[t]];
+  c.body = b.name;
+  c.body_tet = t - b.tet_begin;
+  for (const Index k : model_.mesh.tets[t]) c.position += 0.25 * st.x[k];
+  c.volume_ratio = fields[0];
+  c.pressure = fields[1];
+  c.plastic_strain = fields[2];
+  c.damage = static_cast<int>(fields[3]);
+  c.steps_to_end = (settings_.end_time - st.t) / st.dt;
+  step_collapses_.push_back(c);
+}
+
+std::string StepCollapse::message() const {
+  static const char* const damage_names[] = {"intact", "damaged", "destroyed", "a particle"};
+  std::ostringstream os;
+  os.precision(3);
+  os << "the time step fell to " << dt << " s, " << first_dt / dt << "x below the first ("
+     << first_dt << " s), at t = " << t << " s (step " << step << "): set by body '" << body
+     << "', tet " << body_tet << " at (" << position.x() << ", " << position.y() << ", "
+     << position.z() << ") m, V/V0 = " << volume_ratio << ", p = " << pressure
+     << " Pa, plastic strain " << plastic_strain << ", " << damage_names[std::clamp(damage, 0, 3)]
+     << "; about " << std::fixed << std::setprecision(0) << steps_to_end
+     << " more steps to end_time at this step";
+  return os.str();
 }
 
 void Simulation::rethrow_with_body(const InvertedElement& e) const {

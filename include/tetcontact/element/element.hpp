@@ -46,11 +46,11 @@ struct ElementScratch {
   std::vector<Index> incidence_begin, incidence;
   std::vector<Vec3> tet_force;  // per tet corner (4 per tet): its share of the nodal force
   // Average nodal pressure.
-  std::vector<double> vol0, pressure;  // per node
-  std::vector<Index> node_material;    // per node: material if averaged, else −1
-  std::vector<double> tet_dvol;        // per tet: ΔV of the step
-  std::vector<double> tet_energy;      // per tet: Eⁿ, its share of the nodal energy
-  std::vector<char> tet_averaged;      // per tet: in the nodal averages this step
+  std::vector<double> vol0, pressure, node_j;  // per node (node_j: volume ratio V / V0)
+  std::vector<Index> node_material;            // per node: material if averaged, else −1
+  std::vector<double> tet_dvol;                // per tet: ΔV of the step
+  std::vector<double> tet_energy;              // per tet: Eⁿ, its share of the nodal energy
+  std::vector<char> tet_averaged;              // per tet: in the nodal averages this step
   // Distributed runs (issue 16): every rank's tets, ascending, and this process's rank. Each
   // process updates its own tets, and every process then receives what the whole step needs
   // of the others' (element.cpp): the nodal forces, and per tet the energies and damage of the

@@ -105,7 +105,8 @@ struct Case {
   double viscosity_linear = 0.06;
   double viscosity_quadratic = 1.5;
   AnpMode average_nodal_pressure = AnpMode::automatic;
-  std::string material_library;  // resolved path of the library used ("" if none)
+  double anp_stabilization = 0.02;  // solver.anp_stabilization (ElementOptions)
+  std::string material_library;     // resolved path of the library used ("" if none)
   std::vector<Material> materials;
   std::vector<RigidWall> walls;
   std::vector<BodySpec> bodies;

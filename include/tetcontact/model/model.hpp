@@ -70,7 +70,10 @@ struct ElementOptions {
   double viscosity_linear = 0.06;            // C1 of bulk_viscosity
   double viscosity_quadratic = 1.5;          // C2 of bulk_viscosity
   std::vector<char> average_nodal_pressure;  // per material: pressure averaged at nodes
-  bool fracture = false;                     // spall damage and loosening (seed 000)
+  /// α of the average nodal pressure's stabilization: a tet's pressure gains α K (J̄ − J) / J,
+  /// J its volume ratio, J̄ the mean of its nodes' (element.cpp, pass 3).
+  double anp_stabilization = 0.02;
+  bool fracture = false;  // spall damage and loosening (seed 000)
   /// Erosion (a safeguard, fracture.erosion_step_ratio): tets whose stable step squared falls
   /// below this are listed in ForceResult::eroding (0: off).
   double erode_dt2 = 0.0;

@@ -23,6 +23,22 @@
 
 namespace tc {
 
+/// The stable step fallen below a tenth, a hundredth, ... of the first (once per decade): the
+/// tet that sets it, where it is and its state, so that a run which would crawl says why early.
+struct StepCollapse {
+  long step = 0;
+  double t = 0.0, dt = 0.0, first_dt = 0.0;
+  Index tet = -1;  // global
+  std::string body;
+  Index body_tet = -1;           // within its body
+  Vec3 position = Vec3::Zero();  // the tet's centroid now
+  double volume_ratio = 0.0, pressure = 0.0, plastic_strain = 0.0;
+  int damage = 0;
+  double steps_to_end = 0.0;  // at this step, to end_time
+  /// One line for the user.
+  std::string message() const;
+};
+
 /// The state at t = 0: reference positions, initial velocities, lumped masses (a quarter of
 /// each tet's mass on each of its nodes), zero stress, sound speeds.
 State initial_state(const Model& model);
@@ -107,6 +123,10 @@ class Simulation {
   Index critical_tet() const { return critical_tet_; }
   /// The smallest time step of the run, s.
   double min_dt() const { return min_dt_; }
+  /// The step after the first element pass, s.
+  double first_dt() const { return first_dt_; }
+  /// The falls of the step to a tenth of the first, a hundredth, ... (StepCollapse).
+  const std::vector<StepCollapse>& step_collapses() const { return step_collapses_; }
   /// The decomposition of a distributed run (issue 16; ranks = 1 on one process): each rank
   /// updates the tets METIS gave it.
   const Partition& partition() const { return partition_; }
@@ -130,6 +150,7 @@ class Simulation {
   void corrections(bool verify = true);  // verify: the step's motion (contact.verify)
   void verify_stage(const std::vector<ContactList>& lists, int passes);
   [[noreturn]] void rethrow_with_body(const InvertedElement& e) const;
+  void watch_step();  // step_collapses_
 
   const Model model_;  // as set up: never changed during the run
   SolverSettings settings_;
@@ -164,6 +185,9 @@ class Simulation {
   double balance_error_max_ = 0.0;
   Index critical_tet_ = -1;
   double min_dt_ = std::numeric_limits<double>::infinity();
+  double first_dt_ = 0.0;          // the step after the first element pass
+  double collapse_factor_ = 10.0;  // the next fall reported: below first_dt_ / this
+  std::vector<StepCollapse> step_collapses_;
   std::vector<std::string> modules_;
   std::vector<Observer*> observers_;
   StepProfile profile_;
