@@ -283,6 +283,7 @@ void share_tets(ElementScratch& scratch, State& st, unsigned what,
       io(st.sound2[t]);
       io(st.trace_d[t]);
       io(st.vol[t]);
+      io(st.temperature[t]);
     }
   };
   for (const Index t : lists[scratch.rank]) fields(t, [&](double& v) { values.push_back(v); });
@@ -570,16 +571,24 @@ ForceResult update_material(const std::vector<Tet>& tets, const std::vector<Mate
         // Deviator (Jaumann rate, radial return) and its trapezoidal work τ V ½(sⁿ + sⁿ⁺¹) : D.
         const Sym6 s_old = st.s[t];
         const bool failed = options.fracture && st.damage[t] != Damage::intact;  // no deviator
-        const DeviatorIncrement inc =
-            failed ? DeviatorIncrement{} : update_deviator6(mat, st.s[t], d, w, tau, st.eps_p[t]);
+        const double rho_mid = mat.density * st.vol0[t] / gm.vol;
+        const DeviatorIncrement inc = failed
+                                          ? DeviatorIncrement{}
+                                          : update_deviator6(mat, st.s[t], d, w, tau, st.eps_p[t],
+                                                             st.temperature[t], rho_mid);
         const Sym6& s_new = st.s[t];
         double sd = 0.0;
         for (int c = 0; c < 6; ++c) sd += (c < 3 ? 1.0 : 2.0) * (s_old[c] + s_new[c]) * d[c];
         const double w_dev = 0.5 * tau * gm.vol * sd;
+        double w_p = 0.0;
         if (inc.dplastic > 0.0) {
-          // Plastic work V σy Δε̄p, with σy at mid-increment (exact for linear hardening).
-          st.w_plastic[t] +=
-              gm.vol * (inc.yield - 0.5 * mat.hardening_modulus * inc.dplastic) * inc.dplastic;
+          // Plastic work V σy Δε̄p: bilinear with σy at mid-increment (exact for linear
+          // hardening), Johnson–Cook at the end of the step (the heating its return assumed).
+          const double y = mat.strength == StrengthModel::bilinear
+                               ? inc.yield - 0.5 * mat.hardening_modulus * inc.dplastic
+                               : inc.yield;
+          w_p = gm.vol * y * inc.dplastic;
+          st.w_plastic[t] += w_p;
           st.eps_p[t] += inc.dplastic;
         }
 
@@ -587,9 +596,8 @@ ForceResult update_material(const std::vector<Tet>& tets, const std::vector<Mate
         // both ends of the step (q^{n+1/2} is what the forces at t^{n+1} carry), as for the
         // pressure.
         double q = 0.0;
-        if (trD < 0.0) {  // compression only: length, density and sound speed only then
+        if (trD < 0.0) {  // compression only: length and sound speed only then
           const double l = 3.0 * gm.vol / std::sqrt(gm.amax2);
-          const double rho_mid = mat.density * st.vol0[t] / gm.vol;
           q = bulk_viscosity(rho_mid, l, std::sqrt(st.sound2[t]), trD, options.viscosity_linear,
                              options.viscosity_quadratic);
         }
@@ -599,6 +607,10 @@ ForceResult update_material(const std::vector<Tet>& tets, const std::vector<Mate
         st.trace_d[t] = trD;
         st.w_viscous[t] += w_q;
         st.vol[t] = ge.vol;
+        // Temperature: the viscous (shock) heat and the fraction χ of the plastic work.
+        if (mat.thermal())
+          st.temperature[t] +=
+              (mat.taylor_quinney * w_p + w_q) / (mat.density * st.vol0[t] * mat.specific_heat);
 
         if (anp(mi)) {
           // Failed cells are left out of the nodal averages: their neighbours' pressure must not

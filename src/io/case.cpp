@@ -393,12 +393,65 @@ std::vector<TransformOp> parse_transform(const Reader& r, const YAML::Node& n,
   return ops;
 }
 
+// The strength law (`strength: bilinear | johnson_cook`, the Johnson–Cook constants) and the
+// temperature's keys. A library entry may carry its Johnson–Cook constants while its law stays
+// bilinear: the case picks the law.
+void read_strength(const Reader& r, const YAML::Node& m, const std::string& p, Material& mat) {
+  if (const YAML::Node jn = m["johnson_cook"]) {
+    const std::string jp = join(p, "johnson_cook");
+    r.map(jn, jp);
+    r.keys(jn, jp,
+           {"A", "B", "n", "C", "reference_strain_rate", "m", "room_temperature",
+            "melt_temperature", "source"});
+    JohnsonCook& jc = mat.johnson_cook;
+    jc.a = r.positive(r.require(jn, jp, "A"), join(jp, "A"), "Pa");
+    if (jn["B"]) jc.b = r.non_negative(jn["B"], join(jp, "B"));
+    if (jn["n"]) jc.n = r.positive(jn["n"], join(jp, "n"), "dimensionless");
+    if (jn["C"]) jc.c = r.non_negative(jn["C"], join(jp, "C"));
+    if (jn["reference_strain_rate"])
+      jc.reference_rate =
+          r.positive(jn["reference_strain_rate"], join(jp, "reference_strain_rate"), "1/s");
+    if (jn["m"]) jc.m = r.positive(jn["m"], join(jp, "m"), "dimensionless");
+    if (jn["room_temperature"])
+      jc.room_temperature = r.positive(jn["room_temperature"], join(jp, "room_temperature"), "K");
+    if (jn["melt_temperature"]) {
+      jc.melt_temperature = r.positive(jn["melt_temperature"], join(jp, "melt_temperature"), "K");
+      if (!(jc.melt_temperature > jc.room_temperature))
+        r.fail(jn["melt_temperature"], join(jp, "melt_temperature"),
+               "the melt temperature must be above the room temperature");
+    }
+  }
+  if (const YAML::Node sn = m["strength"]) {
+    const std::string law = r.string(sn, join(p, "strength"));
+    if (law == "bilinear") {
+      mat.strength = StrengthModel::bilinear;
+    } else if (law == "johnson_cook") {
+      if (!m["johnson_cook"])
+        r.fail(sn, join(p, "strength"), "johnson_cook needs the material's johnson_cook constants");
+      mat.strength = StrengthModel::johnson_cook;
+    } else {
+      r.fail(sn, join(p, "strength"), "expected bilinear or johnson_cook, got '" + law + "'");
+    }
+  }
+  if (m["specific_heat"])
+    mat.specific_heat = r.positive(m["specific_heat"], join(p, "specific_heat"), "J/(kg K)");
+  if (const YAML::Node t = m["taylor_quinney"]) {
+    mat.taylor_quinney = r.number(t, join(p, "taylor_quinney"));
+    if (!(mat.taylor_quinney >= 0.0 && mat.taylor_quinney <= 1.0))
+      r.fail(t, join(p, "taylor_quinney"), "the Taylor-Quinney factor must be in [0, 1]");
+  }
+  if (m["initial_temperature"])
+    mat.initial_temperature =
+        r.positive(m["initial_temperature"], join(p, "initial_temperature"), "K");
+}
+
 // One material's keys: density; elasticity as (youngs_modulus, poisson_ratio) or
 // (shear_modulus [, bulk_modulus]); optional strength; optional EOS.
 Material parse_material(const Reader& r, const YAML::Node& m, const std::string& p) {
   r.keys(m, p,
          {"from", "density", "youngs_modulus", "poisson_ratio", "shear_modulus", "bulk_modulus",
-          "yield_stress", "hardening_modulus", "eos", "spall_strength", "loosening_limit"});
+          "yield_stress", "hardening_modulus", "eos", "spall_strength", "loosening_limit",
+          "strength", "johnson_cook", "specific_heat", "taylor_quinney", "initial_temperature"});
   Material mat;
   mat.density = r.positive(r.require(m, p, "density"), join(p, "density"), "kg/m^3");
   const bool by_young = m["youngs_modulus"] || m["poisson_ratio"];
@@ -430,6 +483,7 @@ Material parse_material(const Reader& r, const YAML::Node& m, const std::string&
       r.fail(m["hardening_modulus"], join(p, "hardening_modulus"),
              "hardening needs a yield_stress > 0");
   }
+  read_strength(r, m, p, mat);
   if (const YAML::Node e = m["eos"]) {
     const std::string ep = join(p, "eos");
     r.map(e, ep);
@@ -502,8 +556,8 @@ std::vector<Material> load_material_library(const std::string& path) {
 
 const std::vector<std::string>& known_output_fields() {
   static const std::vector<std::string> f = {
-      "displacement", "velocity",       "stress",          "pressure",  "body",
-      "von_mises",    "plastic_strain", "internal_energy", "viscosity", "damage"};
+      "displacement",   "velocity",        "stress",    "pressure", "body",       "von_mises",
+      "plastic_strain", "internal_energy", "viscosity", "damage",   "temperature"};
   return f;
 }
 

@@ -52,9 +52,11 @@ State initial_state(const Model& model) {
     field->assign(m, 0.0);
   st.tet_material.resize(m);
   st.damage.assign(m, Damage::intact);
+  st.temperature.assign(m, 0.0);
   // Lumped masses: a quarter of each tet's mass on each of its nodes.
   for (std::size_t t = 0; t < m; ++t) {
     st.tet_material[t] = model.body_material[mesh.tet_body[t]];
+    st.temperature[t] = model.materials[st.tet_material[t]].start_temperature();
     const double quarter = 0.25 * model.materials[st.tet_material[t]].density * st.vol0[t];
     for (Index k : mesh.tets[t]) st.m[k] += quarter;
   }

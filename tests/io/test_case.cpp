@@ -338,12 +338,14 @@ TEST(CaseFile, ReadmeExampleIsValid) {
   EXPECT_TRUE(c.contact);
   EXPECT_EQ(c.contact_settings.pairs.size(), 1u);
   EXPECT_EQ(c.boundary_conditions.size(), 2u);
-  EXPECT_EQ(c.output.fields.size(), 10u);  // the example's nine, and fracture's `damage`
+  EXPECT_EQ(c.output.fields.size(), 11u);  // the example's ten, and fracture's `damage`
   EXPECT_TRUE(c.fracture);
-  EXPECT_EQ(c.materials.size(), 4u);
+  EXPECT_EQ(c.materials.size(), 5u);
   EXPECT_EQ(c.walls.size(), 1u);
   EXPECT_EQ(c.references.size(), 2u);
   EXPECT_EQ(c.material("target").yield_stress, 0.3e9);
+  EXPECT_EQ(c.material("hot_rod").strength, StrengthModel::johnson_cook);
+  EXPECT_EQ(c.material("hot_rod").johnson_cook.n, 0.31);
   EXPECT_NO_THROW(build_model(c));
 }
 
@@ -363,6 +365,11 @@ TEST(MaterialLibrary, ShippedLibraryIsValidAndComplete) {
     EXPECT_NEAR(m.bulk_modulus, m.density * m.c0 * m.c0, 1e-6 * m.bulk_modulus) << m.name;
     EXPECT_GT(m.poisson_ratio(), 0.2) << m.name;
     EXPECT_LT(m.poisson_ratio(), 0.4) << m.name;
+    if (m.name != "amg6") {  // every metal but AMg6 carries Johnson–Cook constants
+      EXPECT_GT(m.johnson_cook.a, 0.0) << m.name;
+      EXPECT_GT(m.johnson_cook.melt_temperature, m.johnson_cook.room_temperature) << m.name;
+      EXPECT_GT(m.specific_heat, 0.0) << m.name;
+    }
   }
 }
 
@@ -386,6 +393,17 @@ TEST(MaterialLibrary, CaseTakesAnEntryAndOverridesKeys) {
   EXPECT_EQ(m.hardening_modulus, 100e6);  // added
   EXPECT_EQ(m.eos, EosKind::mie_gruneisen);
   EXPECT_EQ(c.material_library, default_material_library());
+  // The library's Johnson–Cook constants come along; the law stays bilinear until chosen.
+  EXPECT_EQ(m.strength, StrengthModel::bilinear);
+  EXPECT_EQ(m.johnson_cook.a, 90e6);
+  EXPECT_EQ(m.johnson_cook.melt_temperature, 1356);
+  EXPECT_EQ(m.specific_heat, 383);
+  test::write_text(dir / "jc.yaml", replace(v, "from: ofhc-copper",
+                                            "from: ofhc-copper\n    strength: johnson_cook"));
+  const Case jc = load_case(dir / "jc.yaml");
+  EXPECT_EQ(jc.material("al").strength, StrengthModel::johnson_cook);
+  EXPECT_TRUE(jc.material("al").plastic());
+  EXPECT_EQ(jc.material("al").start_temperature(), 293.0);
 
   test::write_text(dir / "bad.yaml", replace(v, "from: ofhc-copper", "from: unobtainium"));
   try {
@@ -445,6 +463,31 @@ TEST(CaseFile, MaterialAndWallErrors) {
        "--set solver.average_nodal_pressure",
        "solver.average_nodal_pressure",
        "expected auto, true or false"},
+      {"anp stabilization out of range",
+       v,
+       {"solver.anp_stabilization=2"},
+       "--set solver.anp_stabilization",
+       "solver.anp_stabilization",
+       "must be in [0, 1]"},
+      {"unknown strength law",
+       replace(v, "    poisson_ratio: 0.3", "    poisson_ratio: 0.3\n    strength: zerilli"),
+       {},
+       ":10:",
+       "materials.al.strength",
+       "expected bilinear or johnson_cook"},
+      {"johnson_cook without constants",
+       replace(v, "    poisson_ratio: 0.3", "    poisson_ratio: 0.3\n    strength: johnson_cook"),
+       {},
+       ":10:",
+       "materials.al.strength",
+       "needs the material's johnson_cook constants"},
+      {"melt below room",
+       replace(v, "    poisson_ratio: 0.3",
+               "    poisson_ratio: 0.3\n    johnson_cook: {A: 1.0e8, melt_temperature: 200}"),
+       {},
+       ":10:",
+       "materials.al.johnson_cook.melt_temperature",
+       "above the room temperature"},
   };
   expect_errors(cases, "case-material-errors");
 }

@@ -210,3 +210,118 @@ TEST(Material, FastDeviatorMatchesReference) {
     EXPECT_NEAR(r.dplastic, ref.dplastic, 1e-15) << k;
   }
 }
+
+// Johnson–Cook (issue 17) against closed forms. A pure shear rate γ̇ (D12 = D21 = γ̇/2) held
+// until the stress is steady: the von Mises rate is ε̇ = γ̇/√3, and once steady all of it is
+// plastic.
+namespace {
+
+Material johnson_cook(double a, double b, double n, double c, double m_exp, double melt) {
+  Material m = al6061();
+  m.strength = StrengthModel::johnson_cook;
+  m.yield_stress = 0.0;
+  m.johnson_cook = {a, b, n, c, 1.0, m_exp, 293.0, melt};
+  return m;
+}
+
+// Runs `steps` steps of shear at rate `gamma_dot` from zero stress; returns the final stress,
+// the plastic strain and the temperature (heated as the element kernel heats a tet).
+struct Sheared {
+  Mat3 s;
+  double eps = 0.0, temperature = 0.0;
+};
+Sheared shear(const Material& m, double gamma_dot, double tau, int steps) {
+  Mat3 D = Mat3::Zero();
+  D(0, 1) = D(1, 0) = 0.5 * gamma_dot;
+  Sheared out{Mat3::Zero(), 0.0, m.start_temperature()};
+  for (int k = 0; k < steps; ++k) {
+    const DeviatorUpdate r =
+        update_deviator(m, out.s, D, Mat3::Zero(), tau, out.eps, out.temperature, m.density);
+    out.s = r.s;
+    out.eps += r.dplastic;
+    if (m.thermal())
+      out.temperature += m.taylor_quinney * r.yield * r.dplastic / (m.density * m.specific_heat);
+  }
+  return out;
+}
+
+}  // namespace
+
+// B = 0, C = 0, no temperature: perfectly plastic at A, the bilinear law with H = 0; n = 1:
+// linear hardening H = B; both to round-off (the return solves for Δε̄p, which the bilinear law
+// has in closed form).
+TEST(Material, JohnsonCookReducesToTheBilinearLaw) {
+  Material bilinear = al6061();
+  const Material perfect = johnson_cook(0.29e9, 0.0, 1.0, 0.0, 1.0, 0.0);
+  const Material linear = johnson_cook(0.29e9, 1.2e9, 1.0, 0.0, 1.0, 0.0);
+  unsigned seed = 777;
+  auto rnd = [&]() {
+    seed = seed * 1664525u + 1013904223u;
+    return static_cast<double>(seed) / 4294967296.0 * 2.0 - 1.0;
+  };
+  for (int k = 0; k < 200; ++k) {
+    Mat3 L, s;
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) L(i, j) = 5e4 * rnd();
+    s << rnd(), rnd(), rnd(), 0, rnd(), rnd(), 0, 0, rnd();
+    s = 2e8 * (s + s.transpose()).eval();
+    s -= s.trace() / 3.0 * Mat3::Identity();
+    const Mat3 D = 0.5 * (L + L.transpose()), W = 0.5 * (L - L.transpose());
+    const double tau = 1e-7, eps = 0.01 * (k % 3);
+    bilinear.hardening_modulus = 0.0;
+    const DeviatorUpdate a = update_deviator(bilinear, s, D, W, tau, eps);
+    const DeviatorUpdate b = update_deviator(perfect, s, D, W, tau, eps, 293.0, 2703.0);
+    EXPECT_NEAR(a.dplastic, b.dplastic, 1e-14 * a.dplastic) << k;
+    EXPECT_NEAR((a.s - b.s).norm(), 0.0, 1e-14 * a.s.norm()) << k;
+    bilinear.hardening_modulus = 1.2e9;
+    const DeviatorUpdate c = update_deviator(bilinear, s, D, W, tau, eps);
+    const DeviatorUpdate d = update_deviator(linear, s, D, W, tau, eps, 293.0, 2703.0);
+    EXPECT_NEAR(c.dplastic, d.dplastic, 1e-12 * c.dplastic + 1e-300) << k;
+    EXPECT_NEAR((c.s - d.s).norm(), 0.0, 1e-12 * c.s.norm()) << k;
+    if (d.dplastic > 0.0) EXPECT_NEAR(von_mises(d.s), d.yield, 1e-12 * d.yield) << k;
+  }
+}
+
+// Rate: perfectly plastic (B = 0) sheared at a steady rate flows at
+// σ = A (1 + C ln(ε̇/ε̇0)), the yield at the step's own plastic rate (not lagged).
+TEST(Material, JohnsonCookSteadyFlowStressAtTheStrainRate) {
+  const double a = 0.3e9, c = 0.015;
+  const Material m = johnson_cook(a, 0.0, 1.0, c, 1.0, 0.0);
+  for (const double gamma_dot : {1e3, 1e5}) {
+    const double tau = 2e-3 / gamma_dot;  // 1,000 steps to a shear of 2
+    const Sheared r = shear(m, gamma_dot, tau, 1000);
+    const double rate = gamma_dot / std::sqrt(3.0);
+    EXPECT_NEAR(von_mises(r.s), a * (1.0 + c * std::log(rate)), 1e-9 * a) << gamma_dot;
+  }
+  // Below the reference rate: no softening (ε̇* clamped at 1).
+  const Sheared slow = shear(m, 0.5, 2e-3 / 0.5, 1000);
+  EXPECT_NEAR(von_mises(slow.s), a, 1e-9 * a);
+}
+
+// Temperature held (no specific heat): σ = A (1 − T*ᵐ); at or above melt, no deviator.
+TEST(Material, JohnsonCookThermalSofteningAndMelt) {
+  Material m = johnson_cook(0.3e9, 0.0, 1.0, 0.0, 1.34, 925.0);
+  m.initial_temperature = 600.0;
+  const Sheared warm = shear(m, 1e3, 1e-6, 2000);
+  const double ts = (600.0 - 293.0) / (925.0 - 293.0);
+  EXPECT_NEAR(von_mises(warm.s), 0.3e9 * (1.0 - std::pow(ts, 1.34)), 1e-6);
+  m.initial_temperature = 925.0;
+  const Sheared molten = shear(m, 1e3, 1e-6, 10);
+  EXPECT_EQ(von_mises(molten.s), 0.0);
+}
+
+// Adiabatic heating, m = 1, B = C = 0: dσ/dε̄p = −A χ σ / ((T_m − T_r) ρ c_v), so
+// σ = A exp(−k ε̄p) with k = A χ / ((T_m − T_r) ρ c_v). The return heats within the step
+// (implicit), which converges to the exponential as the steps shrink.
+TEST(Material, JohnsonCookAdiabaticSofteningFollowsTheExponential) {
+  Material m = johnson_cook(0.3e9, 0.0, 1.0, 0.0, 1.0, 925.0);
+  m.specific_heat = 896.0;
+  m.taylor_quinney = 0.9;
+  const double k = 0.3e9 * 0.9 / ((925.0 - 293.0) * m.density * 896.0);
+  const Sheared r = shear(m, 1e3, 1e-6, 2000);  // a shear of 2: ε̄p ≈ 1.15
+  EXPECT_GT(r.eps, 1.0);
+  EXPECT_NEAR(von_mises(r.s) / (0.3e9 * std::exp(-k * r.eps)), 1.0, 2e-3);
+  // The heat is χ times the plastic work: T − T_r = χ ∫σ dε̄p / (ρ c_v) = (A − σ)/(A k)·…
+  const double t_expected = 293.0 + (925.0 - 293.0) * (1.0 - std::exp(-k * r.eps));
+  EXPECT_NEAR(r.temperature, t_expected, 0.5);
+}

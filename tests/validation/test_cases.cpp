@@ -117,6 +117,39 @@ TEST(Validation, TaylorAluminiumAxisTetsAreNotCrushed) {
   EXPECT_GT(stabilized->min_dt(), stabilized->first_dt() / 10);
 }
 
+// Johnson–Cook with temperature in a whole run (the aluminium rod, coarse, 5 µs): every tet's
+// heat m c_v (T − T0) is χ of its plastic work plus its viscous work, and the impact face is
+// the hottest; the law is the one in the material kernel (`Material.JohnsonCook*`).
+TEST(Validation, JohnsonCookRodHeatsByItsPlasticAndViscousWork) {
+  const Case c =
+      load_case(test::source_path("data/cases/taylor-aluminium.yaml"),
+                {"end_time=5.0e-6", "bodies.0.mesh.cylinder.cells_across=6",
+                 "bodies.0.mesh.cylinder.cells_axial=18", "materials.al.strength=johnson_cook"});
+  Simulation sim(build_model(c), solver_settings(c));
+  while (!sim.done()) sim.step();
+  const State& st = sim.state();
+  const Material& m = sim.model().materials[0];
+  ASSERT_EQ(m.strength, StrengthModel::johnson_cook);
+  ASSERT_GT(m.specific_heat, 0.0);
+  double hottest = 0.0, heat = 0.0, work = 0.0, z_hottest = 1.0;
+  for (std::size_t t = 0; t < st.vol0.size(); ++t) {
+    const double mass = m.density * st.vol0[t];
+    const double q = mass * m.specific_heat * (st.temperature[t] - m.start_temperature());
+    const double w = m.taylor_quinney * st.w_plastic[t] + st.w_viscous[t];
+    EXPECT_NEAR(q, w, 1e-9 * std::abs(w) + 1e-15) << t;
+    heat += q;
+    work += w;
+    if (st.temperature[t] > hottest) {
+      hottest = st.temperature[t];
+      z_hottest = 0.0;
+      for (const Index k : sim.model().mesh.tets[t]) z_hottest += 0.25 * st.x[k].z();
+    }
+  }
+  EXPECT_GT(heat, 0.0);
+  EXPECT_GT(hottest, m.start_temperature() + 50.0);  // plastic strain of order 1 at the face
+  EXPECT_LT(z_hottest, 2.0e-3);                      // next to the wall
+}
+
 // Shock stress at the centre within 5 % of the Mie–Grüneisen Hugoniot.
 TEST(Validation, PlateImpact) {
   expect_all_pass(run_case("data/cases/plate-impact-1d.yaml"), 8e-5);  // 7.8e-6 measured

@@ -19,7 +19,7 @@ enum class VtuFormat { ascii, binary, compressed };
 /// particles). Point data: displacement, velocity (time-centred),
 /// body; cell data: stress (6 components xx, yy, zz, xy, yz, xz, viscosity included),
 /// pressure (EOS), von_mises, plastic_strain, internal_energy (J/m³ of reference volume),
-/// viscosity (q), body — each only when listed in `fields`.
+/// viscosity (q), temperature (K), body — each only when listed in `fields`.
 /// `penetration_depth`, when not empty, is written as point data of that name.
 std::string vtu_frame(const Model& model, const State& st, const std::vector<std::string>& fields,
                       const std::vector<double>& penetration_depth = {},

@@ -6,6 +6,7 @@
 // Each model is a small pure function; the element kernel (solver/element.cpp) calls them.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <string>
@@ -16,14 +17,38 @@ namespace tc {
 
 enum class EosKind { linear, mie_gruneisen };
 
+/// How the yield stress evolves (issue 17): bilinear, σy = σy0 + H ε̄p (yield_stress,
+/// hardening_modulus), or Johnson–Cook.
+enum class StrengthModel { bilinear, johnson_cook };
+
+/// Johnson–Cook (G. R. Johnson, W. H. Cook, 7th Int. Symp. Ballistics, The Hague, 1983):
+///   σy = (A + B ε̄pⁿ) (1 + C ln ε̇*) (1 − T*ᵐ),
+///   ε̇* = max(ε̇p / ε̇0, 1)  (no rate softening below the reference rate),
+///   T* = (T − T_room) / (T_melt − T_room), clamped to [0, 1]: σy = 0 at and above melt.
+struct JohnsonCook {
+  double a = 0.0, b = 0.0, n = 1.0;  // Pa, Pa, –
+  double c = 0.0;                    // rate sensitivity
+  double reference_rate = 1.0;       // ε̇0, 1/s
+  double m = 1.0;                    // thermal softening exponent
+  double room_temperature = 293.0;   // K
+  double melt_temperature = 0.0;     // K (0: no thermal softening)
+};
+
 struct Material {
   std::string name;
   double density = 0.0;        // ρ0, kg/m³
   double shear_modulus = 0.0;  // G, Pa
   double bulk_modulus = 0.0;   // K, Pa (linear EOS; ρ0 c0² for Mie–Grüneisen)
-  // Strength: plastic when yield_stress > 0 (von Mises, σy = σy0 + H ε̄p).
+  // Strength: plastic when yield_stress > 0 (von Mises, σy = σy0 + H ε̄p), or by Johnson–Cook.
+  StrengthModel strength = StrengthModel::bilinear;
   double yield_stress = 0.0;       // σy0, Pa
   double hardening_modulus = 0.0;  // H, Pa
+  JohnsonCook johnson_cook;
+  // Temperature (issue 17), tracked per tet when specific_heat > 0: heated by the viscous
+  // (shock) work and by the fraction taylor_quinney of the plastic work.
+  double specific_heat = 0.0;        // c_v, J/(kg K)
+  double taylor_quinney = 0.9;       // χ
+  double initial_temperature = 0.0;  // K; 0: Johnson–Cook's room temperature (or 293 K)
   // Equation of state.
   EosKind eos = EosKind::linear;
   double c0 = 0.0;      // bulk sound speed, m/s (Mie–Grüneisen)
@@ -35,7 +60,13 @@ struct Material {
   double spall_strength = 0.0;    // σ*, Pa; 0: the material does not spall
   double loosening_limit = 0.03;  // χ*
 
-  bool plastic() const { return yield_stress > 0.0; }
+  bool plastic() const { return strength == StrengthModel::johnson_cook || yield_stress > 0.0; }
+  bool thermal() const { return specific_heat > 0.0; }
+  /// The temperature a tet starts at.
+  double start_temperature() const {
+    if (initial_temperature > 0.0) return initial_temperature;
+    return strength == StrengthModel::johnson_cook ? johnson_cook.room_temperature : 293.0;
+  }
   /// Young's modulus and Poisson's ratio from G and K.
   double youngs_modulus() const {
     return 9.0 * bulk_modulus * shear_modulus / (3.0 * bulk_modulus + shear_modulus);
@@ -92,6 +123,110 @@ inline Mat3 jaumann_rotation(const Mat3& W, double tau) {
   return Mat3::Identity() + (2.0 / (1.0 + theta2)) * (A + A * A);
 }
 
+/// The Johnson–Cook yield stress at plastic strain eps, plastic strain rate rate (1/s) and
+/// temperature T (K).
+inline double johnson_cook_yield(const JohnsonCook& jc, double eps, double rate, double T) {
+  double thermal = 1.0;
+  if (jc.melt_temperature > jc.room_temperature) {
+    const double ts = (T - jc.room_temperature) / (jc.melt_temperature - jc.room_temperature);
+    if (ts >= 1.0) return 0.0;  // molten
+    if (ts > 0.0) thermal = 1.0 - std::pow(ts, jc.m);
+  }
+  const double strain = jc.b > 0.0 ? jc.a + jc.b * std::pow(std::max(eps, 0.0), jc.n) : jc.a;
+  const double star = rate / jc.reference_rate;
+  const double rate_factor = star > 1.0 ? 1.0 + jc.c * std::log(star) : 1.0;
+  return strain * rate_factor * thermal;
+}
+
+/// The plastic part of one step's radial return, from the trial von Mises stress eq:
+/// Δε̄p ≥ 0 and the yield stress at the end of the step, on which the returned stress lies
+/// (eq − 3G Δε̄p = σy). Bilinear: closed form,
+///   Δε̄p = (eq − σy0 − H ε̄p) / (3G + H).
+/// Johnson–Cook: σy depends on Δε̄p through the hardening, the rate Δε̄p/τ and the step's
+/// heating, so the return solves the scalar equation
+///   f(Δ) = eq − 3G Δ − σy(ε̄p + Δ, Δ/τ, T + χ (eq − 3G Δ) Δ / (ρ c_v)) = 0
+/// (the heating by the plastic work at the end-of-step yield, which is eq − 3G Δ at the root)
+/// on the bracket f(0) > 0 ≥ f(eq/3G), by Newton's method in ln Δ with the analytic slope, kept
+/// in the bracket (bisection when a step would leave it), to round-off: the yield is not lagged.
+/// temperature: the tet's at the start of the step; rho: its density.
+struct PlasticIncrement {
+  double dplastic = 0.0;
+  double yield = 0.0;  // σy at the end of the step
+};
+inline PlasticIncrement plastic_increment(const Material& m, double eq, double eps_p, double tau,
+                                          double temperature, double rho) {
+  PlasticIncrement r;
+  const double g3 = 3.0 * m.shear_modulus;
+  if (m.strength == StrengthModel::bilinear) {
+    r.yield = m.yield_stress + m.hardening_modulus * eps_p;
+    if (eq > r.yield) {
+      r.dplastic = (eq - r.yield) / (g3 + m.hardening_modulus);
+      r.yield += m.hardening_modulus * r.dplastic;
+    }
+    return r;
+  }
+  const JohnsonCook& jc = m.johnson_cook;
+  const double heat = m.thermal() ? m.taylor_quinney / (rho * m.specific_heat) : 0.0;
+  r.yield = johnson_cook_yield(jc, eps_p, 0.0, temperature);
+  if (!(eq > r.yield)) return r;
+  // f(Δ) and f'(Δ) = −3G − dσy/dΔ, σy = S(ε̄p + Δ) R(Δ/τ) Θ(T(Δ)).
+  const bool softens = jc.melt_temperature > jc.room_temperature;
+  const double span = jc.melt_temperature - jc.room_temperature;
+  const auto f_and_slope = [&](double d, double& slope) {
+    const double e = eps_p + d;
+    const double pw = jc.b > 0.0 && e > 0.0 ? std::pow(e, jc.n) : 0.0;
+    const double strain = jc.a + jc.b * pw;
+    const double d_strain = jc.b > 0.0 && e > 0.0 ? jc.b * jc.n * pw / e : 0.0;
+    const double star = d / (tau * jc.reference_rate);
+    const double rate = star > 1.0 ? 1.0 + jc.c * std::log(star) : 1.0;
+    const double d_rate = star > 1.0 ? jc.c / d : 0.0;
+    double thermal = 1.0, d_thermal = 0.0;
+    if (softens) {
+      const double t = temperature + heat * (eq - g3 * d) * d;
+      const double ts = (t - jc.room_temperature) / span;
+      if (ts >= 1.0) {
+        thermal = 0.0;
+      } else if (ts > 0.0) {
+        const double tm = std::pow(ts, jc.m);
+        thermal = 1.0 - tm;
+        d_thermal = -jc.m * tm / ts / span * heat * (eq - 2.0 * g3 * d);
+      }
+    }
+    const double y = strain * rate * thermal;
+    slope =
+        -g3 - (d_strain * rate * thermal + strain * d_rate * thermal + strain * rate * d_thermal);
+    return eq - g3 * d - y;
+  };
+  double lo = 0.0, hi = eq / g3, slope = 0.0;
+  // f(hi) = −σy at the start's temperature (no heating at the full return, σy's root): ≥ 0
+  // only when molten, and then the deviator vanishes. Otherwise f(hi) < 0 and, f(0) > 0,
+  // the bracket holds the root.
+  if (softens && temperature >= jc.melt_temperature) {
+    r.dplastic = hi;
+    r.yield = 0.0;
+    return r;
+  }
+  // Start from the perfectly plastic return at the start-of-step yield.
+  double d = (eq - r.yield) / g3;
+  for (int it = 0; it < 100; ++it) {
+    const double f = f_and_slope(d, slope);
+    if (f == 0.0) break;
+    (f > 0.0 ? lo : hi) = d;
+    // Newton in ln Δ, where the rate term C ln(Δ/τ ε̇0) is linear (in Δ it bends so sharply
+    // near 0 that Newton's steps overshoot the bracket and it crawls by bisection).
+    double next = slope < 0.0 ? d * std::exp(-f / (slope * d)) : 0.5 * (lo + hi);
+    if (!(next > lo && next < hi)) next = lo > 0.0 ? std::sqrt(lo * hi) : 0.5 * (lo + hi);
+    // Newton's step is then at round-off (quadratic convergence: the next one would be far
+    // below it); the bracket, when bisection leads.
+    const bool done = std::abs(next - d) <= 1e-13 * d || hi - lo <= 1e-15 * hi;
+    d = next;
+    if (done) break;
+  }
+  r.dplastic = d;
+  r.yield = eq - g3 * d;  // on the yield surface, exactly as the return scales
+  return r;
+}
+
 /// Result of the deviatoric update of one step.
 struct DeviatorUpdate {
   Mat3 s;                 // deviatoric stress at the end of the step
@@ -105,20 +240,18 @@ struct DeviatorUpdate {
 ///   if σ_eq > σy:  Δε̄p = (σ_eq − σy) / (3G + H),  s = s* (σy + H Δε̄p) / σ_eq   (radial return)
 /// The returned stress lies on the updated yield surface exactly (to round-off).
 inline DeviatorUpdate update_deviator(const Material& m, const Mat3& s_old, const Mat3& D,
-                                      const Mat3& W, double tau, double eps_p) {
+                                      const Mat3& W, double tau, double eps_p,
+                                      double temperature = 0.0, double rho = 0.0) {
   const Mat3 Q = jaumann_rotation(W, tau);
   const Mat3 devD = D - (D.trace() / 3.0) * Mat3::Identity();
   DeviatorUpdate r;
   r.s = Q * s_old * Q.transpose() + (2.0 * m.shear_modulus * tau) * devD;
   if (!m.plastic()) return r;
-  const double yield = m.yield_stress + m.hardening_modulus * eps_p;
   const double eq = std::sqrt(1.5 * r.s.cwiseProduct(r.s).sum());
-  r.yield = yield;
-  if (eq > yield) {
-    r.dplastic = (eq - yield) / (3.0 * m.shear_modulus + m.hardening_modulus);
-    r.yield = yield + m.hardening_modulus * r.dplastic;
-    r.s *= r.yield / eq;
-  }
+  const PlasticIncrement inc = plastic_increment(m, eq, eps_p, tau, temperature, rho);
+  r.yield = inc.yield;
+  r.dplastic = inc.dplastic;
+  if (inc.dplastic > 0.0) r.s *= inc.yield / eq;
   return r;
 }
 
@@ -130,8 +263,8 @@ struct DeviatorIncrement {
   double yield = 0.0;
 };
 inline DeviatorIncrement update_deviator6(const Material& m, Sym6& s, const Sym6& d,
-                                          const std::array<double, 3>& w, double tau,
-                                          double eps_p) {
+                                          const std::array<double, 3>& w, double tau, double eps_p,
+                                          double temperature = 0.0, double rho = 0.0) {
   // Q = (1 − c θ²) I + c A + c α αᵀ with α = τ w / 2, θ² = |α|², c = 2 / (1 + θ²).
   const double ax = 0.5 * tau * w[0], ay = 0.5 * tau * w[1], az = 0.5 * tau * w[2];
   const double th2 = ax * ax + ay * ay + az * az, c = 2.0 / (1.0 + th2), dg = 1.0 - c * th2;
@@ -156,15 +289,14 @@ inline DeviatorIncrement update_deviator6(const Material& m, Sym6& s, const Sym6
   s[5] = m00 * q20 + m01 * q21 + m02 * q22 + g2 * d[5];
   DeviatorIncrement r;
   if (!m.plastic()) return r;
-  const double yield = m.yield_stress + m.hardening_modulus * eps_p;
   const double ss =
       s[0] * s[0] + s[1] * s[1] + s[2] * s[2] + 2.0 * (s[3] * s[3] + s[4] * s[4] + s[5] * s[5]);
   const double eq = std::sqrt(1.5 * ss);
-  r.yield = yield;
-  if (eq > yield) {
-    r.dplastic = (eq - yield) / (3.0 * m.shear_modulus + m.hardening_modulus);
-    r.yield = yield + m.hardening_modulus * r.dplastic;
-    const double f = r.yield / eq;
+  const PlasticIncrement inc = plastic_increment(m, eq, eps_p, tau, temperature, rho);
+  r.yield = inc.yield;
+  r.dplastic = inc.dplastic;
+  if (inc.dplastic > 0.0) {
+    const double f = inc.yield / eq;
     for (double& v : s) v *= f;
   }
   return r;
