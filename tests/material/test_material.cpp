@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Eigenvalues>
+#include <tuple>
 
 #include "tetcontact/material/material.hpp"
 
@@ -34,6 +35,29 @@ Material al6061() {  // Steinberg (1996), as in data/materials.yaml
 double von_mises(const Mat3& s) {
   return std::sqrt(1.5 * s.cwiseProduct(s).sum());
 }
+
+// Random steps of a kernel test: a deviator of order 200 MPa, a velocity gradient of order
+// 5e4 1/s split into D and W (a fixed linear congruential sequence from `seed`).
+class RandomSteps {
+ public:
+  explicit RandomSteps(unsigned seed) : seed_(seed) {}
+  std::tuple<Mat3, Mat3, Mat3> next() {
+    Mat3 L, s;
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) L(i, j) = 5e4 * rnd();
+    s << rnd(), rnd(), rnd(), 0, rnd(), rnd(), 0, 0, rnd();
+    s = 2e8 * (s + s.transpose()).eval();
+    s -= s.trace() / 3.0 * Mat3::Identity();
+    return {s, 0.5 * (L + L.transpose()), 0.5 * (L - L.transpose())};
+  }
+
+ private:
+  double rnd() {
+    seed_ = seed_ * 1664525u + 1013904223u;
+    return static_cast<double>(seed_) / 4294967296.0 * 2.0 - 1.0;
+  }
+  unsigned seed_;
+};
 
 }  // namespace
 
@@ -188,19 +212,9 @@ TEST(Material, FastDeviatorMatchesReference) {
   Material m = elastic(117e9, 0.35, 8930);
   m.yield_stress = 400e6;
   m.hardening_modulus = 100e6;
-  unsigned seed = 12345;
-  auto rnd = [&]() {
-    seed = seed * 1664525u + 1013904223u;
-    return static_cast<double>(seed) / 4294967296.0 * 2.0 - 1.0;
-  };
+  RandomSteps steps(12345);
   for (int k = 0; k < 200; ++k) {
-    Mat3 L, s;
-    for (int i = 0; i < 3; ++i)
-      for (int j = 0; j < 3; ++j) L(i, j) = 5e4 * rnd();
-    s << rnd(), rnd(), rnd(), 0, rnd(), rnd(), 0, 0, rnd();
-    s = 2e8 * (s + s.transpose()).eval();
-    s -= s.trace() / 3.0 * Mat3::Identity();
-    const Mat3 D = 0.5 * (L + L.transpose()), W = 0.5 * (L - L.transpose());
+    const auto [s, D, W] = steps.next();
     const double tau = 1e-7, eps = 0.01 * (k % 3);
     const DeviatorUpdate ref = update_deviator(m, s, D, W, tau, eps);
     Sym6 fast = to_sym6(s);
@@ -254,19 +268,9 @@ TEST(Material, JohnsonCookReducesToTheBilinearLaw) {
   Material bilinear = al6061();
   const Material perfect = johnson_cook(0.29e9, 0.0, 1.0, 0.0, 1.0, 0.0);
   const Material linear = johnson_cook(0.29e9, 1.2e9, 1.0, 0.0, 1.0, 0.0);
-  unsigned seed = 777;
-  auto rnd = [&]() {
-    seed = seed * 1664525u + 1013904223u;
-    return static_cast<double>(seed) / 4294967296.0 * 2.0 - 1.0;
-  };
+  RandomSteps steps(777);
   for (int k = 0; k < 200; ++k) {
-    Mat3 L, s;
-    for (int i = 0; i < 3; ++i)
-      for (int j = 0; j < 3; ++j) L(i, j) = 5e4 * rnd();
-    s << rnd(), rnd(), rnd(), 0, rnd(), rnd(), 0, 0, rnd();
-    s = 2e8 * (s + s.transpose()).eval();
-    s -= s.trace() / 3.0 * Mat3::Identity();
-    const Mat3 D = 0.5 * (L + L.transpose()), W = 0.5 * (L - L.transpose());
+    const auto [s, D, W] = steps.next();
     const double tau = 1e-7, eps = 0.01 * (k % 3);
     bilinear.hardening_modulus = 0.0;
     const DeviatorUpdate a = update_deviator(bilinear, s, D, W, tau, eps);
