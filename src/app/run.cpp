@@ -289,7 +289,9 @@ Json fracture_json(const Case& c, const Simulation& sim) {
 Json safeguards_json(const Simulation& sim) {
   const ConversionLedger* conv = sim.conversions();
   Json safe = Json::object();
-  safe["eroded"] = conv && sim.model().erosion_step_ratio > 0 ? Json(conv->eroded) : Json();
+  bool erodes = sim.model().erosion_step_ratio > 0;
+  for (const Material& m : sim.model().materials) erodes = erodes || m.erosion_plastic_strain > 0;
+  safe["eroded"] = conv && erodes ? Json(conv->eroded) : Json();
   safe["particles_moved_out"] = conv ? Json(sim.contact_totals().particles_moved_out) : Json();
   return safe;
 }

@@ -590,6 +590,9 @@ ForceResult update_material(const std::vector<Tet>& tets, const std::vector<Mate
           w_p = gm.vol * y * inc.dplastic;
           st.w_plastic[t] += w_p;
           st.eps_p[t] += inc.dplastic;
+          // Erosion by strain: the cell is listed with those whose step is too short.
+          if (mat.erosion_plastic_strain > 0.0 && st.eps_p[t] >= mat.erosion_plastic_strain)
+            blocks[blk].eroding.push_back(ti);
         }
 
         // Viscosity from the mid-step strain rate; its work is the trapezoid of the values at

@@ -451,7 +451,8 @@ Material parse_material(const Reader& r, const YAML::Node& m, const std::string&
   r.keys(m, p,
          {"from", "density", "youngs_modulus", "poisson_ratio", "shear_modulus", "bulk_modulus",
           "yield_stress", "hardening_modulus", "eos", "spall_strength", "loosening_limit",
-          "strength", "johnson_cook", "specific_heat", "taylor_quinney", "initial_temperature"});
+          "strength", "johnson_cook", "specific_heat", "taylor_quinney", "initial_temperature",
+          "erosion_plastic_strain"});
   Material mat;
   mat.density = r.positive(r.require(m, p, "density"), join(p, "density"), "kg/m^3");
   const bool by_young = m["youngs_modulus"] || m["poisson_ratio"];
@@ -508,6 +509,9 @@ Material parse_material(const Reader& r, const YAML::Node& m, const std::string&
            "mie_gruneisen eos");
   if (m["spall_strength"])
     mat.spall_strength = r.non_negative(m["spall_strength"], join(p, "spall_strength"));
+  if (m["erosion_plastic_strain"])
+    mat.erosion_plastic_strain =
+        r.non_negative(m["erosion_plastic_strain"], join(p, "erosion_plastic_strain"));
   if (const YAML::Node l = m["loosening_limit"]) {
     mat.loosening_limit = r.number(l, join(p, "loosening_limit"));
     if (!(mat.loosening_limit > 0.0 && mat.loosening_limit < 1.0))

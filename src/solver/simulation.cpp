@@ -517,8 +517,8 @@ void Simulation::elements_stage() {
                                                         element_, st.dt_prev, st, scratch_)
                                       : compute_forces(model_.mesh.tets, element_, st, scratch_);
     critical_tet_ = r.critical_tet;
-    if (fragmentation_ && model_.erosion_step_ratio > 0.0) {
-      if (st.step == 0)  // the limit: a fraction of the first stable step
+    if (fragmentation_) {  // erosion: by the step, and by the plastic strain (per material)
+      if (st.step == 0 && model_.erosion_step_ratio > 0.0)  // a fraction of the first step
         element_.erode_dt2 = std::pow(model_.erosion_step_ratio * r.dt_stable, 2);
       fragmentation_->erode(r.eroding);
     }

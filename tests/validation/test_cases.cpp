@@ -150,6 +150,46 @@ TEST(Validation, JohnsonCookRodHeatsByItsPlasticAndViscousWork) {
   EXPECT_LT(z_hottest, 2.0e-3);                      // next to the wall
 }
 
+// Erosion by strain (issue 17): with fracture and particles on, no spall, and a limit of
+// ε̄p = 1, the rod's cells that reach it become particles (the conversion ledger counts them,
+// mass is kept); without the limit none does, though cells pass ε̄p = 1.
+TEST(Validation, StrainErosionTurnsCellsPastTheLimitIntoParticles) {
+  const auto run = [](const std::string& limit) {
+    const Case c = load_case(
+        test::source_path("data/cases/taylor-aluminium.yaml"),
+        {"end_time=8.0e-6", "bodies.0.mesh.cylinder.cells_across=6",
+         "bodies.0.mesh.cylinder.cells_axial=18", "fracture.enabled=true",
+         "materials.al.spall_strength=0", "materials.al.erosion_plastic_strain=" + limit});
+    auto sim = std::make_unique<Simulation>(build_model(c), solver_settings(c));
+    while (!sim->done()) sim->step();
+    return sim;
+  };
+  const auto plain = run("0");
+  ASSERT_NE(plain->conversions(), nullptr);
+  EXPECT_EQ(plain->conversions()->particles, 0);
+  long strained = 0;
+  for (const double e : plain->state().eps_p) strained += e >= 1.0;
+  EXPECT_GT(strained, 0);
+  const auto eroding = run("1.0");
+  const ConversionLedger& l = *eroding->conversions();
+  EXPECT_GT(l.eroded, 0);
+  EXPECT_EQ(l.particles, l.eroded);  // no spall: every particle an eroded cell
+  EXPECT_LT(l.mass_error, 1e-12);
+  const State& st = eroding->state();
+  ASSERT_EQ(st.particle_count(), l.particles);
+  for (const Index t : st.particle_tet) EXPECT_GE(st.eps_p[t], 1.0) << t;
+  // Without particles to turn cells into, the limit is refused, naming the key.
+  const Case bare = load_case(test::source_path("data/cases/taylor-aluminium.yaml"),
+                              {"materials.al.erosion_plastic_strain=1.0"});
+  try {
+    build_model(bare);
+    ADD_FAILURE() << "erosion without particles accepted";
+  } catch (const SetupError& e) {
+    EXPECT_NE(std::string(e.what()).find("materials.al.erosion_plastic_strain"), std::string::npos)
+        << e.what();
+  }
+}
+
 // Shock stress at the centre within 5 % of the Mie–Grüneisen Hugoniot.
 TEST(Validation, PlateImpact) {
   expect_all_pass(run_case("data/cases/plate-impact-1d.yaml"), 8e-5);  // 7.8e-6 measured

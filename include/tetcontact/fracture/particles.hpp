@@ -28,7 +28,8 @@ struct ConversionLedger {
                                 // cells' spread of nodal velocity, kept as particle energy
   double momentum_error = 0.0;  // largest |Σ_k ¼m U_k − m Ū| / Σ_k ¼m|U_k| of one conversion
   double mass_error = 0.0;      // |Σ nodal mass before − after| / total mass, largest
-  long eroded = 0;              // of the particles, cells eroded (their step fell too low)
+  long eroded = 0;              // of the particles, cells eroded (their step fell too low, or
+                                // their plastic strain reached the material's limit)
 };
 
 /// Appends a particle (a free node with that radius, internal energy and cell of origin) to

@@ -59,6 +59,9 @@ struct Material {
   // compression); a damaged cell loosened past χ = 1 − V0/V > χ* is destroyed (no pressure).
   double spall_strength = 0.0;    // σ*, Pa; 0: the material does not spall
   double loosening_limit = 0.03;  // χ*
+  // Erosion by strain (issue 17, a hydrocode safeguard; needs fracture with particles): a cell
+  // whose equivalent plastic strain reaches this becomes a particle. 0: off.
+  double erosion_plastic_strain = 0.0;
 
   bool plastic() const { return strength == StrengthModel::johnson_cook || yield_stress > 0.0; }
   bool thermal() const { return specific_heat > 0.0; }
