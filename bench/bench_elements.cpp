@@ -92,3 +92,34 @@ BENCHMARK(BM_ElementStage)
     ->Args({12, 1, 2})
     ->UseRealTime()
     ->Unit(benchmark::kMillisecond);
+
+// One radial return of the strength law (plastic_increment), bilinear against Johnson–Cook
+// (OFHC copper's constants, with heating): a plastic step (trial stress above yield) and an
+// elastic one. ns per call.
+void BM_StrengthReturn(benchmark::State& state) {
+  Material m;
+  m.density = 8930;
+  m.shear_modulus = 47.7e9;
+  m.yield_stress = 0.4e9;
+  m.hardening_modulus = 0.1e9;
+  if (state.range(0) == 1) {
+    m.strength = StrengthModel::johnson_cook;
+    m.johnson_cook = {90e6, 292e6, 0.31, 0.025, 1.0, 1.09, 293.0, 1356.0};
+    m.specific_heat = 383;
+  }
+  const bool plastic = state.range(1) == 1;
+  double sum = 0.0;
+  int i = 0;
+  for (auto _ : state) {
+    const double eq = (plastic ? 450e6 : 100e6) + 1e5 * (i++ % 1000);
+    const PlasticIncrement r = plastic_increment(m, eq, 0.5, 3e-9, 400.0, 8930.0);
+    sum += r.dplastic;
+    benchmark::DoNotOptimize(sum);
+  }
+}
+BENCHMARK(BM_StrengthReturn)
+    ->ArgNames({"johnson_cook", "plastic"})
+    ->Args({0, 1})
+    ->Args({0, 0})
+    ->Args({1, 1})
+    ->Args({1, 0});
