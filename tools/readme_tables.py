@@ -311,6 +311,74 @@ def verify_full(binary, work):
               f"{s['timings'].get('verify', 0):.3g} s / {s['wall_seconds']:.3g} s |", flush=True)
 
 
+VERIFY_ROWS = [  # (what, case, --set values)
+    ("cubes-edge, every step", "data/cases/cubes-edge.yaml",
+     ["contact.verify=true", "diagnostics.every_step=true"]),
+    ("cubes-edge, edge–edge off, every step", "data/cases/cubes-edge.yaml",
+     ["contact.verify=false", "contact.edge_edge=false", "diagnostics.every_step=true"]),
+    ("cubes-edge, edge–edge off, every step", "data/cases/cubes-edge.yaml",
+     ["contact.verify=true", "contact.edge_edge=false", "diagnostics.every_step=true"]),
+    ("micro coincident-faces, every step", "data/cases/micro/coincident-faces.yaml",
+     ["contact.verify=true", "diagnostics.every_step=true"]),
+    ("bars-impact", "data/cases/bars-impact.yaml", ["contact.verify=false"]),
+    ("bars-impact", "data/cases/bars-impact.yaml", ["contact.verify=true"]),
+    ("bars-impact, separation 0", "data/cases/bars-impact.yaml",
+     ["contact.verify=true", "contact.separation=0"]),
+    ("bars-impact, edge–edge on", "data/cases/bars-impact.yaml",
+     ["contact.verify=true", "contact.edge_edge=true"]),
+    ("staggered-patch, edge–edge on", "data/cases/staggered-patch.yaml",
+     ["contact.verify=true", "contact.edge_edge=true"]),
+    ("touching-gap0, edge–edge on", "data/cases/stability/touching-gap0.yaml",
+     ["contact.verify=true", "contact.edge_edge=true"]),
+] + [
+    (what, case, sets + [f"contact.verify={on}", "diagnostics.every_step=true"])
+    for what, case, sets in [
+        ("cylinders (edge–edge on), coarse (8 / 4 across), every step", "data/cases/cylinders.yaml",
+         ["bodies.0.mesh.cylinder.cells_across=8", "bodies.0.mesh.cylinder.cells_axial=8",
+          "bodies.1.mesh.cylinder.cells_across=4", "bodies.1.mesh.cylinder.cells_axial=4"]),
+        ("spall-plate, edge–edge on, every step", "data/cases/spall-plate.yaml",
+         ["contact.edge_edge=true"]),
+        ("taylor-symmetric, edge–edge on, coarse (6 across), to 10 µs, every step",
+         "data/cases/taylor-symmetric.yaml",
+         ["contact.edge_edge=true", "end_time=10.0e-6", "bodies.0.mesh.cylinder.cells_across=6",
+          "bodies.0.mesh.cylinder.cells_axial=30", "bodies.1.mesh.cylinder.cells_across=6",
+          "bodies.1.mesh.cylinder.cells_axial=30"]),
+    ]
+    for on in ("false", "true")
+]
+
+
+FULL_CASES = ["cubes-edge", "two-blocks-msh", "plate-impact-1d", "staggered-patch",
+              "bars-impact", "spall-plate", "taylor-copper", "cylinders", "ball-plate",
+              "taylor-symmetric", "hertz-spheres"]
+
+
+def verify_full(binary, work):
+    """Every shipped case with contact, full size, edge–edge on, verification on, measured after
+    every step."""
+    print("| case | crossings / nodes inside | checks | momentum | energy | failing pairs (steps) | "
+          "steps with zones: zones (translated / frozen) | verify stage / run |")
+    print("|---|---|---|---|---|---|---|---|")
+    for name in FULL_CASES:
+        extra = ["--check", "--set", "contact.edge_edge=true", "--set", "contact.verify=true",
+                 "--set", "diagnostics.every_step=true"]
+        s, _ = run(binary, os.path.join(ROOT, "data/cases", name + ".yaml"),
+                   os.path.join(work, name), extra)
+        p = s["penetration"]
+        missed = [f"{e['name']} {g(e['measured'])} > {g(e['bound'])}"
+                  for e in s.get("expect", []) if not e["pass"]]
+        missed += [f"{r['name']} {g(r['measured'])}" for r in s.get("references", [])
+                   if r.get("pass") is False]
+        checks = "pass" if not missed else "**" + "; ".join(missed) + "**"
+        v = s["contact"]["verification"]
+        print(f"| {name} | {p['max_crossings']} / {p['max_nodes_inside']} at all {p['samples']} "
+              f"steps | {checks} | {g(s['momentum']['relative_error'])} | "
+              f"{g(s['energy']['balance_error_max'])} | {v['failed_after_passes']:,} "
+              f"({v['steps_failed']} of {s['steps']}) | {v['steps_with_zones']}: "
+              f"{v['impact_zones']} ({v['translated_zones']} / {v['frozen_zones']}) | "
+              f"{s['timings'].get('verify', 0):.3g} s / {s['wall_seconds']:.3g} s |", flush=True)
+
+
 def verify(binary, work):
     """The step verification's table: each row run with --check."""
     print("| case | verify | crossings / nodes inside | checks | failing pairs (steps) | "
