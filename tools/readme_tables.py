@@ -285,32 +285,6 @@ def mpi(binary, work):
               f"{base / wall * 100:.0f} % |", flush=True)
 
 
-def verify_full(binary, work):
-    """Every shipped case with contact, full size, edge–edge on, verification on, measured after
-    every step."""
-    print("| case | crossings / nodes inside | checks | momentum | energy | failing pairs (steps) | "
-          "steps with zones: zones (translated / frozen) | verify stage / run |")
-    print("|---|---|---|---|---|---|---|---|")
-    for name in FULL_CASES:
-        extra = ["--check", "--set", "contact.edge_edge=true", "--set", "contact.verify=true",
-                 "--set", "diagnostics.every_step=true"]
-        s, _ = run(binary, os.path.join(ROOT, "data/cases", name + ".yaml"),
-                   os.path.join(work, name), extra)
-        p = s["penetration"]
-        missed = [f"{e['name']} {g(e['measured'])} > {g(e['bound'])}"
-                  for e in s.get("expect", []) if not e["pass"]]
-        missed += [f"{r['name']} {g(r['measured'])}" for r in s.get("references", [])
-                   if r.get("pass") is False]
-        checks = "pass" if not missed else "**" + "; ".join(missed) + "**"
-        v = s["contact"]["verification"]
-        print(f"| {name} | {p['max_crossings']} / {p['max_nodes_inside']} at all {p['samples']} "
-              f"steps | {checks} | {g(s['momentum']['relative_error'])} | "
-              f"{g(s['energy']['balance_error_max'])} | {v['failed_after_passes']:,} "
-              f"({v['steps_failed']} of {s['steps']}) | {v['steps_with_zones']}: "
-              f"{v['impact_zones']} ({v['translated_zones']} / {v['frozen_zones']}) | "
-              f"{s['timings'].get('verify', 0):.3g} s / {s['wall_seconds']:.3g} s |", flush=True)
-
-
 VERIFY_ROWS = [  # (what, case, --set values)
     ("cubes-edge, every step", "data/cases/cubes-edge.yaml",
      ["contact.verify=true", "diagnostics.every_step=true"]),

@@ -553,13 +553,9 @@ void Simulation::watch_step() {
   std::array<double, 4> fields{st.vol[t] / st.vol0[t], st.p[t], st.eps_p[t],
                                static_cast<double>(st.damage[t])};
   if (!scratch_.rank_tets.empty()) {
-    int owner = 0;
-    for (std::size_t r = 0; r < scratch_.rank_tets.size(); ++r)
-      if (std::binary_search(scratch_.rank_tets[r].begin(), scratch_.rank_tets[r].end(), t))
-        owner = static_cast<int>(r);
     std::string bytes(sizeof(fields), '\0');
     std::memcpy(bytes.data(), fields.data(), sizeof(fields));
-    bytes = mpi::broadcast(bytes, owner);
+    bytes = mpi::broadcast(bytes, partition_.tet_rank[t]);
     std::memcpy(fields.data(), bytes.data(), sizeof(fields));
   }
   StepCollapse c;

@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <functional>
+#include <memory>
 
 #include "../test_util.hpp"
 #include "tetcontact/app/setup.hpp"
@@ -32,6 +34,23 @@ Outcome run_case(const std::string& file, const std::vector<std::string>& overri
   o.balance_error_max = sim.balance_error_max();
   o.momentum_error = momentum_error(sim.first_sample(), sim.last_sample());
   return o;
+}
+
+// The aluminium rod of issue 17 on a coarse mesh (6 × 18 cells) to `end_time` with `overrides`,
+// run to its end; `each_step` sees the simulation after every step.
+std::unique_ptr<Simulation> coarse_aluminium_rod(
+    const std::string& end_time, std::vector<std::string> overrides,
+    const std::function<void(const Simulation&)>& each_step = {}) {
+  overrides.insert(overrides.begin(),
+                   {"end_time=" + end_time, "bodies.0.mesh.cylinder.cells_across=6",
+                    "bodies.0.mesh.cylinder.cells_axial=18"});
+  const Case c = load_case(test::source_path("data/cases/taylor-aluminium.yaml"), overrides);
+  auto sim = std::make_unique<Simulation>(build_model(c), solver_settings(c));
+  while (!sim->done()) {
+    sim->step();
+    if (each_step) each_step(*sim);
+  }
+  return sim;
 }
 
 // Every declared reference passes; the energy balance holds to `energy` (about 10x what the
@@ -87,17 +106,12 @@ TEST(Validation, TaylorCopper) {
 // tet that sets the step stays at V/V0 0.76 and the step within 1/10 of the first.
 TEST(Validation, TaylorAluminiumAxisTetsAreNotCrushed) {
   const auto run = [](const std::string& alpha) {
-    const Case c =
-        load_case(test::source_path("data/cases/taylor-aluminium.yaml"),
-                  {"end_time=20.0e-6", "bodies.0.mesh.cylinder.cells_across=6",
-                   "bodies.0.mesh.cylinder.cells_axial=18", "solver.anp_stabilization=" + alpha});
-    auto sim = std::make_unique<Simulation>(build_model(c), solver_settings(c));
     double smallest = 1.0;  // V/V0 of the tet that sets the step, over the run
-    while (!sim->done()) {
-      sim->step();
-      const Index t = sim->critical_tet();
-      smallest = std::min(smallest, sim->state().vol[t] / sim->state().vol0[t]);
-    }
+    auto sim = coarse_aluminium_rod(
+        "20.0e-6", {"solver.anp_stabilization=" + alpha}, [&](const Simulation& s) {
+          const Index t = s.critical_tet();
+          smallest = std::min(smallest, s.state().vol[t] / s.state().vol0[t]);
+        });
     return std::make_pair(std::move(sim), smallest);
   };
   const auto [plain, crushed] = run("0");
@@ -121,12 +135,8 @@ TEST(Validation, TaylorAluminiumAxisTetsAreNotCrushed) {
 // heat m c_v (T − T0) is χ of its plastic work plus its viscous work, and the impact face is
 // the hottest; the law is the one in the material kernel (`Material.JohnsonCook*`).
 TEST(Validation, JohnsonCookRodHeatsByItsPlasticAndViscousWork) {
-  const Case c =
-      load_case(test::source_path("data/cases/taylor-aluminium.yaml"),
-                {"end_time=5.0e-6", "bodies.0.mesh.cylinder.cells_across=6",
-                 "bodies.0.mesh.cylinder.cells_axial=18", "materials.al.strength=johnson_cook"});
-  Simulation sim(build_model(c), solver_settings(c));
-  while (!sim.done()) sim.step();
+  const auto rod = coarse_aluminium_rod("5.0e-6", {"materials.al.strength=johnson_cook"});
+  const Simulation& sim = *rod;
   const State& st = sim.state();
   const Material& m = sim.model().materials[0];
   ASSERT_EQ(m.strength, StrengthModel::johnson_cook);
@@ -155,14 +165,8 @@ TEST(Validation, JohnsonCookRodHeatsByItsPlasticAndViscousWork) {
 // mass is kept); without the limit none does, though cells pass ε̄p = 1.
 TEST(Validation, StrainErosionTurnsCellsPastTheLimitIntoParticles) {
   const auto run = [](const std::string& limit) {
-    const Case c = load_case(
-        test::source_path("data/cases/taylor-aluminium.yaml"),
-        {"end_time=8.0e-6", "bodies.0.mesh.cylinder.cells_across=6",
-         "bodies.0.mesh.cylinder.cells_axial=18", "fracture.enabled=true",
-         "materials.al.spall_strength=0", "materials.al.erosion_plastic_strain=" + limit});
-    auto sim = std::make_unique<Simulation>(build_model(c), solver_settings(c));
-    while (!sim->done()) sim->step();
-    return sim;
+    return coarse_aluminium_rod("8.0e-6", {"fracture.enabled=true", "materials.al.spall_strength=0",
+                                           "materials.al.erosion_plastic_strain=" + limit});
   };
   const auto plain = run("0");
   ASSERT_NE(plain->conversions(), nullptr);
