@@ -93,9 +93,9 @@ BENCHMARK(BM_ElementStage)
     ->UseRealTime()
     ->Unit(benchmark::kMillisecond);
 
-// One radial return of the strength law (plastic_increment), bilinear against Johnson–Cook
-// (OFHC copper's constants, with heating): a plastic step (trial stress above yield) and an
-// elastic one. ns per call.
+// One radial return of the strength law (plastic_increment), bilinear (law 0) against
+// Johnson–Cook (1) and Steinberg–Guinan (2) (OFHC copper's constants, with heating, SG at 1 GPa):
+// a plastic step (trial stress above yield) and an elastic one. ns per call.
 void BM_StrengthReturn(benchmark::State& state) {
   Material m;
   m.density = 8930;
@@ -107,19 +107,27 @@ void BM_StrengthReturn(benchmark::State& state) {
     m.johnson_cook = {90e6, 292e6, 0.31, 0.025, 1.0, 1.09, 293.0, 1356.0};
     m.specific_heat = 383;
   }
+  if (state.range(0) == 2) {
+    m.strength = StrengthModel::steinberg_guinan;
+    m.steinberg_guinan = {0.12e9,  0.64e9, 36.0,   0.45, 0.0, 2.83e-11,
+                          3.77e-4, 300.0,  1790.0, 2.02, 1.5};
+    m.specific_heat = 383;
+  }
   const bool plastic = state.range(1) == 1;
   double sum = 0.0;
   int i = 0;
   for (auto _ : state) {
     const double eq = (plastic ? 450e6 : 100e6) + 1e5 * (i++ % 1000);
-    const PlasticIncrement r = plastic_increment(m, eq, 0.5, 3e-9, 400.0, 8930.0);
+    const PlasticIncrement r = plastic_increment(m, eq, 0.5, 3e-9, 400.0, 9000.0, 1e9);
     sum += r.dplastic;
     benchmark::DoNotOptimize(sum);
   }
 }
 BENCHMARK(BM_StrengthReturn)
-    ->ArgNames({"johnson_cook", "plastic"})
+    ->ArgNames({"law", "plastic"})
     ->Args({0, 1})
     ->Args({0, 0})
     ->Args({1, 1})
-    ->Args({1, 0});
+    ->Args({1, 0})
+    ->Args({2, 1})
+    ->Args({2, 0});

@@ -15,6 +15,10 @@ never retyped).
     tools/readme_tables.py mpi BINARY                       distributed runs: each case as one
                                                             process (1 and 2 threads) and under
                                                             mpirun on 2 ranks of 1 thread
+    tools/readme_tables.py strength BINARY                  the strength laws side by side: the
+                                                            aluminium Taylor rod and the 6061-T6
+                                                            plate impact's precursor (HEL) under
+                                                            each law, one thread
 
 `stability` runs every case of data/cases/stability/ twice, as shipped (`--check`) and with
 contact switched off, and prints one markdown row per case from the two summary.json files:
@@ -384,11 +388,41 @@ def verify(binary, work):
               f"{cost} |", flush=True)
 
 
+LAWS = ["bilinear", "johnson_cook", "steinberg_guinan"]
+LAW_NAMES = {"bilinear": "bilinear (perfectly plastic at Y0)", "johnson_cook": "Johnson–Cook",
+             "steinberg_guinan": "Steinberg–Guinan"}
+
+
+def strength(binary, work):
+    """Each strength law on the aluminium Taylor rod and on the plate impact's precursor."""
+    print("| law | Taylor rod: steps | smallest step / first | step falls reported | "
+          "L (mm), L/L0 | footprint radius (mm), R/R0 | energy balance | wall time | "
+          "HEL (GPa), vs 0.64 ± 0.07 measured |")
+    print("|---|---|---|---|---|---|---|---|---|")
+    for law in LAWS:
+        sets = ["--set", f"materials.al.strength={law}", "--threads", "1"]
+        s, _ = run(binary, os.path.join(ROOT, "data/cases/taylor-aluminium.yaml"),
+                   os.path.join(work, f"rod-{law}"), sets)
+        b = s["bodies"][0]
+        length = b["bbox_max"][2] - b["bbox_min"][2]
+        radius = 0.5 * (b["bbox_max"][0] - b["bbox_min"][0])
+        ts = s["time_step"]
+        p, _ = run(binary, os.path.join(ROOT, "data/cases/plate-impact-1d.yaml"),
+                   os.path.join(work, f"plate-{law}"), sets)
+        hel = [r for r in p["references"] if r["name"] == "elastic precursor (HEL)"][0]
+        err = hel["measured"] / 0.64e9 - 1.0
+        print(f"| {LAW_NAMES[law]} | {s['steps']:,} | {ts['min'] / ts['first']:.3f} | "
+              f"{len(ts['collapses'])} | {length * 1e3:.2f}, {length / 23.47e-3:.3f} | "
+              f"{radius * 1e3:.2f}, {radius / 3.81e-3:.2f} | "
+              f"{g(s['energy']['balance_error'])} | {s['wall_seconds']:.1f} s | "
+              f"{hel['measured'] / 1e9:.3f} ({err * 100:+.1f} %) |", flush=True)
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawTextHelpFormatter)
     ap.add_argument("table",
                     choices=["stability", "micro", "profile", "threads", "verify", "verify-full",
-                             "mpi"])
+                             "mpi", "strength"])
     ap.add_argument("binary")
     ap.add_argument("--work", help="keep the runs here (default: a temporary folder)")
     ap.add_argument("--cases", nargs="*", help="threads: only the cases whose file names "
@@ -406,6 +440,8 @@ def main():
         threads(os.path.abspath(a.binary), a.work or tempfile.mkdtemp(prefix="threads-"), a.cases)
     elif a.table == "mpi":
         mpi(os.path.abspath(a.binary), a.work or tempfile.mkdtemp(prefix="mpi-"))
+    elif a.table == "strength":
+        strength(os.path.abspath(a.binary), a.work or tempfile.mkdtemp(prefix="strength-"))
     else:
         profile(os.path.abspath(a.binary))
 

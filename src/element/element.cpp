@@ -60,10 +60,13 @@ inline double implicit_energy(double e, double w, double p_old, const EosTerms& 
   return (e - 0.5 * (p_old + eos.a) * dvol + w) / (1.0 + 0.5 * eos.b * dvol / vol0);
 }
 
-// Squared dilatational sound speed of the current state: (ρ c_b² + 4G/3) / ρ.
-inline double sound_speed2(const Material& m, double mu, double p, const EosTerms& t) {
+// Squared dilatational sound speed of the current state: (ρ c_b² + 4G/3) / ρ, with G at the
+// state (Steinberg–Guinan's G(P, T) rises with pressure).
+inline double sound_speed2(const Material& m, double mu, double p, const EosTerms& t,
+                           double temperature) {
   const double rho = m.density * (1.0 + mu);
-  return (bulk_stiffness(m, mu, p, t) + 4.0 / 3.0 * m.shear_modulus) / rho;
+  const double g = shear_modulus_at(m, p, temperature, 1.0 + mu);
+  return (bulk_stiffness(m, mu, p, t) + 4.0 / 3.0 * g) / rho;
 }
 
 // The geometry of a tet in plain doubles: edge vectors from node 0, the outward area vectors
@@ -459,7 +462,7 @@ void init_sound_speed(const std::vector<Material>& materials, State& st) {
   for (std::size_t t = 0; t < st.vol.size(); ++t) {
     const Material& m = materials[st.tet_material[t]];
     const double mu = st.vol0[t] / st.vol[t] - 1.0;
-    st.sound2[t] = sound_speed2(m, mu, st.p[t], eos_terms(m, mu));
+    st.sound2[t] = sound_speed2(m, mu, st.p[t], eos_terms(m, mu), st.temperature[t]);
   }
 }
 
@@ -575,7 +578,7 @@ ForceResult update_material(const std::vector<Tet>& tets, const std::vector<Mate
         const DeviatorIncrement inc = failed
                                           ? DeviatorIncrement{}
                                           : update_deviator6(mat, st.s[t], d, w, tau, st.eps_p[t],
-                                                             st.temperature[t], rho_mid);
+                                                             st.temperature[t], rho_mid, st.p[t]);
         const Sym6& s_new = st.s[t];
         double sd = 0.0;
         for (int c = 0; c < 6; ++c) sd += (c < 3 ? 1.0 : 2.0) * (s_old[c] + s_new[c]) * d[c];
@@ -583,7 +586,8 @@ ForceResult update_material(const std::vector<Tet>& tets, const std::vector<Mate
         double w_p = 0.0;
         if (inc.dplastic > 0.0) {
           // Plastic work V σy Δε̄p: bilinear with σy at mid-increment (exact for linear
-          // hardening), Johnson–Cook at the end of the step (the heating its return assumed).
+          // hardening), the other laws at the end of the step (the heating their return
+          // assumed).
           const double y = mat.strength == StrengthModel::bilinear
                                ? inc.yield - 0.5 * mat.hardening_modulus * inc.dplastic
                                : inc.yield;
@@ -640,7 +644,7 @@ ForceResult update_material(const std::vector<Tet>& tets, const std::vector<Mate
         }
         st.e_int[t] = e_new;
         st.p[t] = p_new;
-        st.sound2[t] = sound_speed2(mat, mu, st.p[t], eos);
+        st.sound2[t] = sound_speed2(mat, mu, st.p[t], eos, st.temperature[t]);
         tet_forces(ti, ge, options, st, &scratch.tet_force[4 * t], blocks[blk]);
       }
     });
@@ -712,7 +716,7 @@ ForceResult update_material(const std::vector<Tet>& tets, const std::vector<Mate
         if (options.fracture) p_new = fail(mat, ti, st.vol[t], p_new, st);
         st.e_int[t] -= 0.5 * (st.p[t] + p_new) * dvol;
         st.p[t] = p_new;
-        st.sound2[t] = sound_speed2(mat, mu, p_new, eos);
+        st.sound2[t] = sound_speed2(mat, mu, p_new, eos, st.temperature[t]);
         TetGeometry g;
         end_geometry(ti, k, st, g, "at the end of the step");
         tet_forces(ti, g, options, st, &scratch.tet_force[4 * t], blocks[blk]);

@@ -393,10 +393,46 @@ std::vector<TransformOp> parse_transform(const Reader& r, const YAML::Node& n,
   return ops;
 }
 
-// The strength law (`strength: bilinear | johnson_cook`, the Johnson–Cook constants) and the
-// temperature's keys. A library entry may carry its Johnson–Cook constants while its law stays
-// bilinear: the case picks the law.
+// The Steinberg–Guinan block: Y0, Ymax, beta, n, initial_strain, A (1/Pa), B (1/K),
+// reference_temperature, melt_temperature (T_m0), gamma0, a. Γ0 defaults to the Mie–Grüneisen
+// EOS's (checked in parse_material, after the EOS).
+void read_steinberg_guinan(const Reader& r, const YAML::Node& sn, const std::string& sp,
+                           SteinbergGuinan& sg) {
+  r.map(sn, sp);
+  r.keys(sn, sp,
+         {"Y0", "Ymax", "beta", "n", "initial_strain", "A", "B", "reference_temperature",
+          "melt_temperature", "gamma0", "a", "source"});
+  sg.y0 = r.positive(r.require(sn, sp, "Y0"), join(sp, "Y0"), "Pa");
+  if (sn["Ymax"]) {
+    sg.ymax = r.positive(sn["Ymax"], join(sp, "Ymax"), "Pa");
+    if (sg.ymax < sg.y0) r.fail(sn["Ymax"], join(sp, "Ymax"), "Ymax must not be below Y0");
+  }
+  if (sn["beta"]) sg.beta = r.non_negative(sn["beta"], join(sp, "beta"));
+  if (sn["n"]) sg.n = r.positive(sn["n"], join(sp, "n"), "dimensionless");
+  if (sn["initial_strain"])
+    sg.initial_strain = r.non_negative(sn["initial_strain"], join(sp, "initial_strain"));
+  if (sn["A"]) sg.a_pressure = r.non_negative(sn["A"], join(sp, "A"));
+  if (sn["B"]) sg.b_temperature = r.non_negative(sn["B"], join(sp, "B"));
+  if (sn["reference_temperature"])
+    sg.reference_temperature =
+        r.positive(sn["reference_temperature"], join(sp, "reference_temperature"), "K");
+  if (sn["melt_temperature"]) {
+    sg.melt_temperature = r.positive(sn["melt_temperature"], join(sp, "melt_temperature"), "K");
+    if (!(sg.melt_temperature > sg.reference_temperature))
+      r.fail(sn["melt_temperature"], join(sp, "melt_temperature"),
+             "the melt temperature must be above the reference temperature");
+  }
+  sg.gamma0 = -1.0;  // unset: the EOS's
+  if (sn["gamma0"]) sg.gamma0 = r.non_negative(sn["gamma0"], join(sp, "gamma0"));
+  if (sn["a"]) sg.a = r.non_negative(sn["a"], join(sp, "a"));
+}
+
+// The strength law (`strength: bilinear | johnson_cook | steinberg_guinan`, the constants of
+// each) and the temperature's keys. A library entry may carry the constants of several laws
+// while its law stays bilinear: the case picks the law.
 void read_strength(const Reader& r, const YAML::Node& m, const std::string& p, Material& mat) {
+  if (const YAML::Node sn = m["steinberg_guinan"])
+    read_steinberg_guinan(r, sn, join(p, "steinberg_guinan"), mat.steinberg_guinan);
   if (const YAML::Node jn = m["johnson_cook"]) {
     const std::string jp = join(p, "johnson_cook");
     r.map(jn, jp);
@@ -429,8 +465,14 @@ void read_strength(const Reader& r, const YAML::Node& m, const std::string& p, M
       if (!m["johnson_cook"])
         r.fail(sn, join(p, "strength"), "johnson_cook needs the material's johnson_cook constants");
       mat.strength = StrengthModel::johnson_cook;
+    } else if (law == "steinberg_guinan") {
+      if (!m["steinberg_guinan"])
+        r.fail(sn, join(p, "strength"),
+               "steinberg_guinan needs the material's steinberg_guinan constants");
+      mat.strength = StrengthModel::steinberg_guinan;
     } else {
-      r.fail(sn, join(p, "strength"), "expected bilinear or johnson_cook, got '" + law + "'");
+      r.fail(sn, join(p, "strength"),
+             "expected bilinear, johnson_cook or steinberg_guinan, got '" + law + "'");
     }
   }
   if (m["specific_heat"])
@@ -451,8 +493,8 @@ Material parse_material(const Reader& r, const YAML::Node& m, const std::string&
   r.keys(m, p,
          {"from", "density", "youngs_modulus", "poisson_ratio", "shear_modulus", "bulk_modulus",
           "yield_stress", "hardening_modulus", "eos", "spall_strength", "loosening_limit",
-          "strength", "johnson_cook", "specific_heat", "taylor_quinney", "initial_temperature",
-          "erosion_plastic_strain"});
+          "strength", "johnson_cook", "steinberg_guinan", "specific_heat", "taylor_quinney",
+          "initial_temperature", "erosion_plastic_strain"});
   Material mat;
   mat.density = r.positive(r.require(m, p, "density"), join(p, "density"), "kg/m^3");
   const bool by_young = m["youngs_modulus"] || m["poisson_ratio"];
@@ -507,6 +549,12 @@ Material parse_material(const Reader& r, const YAML::Node& m, const std::string&
     r.fail(m, p,
            "no bulk modulus: give bulk_modulus, youngs_modulus and poisson_ratio, or a "
            "mie_gruneisen eos");
+  if (SteinbergGuinan& sg = mat.steinberg_guinan; sg.gamma0 < 0.0) {
+    if (sg.melt_temperature > 0.0 && mat.eos != EosKind::mie_gruneisen)
+      r.fail(m["steinberg_guinan"], join(p, "steinberg_guinan"),
+             "the melt law needs gamma0: give steinberg_guinan.gamma0 or a mie_gruneisen eos");
+    sg.gamma0 = mat.gamma0;
+  }
   if (m["spall_strength"])
     mat.spall_strength = r.non_negative(m["spall_strength"], join(p, "spall_strength"));
   if (m["erosion_plastic_strain"])
@@ -667,6 +715,10 @@ void read_materials(const Reader& r, const YAML::Node& root, Case& c, const fs::
       YAML::Node merged = YAML::Clone(lib[from]);
       for (auto kv = m.begin(); kv != m.end(); ++kv)
         if (kv->first.Scalar() != "from") merged[kv->first.Scalar()] = kv->second;
+      // The case's own yield_stress or hardening_modulus are the bilinear law's constants: they
+      // select it over the entry's law unless the case names a law itself.
+      if ((m["yield_stress"] || m["hardening_modulus"]) && !m["strength"])
+        merged["strength"] = "bilinear";
       m = merged;
     }
     Material mat = parse_material(r, m, p);

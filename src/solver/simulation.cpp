@@ -76,14 +76,23 @@ Simulation::Simulation(Model model, SolverSettings settings)
   State& st = state_;
   // The modules this case needs, and nothing else.
   modules_ = {"integrator:central_difference", "elements:linear_tet"};
-  bool plastic = false, mie = false, anp = false;
+  bool plastic = false, mie = false, anp = false, thermal = false;
+  bool laws[3] = {false, false, false};  // StrengthModel's values in use
   for (std::size_t k = 0; k < model_.materials.size(); ++k) {
-    plastic = plastic || model_.materials[k].plastic();
-    mie = mie || model_.materials[k].eos == EosKind::mie_gruneisen;
+    const Material& mk = model_.materials[k];
+    plastic = plastic || mk.plastic();
+    if (mk.plastic()) laws[static_cast<int>(mk.strength)] = true;
+    thermal = thermal || mk.thermal();
+    mie = mie || mk.eos == EosKind::mie_gruneisen;
     anp = anp || (k < model_.element.average_nodal_pressure.size() &&
                   model_.element.average_nodal_pressure[k]);
   }
   modules_.push_back(plastic ? "material:elastic_plastic" : "material:elastic");
+  const char* law_names[3] = {"strength:bilinear", "strength:johnson_cook",
+                              "strength:steinberg_guinan"};
+  for (int l = 0; l < 3; ++l)
+    if (laws[l]) modules_.push_back(law_names[l]);
+  if (thermal) modules_.push_back("material:temperature");
   modules_.push_back(mie ? "eos:mie_gruneisen" : "eos:linear");
   if (anp) modules_.push_back("elements:average_nodal_pressure");
   if (model_.element.viscosity_linear > 0 || model_.element.viscosity_quadratic > 0)

@@ -340,12 +340,14 @@ TEST(CaseFile, ReadmeExampleIsValid) {
   EXPECT_EQ(c.boundary_conditions.size(), 2u);
   EXPECT_EQ(c.output.fields.size(), 11u);  // the example's ten, and fracture's `damage`
   EXPECT_TRUE(c.fracture);
-  EXPECT_EQ(c.materials.size(), 5u);
+  EXPECT_EQ(c.materials.size(), 6u);
   EXPECT_EQ(c.walls.size(), 1u);
   EXPECT_EQ(c.references.size(), 2u);
   EXPECT_EQ(c.material("target").yield_stress, 0.3e9);
   EXPECT_EQ(c.material("hot_rod").strength, StrengthModel::johnson_cook);
   EXPECT_EQ(c.material("hot_rod").johnson_cook.n, 0.31);
+  EXPECT_EQ(c.material("shocked_metal").strength, StrengthModel::steinberg_guinan);
+  EXPECT_EQ(c.material("shocked_metal").steinberg_guinan.ymax, 0.68e9);
   EXPECT_NO_THROW(build_model(c));
 }
 
@@ -404,6 +406,23 @@ TEST(MaterialLibrary, CaseTakesAnEntryAndOverridesKeys) {
   EXPECT_EQ(jc.material("al").strength, StrengthModel::johnson_cook);
   EXPECT_TRUE(jc.material("al").plastic());
   EXPECT_EQ(jc.material("al").start_temperature(), 293.0);
+  // Steinberg–Guinan from the entry's block, Γ0 from its EOS unless given, T from T_ref.
+  const std::string sg_text = replace(v, R"(    from: ofhc-copper
+    yield_stress: 400.0e6
+    hardening_modulus: 100.0e6)",
+                                      "    from: ofhc-copper\n    strength: steinberg_guinan");
+  test::write_text(dir / "sg.yaml", sg_text);
+  const Material sg = load_case(dir / "sg.yaml").material("al");
+  EXPECT_EQ(sg.strength, StrengthModel::steinberg_guinan);
+  EXPECT_EQ(sg.steinberg_guinan.y0, 0.12e9);
+  EXPECT_EQ(sg.steinberg_guinan.ymax, 0.64e9);
+  EXPECT_EQ(sg.steinberg_guinan.a_pressure, 2.83e-11);
+  EXPECT_EQ(sg.steinberg_guinan.gamma0, 2.02);
+  EXPECT_EQ(sg.start_temperature(), 300.0);
+  // A case's own yield_stress selects the bilinear law over the entry's (named) law.
+  test::write_text(dir / "sg-yield.yaml",
+                   replace(sg_text, "    strength: steinberg_guinan", "    yield_stress: 1.0e8"));
+  EXPECT_EQ(load_case(dir / "sg-yield.yaml").material("al").strength, StrengthModel::bilinear);
 
   test::write_text(dir / "bad.yaml", replace(v, "from: ofhc-copper", "from: unobtainium"));
   try {
@@ -474,7 +493,28 @@ TEST(CaseFile, MaterialAndWallErrors) {
        {},
        ":10:",
        "materials.al.strength",
-       "expected bilinear or johnson_cook"},
+       "expected bilinear, johnson_cook or steinberg_guinan"},
+      {"steinberg_guinan without constants",
+       replace(v, "    poisson_ratio: 0.3",
+               "    poisson_ratio: 0.3\n    strength: steinberg_guinan"),
+       {},
+       ":10:",
+       "materials.al.strength",
+       "needs the material's steinberg_guinan constants"},
+      {"Ymax below Y0",
+       replace(v, "    poisson_ratio: 0.3",
+               "    poisson_ratio: 0.3\n    steinberg_guinan: {Y0: 1.0e8, Ymax: 0.5e8}"),
+       {},
+       ":10:",
+       "materials.al.steinberg_guinan.Ymax",
+       "must not be below Y0"},
+      {"melt law without gamma0",
+       replace(v, "    poisson_ratio: 0.3",
+               "    poisson_ratio: 0.3\n    steinberg_guinan: {Y0: 1.0e8, melt_temperature: 900}"),
+       {},
+       ":10:",
+       "materials.al.steinberg_guinan",
+       "the melt law needs gamma0"},
       {"johnson_cook without constants",
        replace(v, "    poisson_ratio: 0.3", "    poisson_ratio: 0.3\n    strength: johnson_cook"),
        {},

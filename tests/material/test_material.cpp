@@ -244,13 +244,15 @@ struct Sheared {
   Mat3 s;
   double eps = 0.0, temperature = 0.0;
 };
-Sheared shear(const Material& m, double gamma_dot, double tau, int steps) {
+// pressure and eta: a held pressure and compression ρ/ρ0 (Steinberg–Guinan).
+Sheared shear(const Material& m, double gamma_dot, double tau, int steps, double pressure = 0.0,
+              double eta = 1.0) {
   Mat3 D = Mat3::Zero();
   D(0, 1) = D(1, 0) = 0.5 * gamma_dot;
   Sheared out{Mat3::Zero(), 0.0, m.start_temperature()};
   for (int k = 0; k < steps; ++k) {
-    const DeviatorUpdate r =
-        update_deviator(m, out.s, D, Mat3::Zero(), tau, out.eps, out.temperature, m.density);
+    const DeviatorUpdate r = update_deviator(m, out.s, D, Mat3::Zero(), tau, out.eps,
+                                             out.temperature, eta * m.density, pressure);
     out.s = r.s;
     out.eps += r.dplastic;
     if (m.thermal())
@@ -259,31 +261,40 @@ Sheared shear(const Material& m, double gamma_dot, double tau, int steps) {
   return out;
 }
 
+// A law that reduces to the bilinear one, against its closed form over random steps: `perfect`
+// to perfect plasticity at σy0 = 0.29 GPa (to 1e-14), `linear` to linear hardening H (1e-12),
+// each called at the temperature and pressure given.
+void expect_bilinear(const Material& perfect, const Material& linear, double hardening,
+                     double temperature, double pressure, unsigned seed) {
+  Material bilinear = al6061();
+  RandomSteps steps(seed);
+  for (int k = 0; k < 200; ++k) {
+    const auto [s, D, W] = steps.next();
+    const double tau = 1e-7, eps = 0.01 * (k % 3);
+    bilinear.hardening_modulus = 0.0;
+    const DeviatorUpdate a = update_deviator(bilinear, s, D, W, tau, eps);
+    const DeviatorUpdate b =
+        update_deviator(perfect, s, D, W, tau, eps, temperature, 2703.0, pressure);
+    EXPECT_NEAR(a.dplastic, b.dplastic, 1e-14 * a.dplastic) << k;
+    EXPECT_NEAR((a.s - b.s).norm(), 0.0, 1e-14 * a.s.norm()) << k;
+    bilinear.hardening_modulus = hardening;
+    const DeviatorUpdate c = update_deviator(bilinear, s, D, W, tau, eps);
+    const DeviatorUpdate d =
+        update_deviator(linear, s, D, W, tau, eps, temperature, 2703.0, pressure);
+    EXPECT_NEAR(c.dplastic, d.dplastic, 1e-12 * c.dplastic + 1e-300) << k;
+    EXPECT_NEAR((c.s - d.s).norm(), 0.0, 1e-12 * c.s.norm()) << k;
+    if (d.dplastic > 0.0) EXPECT_NEAR(von_mises(d.s), d.yield, 1e-12 * d.yield) << k;
+  }
+}
+
 }  // namespace
 
 // B = 0, C = 0, no temperature: perfectly plastic at A, the bilinear law with H = 0; n = 1:
 // linear hardening H = B; both to round-off (the return solves for Δε̄p, which the bilinear law
 // has in closed form).
 TEST(Material, JohnsonCookReducesToTheBilinearLaw) {
-  Material bilinear = al6061();
-  const Material perfect = johnson_cook(0.29e9, 0.0, 1.0, 0.0, 1.0, 0.0);
-  const Material linear = johnson_cook(0.29e9, 1.2e9, 1.0, 0.0, 1.0, 0.0);
-  RandomSteps steps(777);
-  for (int k = 0; k < 200; ++k) {
-    const auto [s, D, W] = steps.next();
-    const double tau = 1e-7, eps = 0.01 * (k % 3);
-    bilinear.hardening_modulus = 0.0;
-    const DeviatorUpdate a = update_deviator(bilinear, s, D, W, tau, eps);
-    const DeviatorUpdate b = update_deviator(perfect, s, D, W, tau, eps, 293.0, 2703.0);
-    EXPECT_NEAR(a.dplastic, b.dplastic, 1e-14 * a.dplastic) << k;
-    EXPECT_NEAR((a.s - b.s).norm(), 0.0, 1e-14 * a.s.norm()) << k;
-    bilinear.hardening_modulus = 1.2e9;
-    const DeviatorUpdate c = update_deviator(bilinear, s, D, W, tau, eps);
-    const DeviatorUpdate d = update_deviator(linear, s, D, W, tau, eps, 293.0, 2703.0);
-    EXPECT_NEAR(c.dplastic, d.dplastic, 1e-12 * c.dplastic + 1e-300) << k;
-    EXPECT_NEAR((c.s - d.s).norm(), 0.0, 1e-12 * c.s.norm()) << k;
-    if (d.dplastic > 0.0) EXPECT_NEAR(von_mises(d.s), d.yield, 1e-12 * d.yield) << k;
-  }
+  expect_bilinear(johnson_cook(0.29e9, 0.0, 1.0, 0.0, 1.0, 0.0),
+                  johnson_cook(0.29e9, 1.2e9, 1.0, 0.0, 1.0, 0.0), 1.2e9, 293.0, 0.0, 777);
 }
 
 // Rate: perfectly plastic (B = 0) sheared at a steady rate flows at
@@ -328,4 +339,105 @@ TEST(Material, JohnsonCookAdiabaticSofteningFollowsTheExponential) {
   // The heat is χ times the plastic work: T − T_r = χ ∫σ dε̄p / (ρ c_v) = (A − σ)/(A k)·…
   const double t_expected = 293.0 + (925.0 - 293.0) * (1.0 - std::exp(-k * r.eps));
   EXPECT_NEAR(r.temperature, t_expected, 0.5);
+}
+
+// Steinberg–Guinan (issue 17) against closed forms.
+namespace {
+
+// Al 6061-T6's [S96] set (data/materials.yaml), with the terms a test switches off.
+Material steinberg(double beta, double n, double ymax, double a_p, double b_t, double melt) {
+  Material m = al6061();
+  m.strength = StrengthModel::steinberg_guinan;
+  m.yield_stress = 0.0;
+  SteinbergGuinan& sg = m.steinberg_guinan;
+  sg.y0 = 0.29e9;
+  sg.ymax = ymax;
+  sg.beta = beta;
+  sg.n = n;
+  sg.a_pressure = a_p;
+  sg.b_temperature = b_t;
+  sg.melt_temperature = melt;
+  sg.gamma0 = 1.97;
+  sg.a = 1.5;
+  return m;
+}
+
+}  // namespace
+
+// No pressure or temperature terms: β = 0 is perfect plasticity at Y0, n = 1 the linear
+// hardening H = Y0 β, both to round-off against the bilinear law's closed form.
+TEST(Material, SteinbergGuinanReducesToTheBilinearLaw) {
+  expect_bilinear(steinberg(0.0, 1.0, 0.0, 0.0, 0.0, 0.0), steinberg(4.0, 1.0, 0.0, 0.0, 0.0, 0.0),
+                  4.0 * 0.29e9, 300.0, 1e9, 4242);
+}
+
+// Work hardening Y0 [1 + β ε̄p]ⁿ, on the surface at every step, capped at Ymax.
+TEST(Material, SteinbergGuinanHardeningCurveAndCap) {
+  const double beta = 125.0, n = 0.1, ymax = 0.68e9;
+  const Material m = steinberg(beta, n, ymax, 0.0, 0.0, 0.0);
+  // A shear of 0.01 (ε̄p ≈ 0.004): below the cap, Y0 (1 + 125 · 0.004)^0.1 ≈ 0.302 GPa.
+  const Sheared early = shear(m, 1e4, 1e-8, 100);
+  ASSERT_GT(early.eps, 1e-3);
+  EXPECT_NEAR(von_mises(early.s), 0.29e9 * std::pow(1.0 + beta * early.eps, n), 1e-12 * 0.29e9);
+  // The cap: Y0 (1 + β ε̄p)^0.1 = Ymax at ε̄p = ((Ymax/Y0)^10 − 1)/β ≈ 40: with n = 0.5 it is
+  // reached at ε̄p = 0.04.
+  const Material fast = steinberg(beta, 0.5, ymax, 0.0, 0.0, 0.0);
+  const Sheared late = shear(fast, 1e4, 1e-8, 2000);  // a shear of 0.2
+  ASSERT_GT(late.eps, (std::pow(ymax / 0.29e9, 2.0) - 1.0) / beta);
+  EXPECT_NEAR(von_mises(late.s), ymax, 1e-12 * ymax);
+}
+
+// Pressure and temperature scale G and Y by 1 + A P η^(−1/3) − B (T − 300): the elastic
+// shear stress of a small shear is 2 G(P, T) τ D12, the flow stress Y0 times the same factor;
+// a tensile pressure leaves G0.
+TEST(Material, SteinbergGuinanPressureAndTemperatureScaleModulusAndYield) {
+  const double a_p = 6.52e-11, b_t = 6.16e-4;
+  Material m = steinberg(0.0, 1.0, 0.0, a_p, b_t, 0.0);
+  m.initial_temperature = 500.0;
+  const double p = 5e9, eta = 1.05;
+  const double factor = 1.0 + a_p * p / std::cbrt(eta) - b_t * (500.0 - 300.0);
+  const Sheared elastic = shear(m, 1e3, 1e-8, 1, p, eta);
+  EXPECT_NEAR(elastic.s(0, 1), 27.6e9 * factor * 1e3 * 1e-8, 1e-12 * 27.6e9 * 1e-5);
+  const Sheared flowing = shear(m, 1e4, 1e-7, 2000, p, eta);
+  EXPECT_NEAR(von_mises(flowing.s), 0.29e9 * factor, 1e-9 * 0.29e9);
+  const Sheared tension = shear(m, 1e3, 1e-8, 1, -5e9, 0.95);
+  EXPECT_NEAR(tension.s(0, 1), 27.6e9 * (1.0 - b_t * 200.0) * 1e-5, 1e-12 * 27.6e9 * 1e-5);
+}
+
+// The melt law: T_m(1) = T_m0, and Lindemann's d ln T_m / d ln ρ = 2 (Γ0 − 1/3) at η = 1; at
+// or above T_m(η) no deviator, just below it the (softened) yield.
+TEST(Material, SteinbergGuinanMeltsByTheLindemannLaw) {
+  const Material m = steinberg(0.0, 1.0, 0.0, 6.52e-11, 6.16e-4, 1220.0);
+  const SteinbergGuinan& sg = m.steinberg_guinan;
+  EXPECT_DOUBLE_EQ(steinberg_melt_temperature(sg, 1.0), 1220.0);
+  const double h = 1e-6;
+  const double slope = (std::log(steinberg_melt_temperature(sg, 1.0 + h)) -
+                        std::log(steinberg_melt_temperature(sg, 1.0 - h))) /
+                       (std::log(1.0 + h) - std::log(1.0 - h));
+  EXPECT_NEAR(slope, 2.0 * (1.97 - 1.0 / 3.0), 1e-8);
+  // η = 1.2 with its pressure on aluminium's Hugoniot (about 20 GPa): the pressure term keeps
+  // G above zero up to the raised melt point.
+  const double eta = 1.2, p = 20e9, tm = steinberg_melt_temperature(sg, eta);
+  EXPECT_GT(tm, 1220.0);  // compression raises the melt point
+  Material hot = m;
+  hot.initial_temperature = tm * (1.0 + 1e-12);
+  EXPECT_EQ(von_mises(shear(hot, 1e3, 1e-6, 10, p, eta).s), 0.0);
+  hot.initial_temperature = tm * (1.0 - 1e-6);
+  const double factor =
+      1.0 + 6.52e-11 * p / std::cbrt(eta) - 6.16e-4 * (hot.initial_temperature - 300.0);
+  ASSERT_GT(factor, 0.0);
+  EXPECT_NEAR(von_mises(shear(hot, 1e4, 1e-7, 2000, p, eta).s), 0.29e9 * factor, 1e-9 * 0.29e9);
+}
+
+// Adiabatic heating, β = 0: dY/dε̄p = −Y0 B χ Y / (ρ c_v), so Y = Y0 exp(−k ε̄p) with
+// k = Y0 B χ / (ρ c_v) (the heat is solved within each step's return).
+TEST(Material, SteinbergGuinanAdiabaticSofteningFollowsTheExponential) {
+  Material m = steinberg(0.0, 1.0, 0.0, 0.0, 6.16e-4, 0.0);
+  m.specific_heat = 885.0;
+  m.taylor_quinney = 0.9;
+  const double k = 0.29e9 * 6.16e-4 * 0.9 / (m.density * 885.0);
+  const Sheared r = shear(m, 1e3, 1e-6, 2000);
+  EXPECT_GT(r.eps, 1.0);
+  EXPECT_NEAR(von_mises(r.s) / (0.29e9 * std::exp(-k * r.eps)), 1.0, 2e-3);
+  EXPECT_NEAR(r.temperature, 300.0 + (1.0 - std::exp(-k * r.eps)) / 6.16e-4, 0.5);
 }

@@ -100,15 +100,19 @@ TEST(Validation, TaylorCopper) {
   expect_all_pass(run_case("data/cases/taylor-copper.yaml"), 6e-5);  // 7.9e-6 measured
 }
 
-// The aluminium rod of issue 17 (coarse, to 20 µs): with the plain average nodal pressure the
-// tets at the axis next to the wall are crushed (V/V0 0.50 measured) and the step falls 20×,
-// which the run reports as a collapse naming the tet; with the stabilization (the default) the
-// tet that sets the step stays at V/V0 0.76 and the step within 1/10 of the first.
+// The aluminium rod of issue 17 as it was first run, perfectly plastic at Y0 (coarse, to
+// 20 µs): with the plain average nodal pressure the tets at the axis next to the wall are
+// crushed (V/V0 0.50 measured) and the step falls 20×, which the run reports as a collapse
+// naming the tet; with the stabilization (the default) the tet that sets the step stays at V/V0
+// 0.76 and the step within 1/10 of the first. (Under the library's default law,
+// Steinberg–Guinan, the hardening keeps this coarse rod at 0.68 even without the
+// stabilization.)
 TEST(Validation, TaylorAluminiumAxisTetsAreNotCrushed) {
   const auto run = [](const std::string& alpha) {
     double smallest = 1.0;  // V/V0 of the tet that sets the step, over the run
     auto sim = coarse_aluminium_rod(
-        "20.0e-6", {"solver.anp_stabilization=" + alpha}, [&](const Simulation& s) {
+        "20.0e-6", {"solver.anp_stabilization=" + alpha, "materials.al.strength=bilinear"},
+        [&](const Simulation& s) {
           const Index t = s.critical_tet();
           smallest = std::min(smallest, s.state().vol[t] / s.state().vol0[t]);
         });
@@ -194,9 +198,21 @@ TEST(Validation, StrainErosionTurnsCellsPastTheLimitIntoParticles) {
   }
 }
 
-// Shock stress at the centre within 5 % of the Mie–Grüneisen Hugoniot.
+// Shock stress at the centre within 5 % of the Mie–Grüneisen Hugoniot; the elastic precursor
+// within the scatter of the measured HEL of 6061-T6 (0.64 ± 0.07 GPa), with the library's
+// default law (Steinberg–Guinan).
 TEST(Validation, PlateImpact) {
   expect_all_pass(run_case("data/cases/plate-impact-1d.yaml"), 8e-5);  // 7.8e-6 measured
+}
+
+// The bilinear law at Y0 against its closed form σ_HEL = Y0 (K + 4G/3) / (2G) = 0.583 GPa
+// (K = ρ0 c0²): within 8 % (the precursor's overshoot at this mesh is +4.4 %).
+TEST(Validation, PlateImpactBilinearPrecursorIsItsClosedForm) {
+  const Outcome o = run_case("data/cases/plate-impact-1d.yaml", {"materials.al.strength=bilinear"});
+  ASSERT_EQ(o.refs.size(), 2u);
+  const double k = 2703.0 * 5240.0 * 5240.0, g = 27.6e9;
+  const double hel = 0.29e9 * (k + 4.0 / 3.0 * g) / (2.0 * g);
+  EXPECT_NEAR(o.refs[1].measured / hel, 1.0, 0.08) << o.refs[1].measured;
 }
 
 // The plate-impact references must tell a solid from a fluid: with a yield stress of 1 kPa the

@@ -18,8 +18,8 @@ namespace tc {
 enum class EosKind { linear, mie_gruneisen };
 
 /// How the yield stress evolves (issue 17): bilinear, σy = σy0 + H ε̄p (yield_stress,
-/// hardening_modulus), or Johnson–Cook.
-enum class StrengthModel { bilinear, johnson_cook };
+/// hardening_modulus), Johnson–Cook, or Steinberg–Guinan.
+enum class StrengthModel { bilinear, johnson_cook, steinberg_guinan };
 
 /// Johnson–Cook (G. R. Johnson, W. H. Cook, 7th Int. Symp. Ballistics, The Hague, 1983):
 ///   σy = (A + B ε̄pⁿ) (1 + C ln ε̇*) (1 − T*ᵐ),
@@ -34,6 +34,26 @@ struct JohnsonCook {
   double melt_temperature = 0.0;     // K (0: no thermal softening)
 };
 
+/// Steinberg–Guinan (D. J. Steinberg, S. G. Cochran, M. W. Guinan, J. Appl. Phys. 51, 1498,
+/// 1980), with η = ρ/ρ0 and P the pressure (compression > 0):
+///   G(P, T) = G0 [1 + A max(P, 0) η^(−1/3) − B (T − T_ref)],
+///   Y = min(Y0 [1 + β (ε̄p + εi)]ⁿ, Ymax) · G(P, T) / G0,
+/// and melt by the modified Lindemann law
+///   T_m(η) = T_m0 exp(2a (1 − 1/η)) η^(2 (Γ0 − a − 1/3)):
+/// at or above T_m, G = Y = 0 (no deviatoric stress). A = G'_P/G0 (1/Pa), B = −G'_T/G0 (1/K).
+/// The pressure enters only in compression (a tensile pressure would lower G below G0 without
+/// the law saying so; Steinberg fitted it to compression).
+struct SteinbergGuinan {
+  double y0 = 0.0, ymax = 0.0;           // Pa
+  double beta = 0.0, n = 1.0;            // hardening
+  double initial_strain = 0.0;           // εi
+  double a_pressure = 0.0;               // A, 1/Pa
+  double b_temperature = 0.0;            // B, 1/K
+  double reference_temperature = 300.0;  // T_ref, K
+  double melt_temperature = 0.0;         // T_m0, K (0: no melt)
+  double gamma0 = 0.0, a = 0.0;          // Lindemann's Γ0 and a
+};
+
 struct Material {
   std::string name;
   double density = 0.0;        // ρ0, kg/m³
@@ -44,6 +64,7 @@ struct Material {
   double yield_stress = 0.0;       // σy0, Pa
   double hardening_modulus = 0.0;  // H, Pa
   JohnsonCook johnson_cook;
+  SteinbergGuinan steinberg_guinan;
   // Temperature (issue 17), tracked per tet when specific_heat > 0: heated by the viscous
   // (shock) work and by the fraction taylor_quinney of the plastic work.
   double specific_heat = 0.0;        // c_v, J/(kg K)
@@ -63,12 +84,14 @@ struct Material {
   // whose equivalent plastic strain reaches this becomes a particle. 0: off.
   double erosion_plastic_strain = 0.0;
 
-  bool plastic() const { return strength == StrengthModel::johnson_cook || yield_stress > 0.0; }
+  bool plastic() const { return strength != StrengthModel::bilinear || yield_stress > 0.0; }
   bool thermal() const { return specific_heat > 0.0; }
   /// The temperature a tet starts at.
   double start_temperature() const {
     if (initial_temperature > 0.0) return initial_temperature;
-    return strength == StrengthModel::johnson_cook ? johnson_cook.room_temperature : 293.0;
+    if (strength == StrengthModel::johnson_cook) return johnson_cook.room_temperature;
+    if (strength == StrengthModel::steinberg_guinan) return steinberg_guinan.reference_temperature;
+    return 293.0;
   }
   /// Young's modulus and Poisson's ratio from G and K.
   double youngs_modulus() const {
@@ -141,25 +164,105 @@ inline double johnson_cook_yield(const JohnsonCook& jc, double eps, double rate,
   return strain * rate_factor * thermal;
 }
 
+/// Steinberg–Guinan's melt temperature at compression η = ρ/ρ0 (modified Lindemann law).
+inline double steinberg_melt_temperature(const SteinbergGuinan& sg, double eta) {
+  return sg.melt_temperature * std::exp(2.0 * sg.a * (1.0 - 1.0 / eta)) *
+         std::pow(eta, 2.0 * (sg.gamma0 - sg.a - 1.0 / 3.0));
+}
+/// The state-dependent part of a step's strength: the shear modulus G (G0 but for
+/// Steinberg–Guinan), and for Steinberg–Guinan the melt temperature T_m(η) (0: no melt law) and
+/// the pressure factor 1 + A max(P, 0) η^(−1/3), so that G = G0 [factor − B (T − T_ref)], 0 at or
+/// above melt and never negative.
+struct StrengthState {
+  double g = 0.0;
+  double melt = 0.0;
+  double pressure_factor = 1.0;
+};
+inline StrengthState strength_state(const Material& m, double p, double T, double eta) {
+  StrengthState st;
+  st.g = m.shear_modulus;
+  if (m.strength != StrengthModel::steinberg_guinan) return st;
+  const SteinbergGuinan& sg = m.steinberg_guinan;
+  st.pressure_factor = 1.0 + sg.a_pressure * std::max(p, 0.0) / std::cbrt(eta);
+  if (sg.melt_temperature > 0.0) st.melt = steinberg_melt_temperature(sg, eta);
+  const bool molten = st.melt > 0.0 && T >= st.melt;
+  st.g = molten ? 0.0
+                : m.shear_modulus * std::max(st.pressure_factor -
+                                                 sg.b_temperature * (T - sg.reference_temperature),
+                                             0.0);
+  return st;
+}
+
+/// Steinberg–Guinan's work-hardened yield min(Y0 [1 + β (ε̄p + εi)]ⁿ, Ymax), before the G/G0
+/// scaling; slope: its derivative in ε̄p (0 on the cap).
+inline double steinberg_hardening(const SteinbergGuinan& sg, double eps, double& slope) {
+  const double base = 1.0 + sg.beta * (std::max(eps, 0.0) + sg.initial_strain);
+  const double y = sg.y0 * std::pow(base, sg.n);
+  if (sg.ymax > 0.0 && y >= sg.ymax) {
+    slope = 0.0;
+    return sg.ymax;
+  }
+  slope = sg.n * sg.beta * y / base;
+  return y;
+}
+/// The shear modulus at pressure p, temperature T and compression η: G0 but for
+/// Steinberg–Guinan.
+inline double shear_modulus_at(const Material& m, double p, double T, double eta) {
+  return strength_state(m, p, T, eta).g;
+}
+
 /// The plastic part of one step's radial return, from the trial von Mises stress eq:
 /// Δε̄p ≥ 0 and the yield stress at the end of the step, on which the returned stress lies
 /// (eq − 3G Δε̄p = σy). Bilinear: closed form,
 ///   Δε̄p = (eq − σy0 − H ε̄p) / (3G + H).
-/// Johnson–Cook: σy depends on Δε̄p through the hardening, the rate Δε̄p/τ and the step's
-/// heating, so the return solves the scalar equation
+/// Johnson–Cook and Steinberg–Guinan: σy depends on Δε̄p through the hardening, (JC) the rate
+/// Δε̄p/τ, and the step's heating, so the return solves the scalar equation
 ///   f(Δ) = eq − 3G Δ − σy(ε̄p + Δ, Δ/τ, T + χ (eq − 3G Δ) Δ / (ρ c_v)) = 0
 /// (the heating by the plastic work at the end-of-step yield, which is eq − 3G Δ at the root)
 /// on the bracket f(0) > 0 ≥ f(eq/3G), by Newton's method in ln Δ with the analytic slope, kept
 /// in the bracket (bisection when a step would leave it), to round-off: the yield is not lagged.
-/// temperature: the tet's at the start of the step; rho: its density.
+/// G is the shear modulus of the step (Steinberg–Guinan's G(P, T) at the start of the step).
+/// temperature: the tet's at the start of the step; rho: its density; pressure: its pressure at
+/// the start of the step (Steinberg–Guinan).
 struct PlasticIncrement {
   double dplastic = 0.0;
-  double yield = 0.0;  // σy at the end of the step
+  double yield = 0.0;  // σy at the end of the step; below eq: the deviator is scaled to it
 };
-inline PlasticIncrement plastic_increment(const Material& m, double eq, double eps_p, double tau,
-                                          double temperature, double rho) {
+
+/// The bracketed Newton solve of f(Δ) = eq − g3 Δ − σy(Δ) = 0 described above; yield(Δ, slope)
+/// returns σy(Δ) and sets dσy/dΔ. y_start = σy(0) < eq.
+template <class Yield>
+PlasticIncrement solve_return(double eq, double g3, double y_start, const Yield& yield) {
   PlasticIncrement r;
-  const double g3 = 3.0 * m.shear_modulus;
+  double lo = 0.0, hi = eq / g3, dy = 0.0;
+  // Start from the perfectly plastic return at the start-of-step yield.
+  double d = (eq - y_start) / g3;
+  for (int it = 0; it < 100; ++it) {
+    const double f = eq - g3 * d - yield(d, dy);
+    if (f == 0.0) break;
+    (f > 0.0 ? lo : hi) = d;
+    const double slope = -g3 - dy;
+    // Newton in ln Δ, where the rate term C ln(Δ/τ ε̇0) is linear (in Δ it bends so sharply
+    // near 0 that Newton's steps overshoot the bracket and it crawls by bisection).
+    double next = slope < 0.0 ? d * std::exp(-f / (slope * d)) : 0.5 * (lo + hi);
+    if (!(next > lo && next < hi)) next = lo > 0.0 ? std::sqrt(lo * hi) : 0.5 * (lo + hi);
+    // Newton's step is then at round-off (quadratic convergence: the next one would be far
+    // below it); the bracket, when bisection leads.
+    const bool done = std::abs(next - d) <= 1e-13 * d || hi - lo <= 1e-15 * hi;
+    d = next;
+    if (done) break;
+  }
+  r.dplastic = d;
+  r.yield = eq - g3 * d;  // on the yield surface, exactly as the return scales
+  return r;
+}
+
+/// The return with the step's strength state ss (strength_state at the start of the step).
+inline PlasticIncrement plastic_increment(const Material& m, const StrengthState& ss, double eq,
+                                          double eps_p, double tau, double temperature,
+                                          double rho) {
+  PlasticIncrement r;
+  const double g = ss.g, g3 = 3.0 * g;
   if (m.strength == StrengthModel::bilinear) {
     r.yield = m.yield_stress + m.hardening_modulus * eps_p;
     if (eq > r.yield) {
@@ -168,14 +271,44 @@ inline PlasticIncrement plastic_increment(const Material& m, double eq, double e
     }
     return r;
   }
-  const JohnsonCook& jc = m.johnson_cook;
   const double heat = m.thermal() ? m.taylor_quinney / (rho * m.specific_heat) : 0.0;
+  if (m.strength == StrengthModel::steinberg_guinan) {
+    const SteinbergGuinan& sg = m.steinberg_guinan;
+    if (g == 0.0) return r;  // molten (σy = 0): no deviator, no plastic strain to speak of
+    // σy(Δ) = Y(ε̄p + Δ) G(P, T(Δ)) / G0 with T(Δ) = T + heat (eq − 3G Δ) Δ.
+    const double tm = ss.melt, cp = ss.pressure_factor;
+    const auto yield = [&](double d, double& dy) {
+      double dh = 0.0;
+      const double y = steinberg_hardening(sg, eps_p + d, dh);
+      const double t = temperature + heat * (eq - g3 * d) * d;
+      double factor = cp - sg.b_temperature * (t - sg.reference_temperature);
+      if ((tm > 0.0 && t >= tm) || factor <= 0.0) {
+        dy = 0.0;
+        return 0.0;
+      }
+      dy = dh * factor - y * sg.b_temperature * heat * (eq - 2.0 * g3 * d);
+      return y * factor;
+    };
+    double dy0 = 0.0;
+    r.yield = yield(0.0, dy0);
+    if (!(eq > r.yield)) return r;
+    return solve_return(eq, g3, r.yield, yield);
+  }
+  const JohnsonCook& jc = m.johnson_cook;
   r.yield = johnson_cook_yield(jc, eps_p, 0.0, temperature);
   if (!(eq > r.yield)) return r;
-  // f(Δ) and f'(Δ) = −3G − dσy/dΔ, σy = S(ε̄p + Δ) R(Δ/τ) Θ(T(Δ)).
+  // f(eq/3G) = −σy at the start's temperature (no heating at the full return, σy's root): ≥ 0
+  // only when molten, and then the deviator vanishes. Otherwise f(eq/3G) < 0 and, f(0) > 0,
+  // the bracket holds the root.
   const bool softens = jc.melt_temperature > jc.room_temperature;
+  if (softens && temperature >= jc.melt_temperature) {
+    r.dplastic = eq / g3;
+    r.yield = 0.0;
+    return r;
+  }
+  // σy = S(ε̄p + Δ) R(Δ/τ) Θ(T(Δ)).
   const double span = jc.melt_temperature - jc.room_temperature;
-  const auto f_and_slope = [&](double d, double& slope) {
+  const auto yield = [&](double d, double& dy) {
     const double e = eps_p + d;
     const double pw = jc.b > 0.0 && e > 0.0 ? std::pow(e, jc.n) : 0.0;
     const double strain = jc.a + jc.b * pw;
@@ -195,39 +328,17 @@ inline PlasticIncrement plastic_increment(const Material& m, double eq, double e
         d_thermal = -jc.m * tm / ts / span * heat * (eq - 2.0 * g3 * d);
       }
     }
-    const double y = strain * rate * thermal;
-    slope =
-        -g3 - (d_strain * rate * thermal + strain * d_rate * thermal + strain * rate * d_thermal);
-    return eq - g3 * d - y;
+    dy = d_strain * rate * thermal + strain * d_rate * thermal + strain * rate * d_thermal;
+    return strain * rate * thermal;
   };
-  double lo = 0.0, hi = eq / g3, slope = 0.0;
-  // f(hi) = −σy at the start's temperature (no heating at the full return, σy's root): ≥ 0
-  // only when molten, and then the deviator vanishes. Otherwise f(hi) < 0 and, f(0) > 0,
-  // the bracket holds the root.
-  if (softens && temperature >= jc.melt_temperature) {
-    r.dplastic = hi;
-    r.yield = 0.0;
-    return r;
-  }
-  // Start from the perfectly plastic return at the start-of-step yield.
-  double d = (eq - r.yield) / g3;
-  for (int it = 0; it < 100; ++it) {
-    const double f = f_and_slope(d, slope);
-    if (f == 0.0) break;
-    (f > 0.0 ? lo : hi) = d;
-    // Newton in ln Δ, where the rate term C ln(Δ/τ ε̇0) is linear (in Δ it bends so sharply
-    // near 0 that Newton's steps overshoot the bracket and it crawls by bisection).
-    double next = slope < 0.0 ? d * std::exp(-f / (slope * d)) : 0.5 * (lo + hi);
-    if (!(next > lo && next < hi)) next = lo > 0.0 ? std::sqrt(lo * hi) : 0.5 * (lo + hi);
-    // Newton's step is then at round-off (quadratic convergence: the next one would be far
-    // below it); the bracket, when bisection leads.
-    const bool done = std::abs(next - d) <= 1e-13 * d || hi - lo <= 1e-15 * hi;
-    d = next;
-    if (done) break;
-  }
-  r.dplastic = d;
-  r.yield = eq - g3 * d;  // on the yield surface, exactly as the return scales
-  return r;
+  return solve_return(eq, g3, r.yield, yield);
+}
+/// The same from the pressure at the start of the step (Steinberg–Guinan's G(P, T)).
+inline PlasticIncrement plastic_increment(const Material& m, double eq, double eps_p, double tau,
+                                          double temperature, double rho, double pressure = 0.0) {
+  const double eta = rho > 0.0 ? rho / m.density : 1.0;
+  return plastic_increment(m, strength_state(m, pressure, temperature, eta), eq, eps_p, tau,
+                           temperature, rho);
 }
 
 /// Result of the deviatoric update of one step.
@@ -241,20 +352,24 @@ struct DeviatorUpdate {
 ///   trial  s* = Q s Qᵀ + 2G τ dev D                      (Jaumann rate, Hughes–Winget)
 ///   σ_eq = sqrt(3/2 s*:s*),  σy = σy0 + H ε̄p
 ///   if σ_eq > σy:  Δε̄p = (σ_eq − σy) / (3G + H),  s = s* (σy + H Δε̄p) / σ_eq   (radial return)
-/// The returned stress lies on the updated yield surface exactly (to round-off).
+/// (the other laws: plastic_increment). The returned stress lies on the updated yield surface
+/// exactly (to round-off). G is G0, or Steinberg–Guinan's G(P, T) at the start of the step.
 inline DeviatorUpdate update_deviator(const Material& m, const Mat3& s_old, const Mat3& D,
                                       const Mat3& W, double tau, double eps_p,
-                                      double temperature = 0.0, double rho = 0.0) {
+                                      double temperature = 0.0, double rho = 0.0,
+                                      double pressure = 0.0) {
   const Mat3 Q = jaumann_rotation(W, tau);
   const Mat3 devD = D - (D.trace() / 3.0) * Mat3::Identity();
+  const StrengthState ss =
+      strength_state(m, pressure, temperature, rho > 0.0 ? rho / m.density : 1.0);
   DeviatorUpdate r;
-  r.s = Q * s_old * Q.transpose() + (2.0 * m.shear_modulus * tau) * devD;
+  r.s = Q * s_old * Q.transpose() + (2.0 * ss.g * tau) * devD;
   if (!m.plastic()) return r;
   const double eq = std::sqrt(1.5 * r.s.cwiseProduct(r.s).sum());
-  const PlasticIncrement inc = plastic_increment(m, eq, eps_p, tau, temperature, rho);
+  const PlasticIncrement inc = plastic_increment(m, ss, eq, eps_p, tau, temperature, rho);
   r.yield = inc.yield;
   r.dplastic = inc.dplastic;
-  if (inc.dplastic > 0.0) r.s *= inc.yield / eq;
+  if (inc.yield < eq) r.s *= inc.yield / eq;
   return r;
 }
 
@@ -267,7 +382,8 @@ struct DeviatorIncrement {
 };
 inline DeviatorIncrement update_deviator6(const Material& m, Sym6& s, const Sym6& d,
                                           const std::array<double, 3>& w, double tau, double eps_p,
-                                          double temperature = 0.0, double rho = 0.0) {
+                                          double temperature = 0.0, double rho = 0.0,
+                                          double pressure = 0.0) {
   // Q = (1 − c θ²) I + c A + c α αᵀ with α = τ w / 2, θ² = |α|², c = 2 / (1 + θ²).
   const double ax = 0.5 * tau * w[0], ay = 0.5 * tau * w[1], az = 0.5 * tau * w[2];
   const double th2 = ax * ax + ay * ay + az * az, c = 2.0 / (1.0 + th2), dg = 1.0 - c * th2;
@@ -283,7 +399,9 @@ inline DeviatorIncrement update_deviator6(const Material& m, Sym6& s, const Sym6
                m12 = q10 * s02 + q11 * s12 + q12 * s22;
   const double m20 = q20 * s00 + q21 * s01 + q22 * s02, m21 = q20 * s01 + q21 * s11 + q22 * s12,
                m22 = q20 * s02 + q21 * s12 + q22 * s22;
-  const double g2 = 2.0 * m.shear_modulus * tau, tr3 = (d[0] + d[1] + d[2]) / 3.0;
+  const StrengthState ss =
+      strength_state(m, pressure, temperature, rho > 0.0 ? rho / m.density : 1.0);
+  const double g2 = 2.0 * ss.g * tau, tr3 = (d[0] + d[1] + d[2]) / 3.0;
   s[0] = m00 * q00 + m01 * q01 + m02 * q02 + g2 * (d[0] - tr3);
   s[1] = m10 * q10 + m11 * q11 + m12 * q12 + g2 * (d[1] - tr3);
   s[2] = m20 * q20 + m21 * q21 + m22 * q22 + g2 * (d[2] - tr3);
@@ -292,13 +410,13 @@ inline DeviatorIncrement update_deviator6(const Material& m, Sym6& s, const Sym6
   s[5] = m00 * q20 + m01 * q21 + m02 * q22 + g2 * d[5];
   DeviatorIncrement r;
   if (!m.plastic()) return r;
-  const double ss =
+  const double s2 =
       s[0] * s[0] + s[1] * s[1] + s[2] * s[2] + 2.0 * (s[3] * s[3] + s[4] * s[4] + s[5] * s[5]);
-  const double eq = std::sqrt(1.5 * ss);
-  const PlasticIncrement inc = plastic_increment(m, eq, eps_p, tau, temperature, rho);
+  const double eq = std::sqrt(1.5 * s2);
+  const PlasticIncrement inc = plastic_increment(m, ss, eq, eps_p, tau, temperature, rho);
   r.yield = inc.yield;
   r.dplastic = inc.dplastic;
-  if (inc.dplastic > 0.0) {
+  if (inc.yield < eq) {
     const double f = inc.yield / eq;
     for (double& v : s) v *= f;
   }
