@@ -1,4 +1,5 @@
 #include "tetcontact/io/case.hpp"
+#include "tetcontact/io/expression.hpp"
 
 #include <yaml-cpp/yaml.h>
 
@@ -1094,6 +1095,59 @@ void read_expect(const Reader& r, const YAML::Node& root, Case& c) {
 
 }  // namespace
 
+// The case's `parameters:` (issue 18), each a number or an expression over the ones before it,
+// and every scalar of the case that starts with '=' replaced by its expression's value (printed
+// to round-trip), before anything else reads the case.
+std::vector<std::pair<std::string, double>> substitute_parameters(const Reader& r,
+                                                                  YAML::Node root) {
+  std::vector<std::pair<std::string, double>> out;
+  std::map<std::string, double> names;
+  const auto value = [&](const YAML::Node& n, const std::string& path) {
+    const std::string s = n.Scalar();
+    try {
+      return evaluate_expression(s.substr(1), names);
+    } catch (const ExpressionError& e) {
+      r.fail(n, path, "expression '" + s + "': " + e.what());
+    }
+  };
+  const auto is_expression = [](const YAML::Node& n) {
+    return n.IsScalar() && !n.Scalar().empty() && n.Scalar()[0] == '=';
+  };
+  if (const YAML::Node p = root["parameters"]) {
+    r.map(p, "parameters");
+    for (auto it = p.begin(); it != p.end(); ++it) {
+      const std::string name = it->first.Scalar(), path = join("parameters", name);
+      const bool identifier =
+          !name.empty() && (std::isalpha(static_cast<unsigned char>(name[0])) || name[0] == '_') &&
+          std::all_of(name.begin(), name.end(), [](char c) {
+            return std::isalnum(static_cast<unsigned char>(c)) || c == '_';
+          });
+      if (!identifier || name == "pi" || name == "deg")
+        r.fail(it->first, path, "a parameter's name must be an identifier other than pi and deg");
+      const double v =
+          is_expression(it->second) ? value(it->second, path) : r.number(it->second, path);
+      names[name] = v;
+      out.emplace_back(name, v);
+    }
+  }
+  const std::function<void(YAML::Node, const std::string&)> walk = [&](YAML::Node n,
+                                                                       const std::string& path) {
+    if (n.IsMap()) {
+      for (auto it = n.begin(); it != n.end(); ++it)
+        if (it->first.Scalar() != "parameters" || !path.empty())
+          walk(it->second, join(path, it->first.Scalar()));
+    } else if (n.IsSequence()) {
+      for (std::size_t i = 0; i < n.size(); ++i) walk(n[i], join(path, std::to_string(i)));
+    } else if (is_expression(n)) {
+      char buf[32];
+      std::snprintf(buf, sizeof buf, "%.17g", value(n, path));
+      n = std::string(buf);
+    }
+  };
+  walk(root, "");
+  return out;
+}
+
 Case load_case(const std::string& path, const std::vector<std::string>& overrides) {
   if (!fs::exists(path)) throw CaseError(path + ": case file not found");
   if (!fs::is_regular_file(path)) throw CaseError(path + ": not a regular file");
@@ -1107,9 +1161,10 @@ Case load_case(const std::string& path, const std::vector<std::string>& override
   Case c;
   c.file = path;
   r.keys(root, "",
-         {"name", "description", "end_time", "solver", "material_library", "materials", "bodies",
-          "boundary_conditions", "walls", "output", "reference", "contact", "fracture", "expect",
-          "diagnostics"});
+         {"name", "description", "parameters", "end_time", "solver", "material_library",
+          "materials", "bodies", "boundary_conditions", "walls", "output", "reference", "contact",
+          "fracture", "expect", "diagnostics"});
+  c.parameters = substitute_parameters(r, root);
   c.name = root["name"] ? r.string(root["name"], "name") : fs::path(path).stem().string();
   if (root["description"]) c.description = r.string(root["description"], "description");
   c.end_time = r.positive(r.require(root, "", "end_time"), "end_time", "s");

@@ -107,6 +107,8 @@ struct Case {
   AnpMode average_nodal_pressure = AnpMode::automatic;
   double anp_stabilization = 0.02;  // solver.anp_stabilization (ElementOptions)
   std::string material_library;     // resolved path of the library used ("" if none)
+  // `parameters:` (issue 18): the values a case's expressions ("= ...") use, in file order.
+  std::vector<std::pair<std::string, double>> parameters;
   std::vector<Material> materials;
   std::vector<RigidWall> walls;
   std::vector<BodySpec> bodies;

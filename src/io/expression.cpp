@@ -1,0 +1,135 @@
+// A recursive-descent evaluator of the grammar in expression.hpp.
+#include "tetcontact/io/expression.hpp"
+
+#include <cctype>
+#include <cmath>
+#include <cstdlib>
+#include <numbers>
+
+namespace tc {
+namespace {
+
+class Parser {
+ public:
+  Parser(const std::string& text, const std::map<std::string, double>& names)
+      : s_(text), names_(names) {}
+
+  double parse() {
+    const double v = sum();
+    skip();
+    if (i_ != s_.size()) fail("unexpected '" + std::string(1, s_[i_]) + "'");
+    if (!std::isfinite(v)) fail("the value is not finite");
+    return v;
+  }
+
+ private:
+  [[noreturn]] void fail(const std::string& msg) const {
+    throw ExpressionError(msg + " at column " + std::to_string(i_ + 1));
+  }
+  void skip() {
+    while (i_ < s_.size() && std::isspace(static_cast<unsigned char>(s_[i_]))) ++i_;
+  }
+  bool eat(char c) {
+    skip();
+    if (i_ < s_.size() && s_[i_] == c) {
+      ++i_;
+      return true;
+    }
+    return false;
+  }
+
+  double sum() {
+    double v = product();
+    for (;;) {
+      if (eat('+')) {
+        v += product();
+      } else if (eat('-')) {
+        v -= product();
+      } else {
+        return v;
+      }
+    }
+  }
+  double product() {
+    double v = power();
+    for (;;) {
+      if (eat('*')) {
+        v *= power();
+      } else if (eat('/')) {
+        v /= power();
+      } else {
+        return v;
+      }
+    }
+  }
+  double power() {
+    const double base = unary();
+    if (eat('^')) return std::pow(base, power());  // right-associative
+    return base;
+  }
+  double unary() {
+    if (eat('-')) return -unary();
+    if (eat('+')) return unary();
+    return primary();
+  }
+  double primary() {
+    skip();
+    if (i_ >= s_.size()) fail("expected a number, a name or '('");
+    if (eat('(')) {
+      const double v = sum();
+      if (!eat(')')) fail("expected ')'");
+      return v;
+    }
+    const char c = s_[i_];
+    if (std::isdigit(static_cast<unsigned char>(c)) || c == '.') {
+      const char* begin = s_.c_str() + i_;
+      char* end = nullptr;
+      const double v = std::strtod(begin, &end);
+      if (end == begin) fail("expected a number");
+      i_ += static_cast<std::size_t>(end - begin);
+      return v;
+    }
+    if (!std::isalpha(static_cast<unsigned char>(c)) && c != '_')
+      fail("expected a number, a name or '('");
+    const std::size_t start = i_;
+    while (i_ < s_.size() && (std::isalnum(static_cast<unsigned char>(s_[i_])) || s_[i_] == '_'))
+      ++i_;
+    const std::string name = s_.substr(start, i_ - start);
+    if (eat('(')) {
+      const double x = sum();
+      if (!eat(')')) fail("expected ')'");
+      return call(name, x, start);
+    }
+    if (const auto it = names_.find(name); it != names_.end()) return it->second;
+    if (name == "pi") return std::numbers::pi;
+    if (name == "deg") return std::numbers::pi / 180.0;
+    i_ = start;
+    fail("unknown name '" + name + "'");
+  }
+  double call(const std::string& f, double x, std::size_t at) {
+    if (f == "sin") return std::sin(x);
+    if (f == "cos") return std::cos(x);
+    if (f == "tan") return std::tan(x);
+    if (f == "asin") return std::asin(x);
+    if (f == "acos") return std::acos(x);
+    if (f == "atan") return std::atan(x);
+    if (f == "sqrt") return std::sqrt(x);
+    if (f == "exp") return std::exp(x);
+    if (f == "log") return std::log(x);
+    if (f == "abs") return std::abs(x);
+    i_ = at;
+    fail("unknown function '" + f + "'");
+  }
+
+  const std::string& s_;
+  const std::map<std::string, double>& names_;
+  std::size_t i_ = 0;
+};
+
+}  // namespace
+
+double evaluate_expression(const std::string& text, const std::map<std::string, double>& names) {
+  return Parser(text, names).parse();
+}
+
+}  // namespace tc
