@@ -15,6 +15,9 @@ never retyped).
     tools/readme_tables.py mpi BINARY                       distributed runs: each case as one
                                                             process (1 and 2 threads) and under
                                                             mpirun on 2 ranks of 1 thread
+    tools/readme_tables.py whipple BINARY                   the Whipple shield's coarse runs
+                                                            (the test's) beside Christiansen's
+                                                            critical diameter
     tools/readme_tables.py strength BINARY                  the strength laws side by side: the
                                                             aluminium Taylor rod and the 6061-T6
                                                             plate impact's precursor (HEL) under
@@ -418,11 +421,46 @@ def strength(binary, work):
               f"{hel['measured'] / 1e9:.3f} ({err * 100:+.1f} %) |", flush=True)
 
 
+WHIPPLE_COARSE = ["parameters.hb=1.0e-3", "parameters.hw=2.0e-3", "parameters.np=6",
+                  "parameters.wb=16e-3"]
+WHIPPLE_ROWS = [  # (what, sets): the test's two shields
+    ("2 mm wall, 15 mm behind", ["parameters.S=15e-3", "parameters.tw=2e-3", "parameters.ww=30e-3"]),
+    ("8 mm wall, 30 mm behind", ["parameters.S=30e-3", "parameters.tw=8e-3"]),
+]
+
+
+def whipple(binary, work):
+    """The Whipple shield's coarse runs against Christiansen's critical diameter."""
+    sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+    import christiansen
+    print("| shield (4 mm sphere, 6.5 km/s, 1 mm bumper) | d / d_c (Christiansen) | steps, wall "
+          "time | hole | leading edge | cone half-angle | debris (particles) | largest "
+          "fragment | wall perforated: mass through | energy balance |")
+    print("|---|---|---|---|---|---|---|---|---|---|")
+    for k, (what, sets) in enumerate(WHIPPLE_ROWS):
+        extra = []
+        for kv in WHIPPLE_COARSE + sets:
+            extra += ["--set", kv]
+        s, _ = run(binary, os.path.join(ROOT, "data/cases/whipple.yaml"),
+                   os.path.join(work, f"whipple{k}"), extra)
+        p = s["parameters"]
+        dc = christiansen.critical_diameter(p["v"], p["tb"], p["tw"], p["S"], theta_deg=p["theta"])
+        m = {r["name"]: r["measured"] for r in s["references"]}
+        print(f"| {what} | {p['d'] / dc:.2f} ({p['d'] * 1e3:g} / {dc * 1e3:.2f} mm) | "
+              f"{s['steps']:,}, {s['wall_seconds']:.0f} s | "
+              f"{m['bumper hole diameter'] * 1e3:.1f} mm | "
+              f"{m['debris leading-edge speed']:,.0f} m/s | {m['debris cone half-angle']:.0f}° | "
+              f"{m['debris mass'] * 1e3:.3f} g ({m['debris mass in particles'] * 1e3:.3f} g) | "
+              f"{m['largest fragment'] * 1e6:.2f} mg | "
+              f"{'yes' if m['wall perforated'] else 'no'}: {m['mass through the wall'] * 1e6:.1f} mg | "
+              f"{g(s['energy']['balance_error'])} |", flush=True)
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawTextHelpFormatter)
     ap.add_argument("table",
                     choices=["stability", "micro", "profile", "threads", "verify", "verify-full",
-                             "mpi", "strength"])
+                             "mpi", "strength", "whipple"])
     ap.add_argument("binary")
     ap.add_argument("--work", help="keep the runs here (default: a temporary folder)")
     ap.add_argument("--cases", nargs="*", help="threads: only the cases whose file names "
@@ -440,6 +478,8 @@ def main():
         threads(os.path.abspath(a.binary), a.work or tempfile.mkdtemp(prefix="threads-"), a.cases)
     elif a.table == "mpi":
         mpi(os.path.abspath(a.binary), a.work or tempfile.mkdtemp(prefix="mpi-"))
+    elif a.table == "whipple":
+        whipple(os.path.abspath(a.binary), a.work or tempfile.mkdtemp(prefix="whipple-"))
     elif a.table == "strength":
         strength(os.path.abspath(a.binary), a.work or tempfile.mkdtemp(prefix="strength-"))
     else:

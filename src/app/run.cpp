@@ -327,6 +327,11 @@ Json summary_json(const Case& c, const Simulation& sim, const OutputWriter& writ
   j["schema"] = "tetcontact.summary/1";
   j["case"] = c.name;
   j["case_file"] = c.file;
+  if (!c.parameters.empty()) {  // the values the case's expressions used (issue 18)
+    Json params = Json::object();
+    for (const auto& [name, value] : c.parameters) params[name] = value;
+    j["parameters"] = params;
+  }
   j["status"] = status;
   j["steps"] = sim.state().step;
   j["time"] = sim.last_sample().t;
@@ -425,7 +430,8 @@ Json parallel_json(const Simulation& sim, double communication) {
 
 int report_run(const RunOptions& o, const Case& c, const Simulation& s, OutputWriter& writer,
                const std::string& dir, const std::string& status, int code, double wall,
-               double communication, const std::vector<std::string>& warnings);
+               double communication, const std::vector<std::string>& warnings,
+               ReferenceRecorder& references);
 
 }  // namespace
 
@@ -501,10 +507,15 @@ int run_case(const RunOptions& o) {
   std::string status = "ok";
   int code = 0;
   std::size_t falls = 0;  // step collapses said so far
+  ReferenceRecorder references(c.references);
   try {
     while (!sim->done()) {
       sim->step();
       progress.update(sim->state());
+      if (references.due(sim->state().t)) {  // a reference measured at its time, mid-run
+        sim->gather_state();
+        references.measure_due(sim->state().t, sim->model(), sim->state(), sim->run_figures());
+      }
       for (; falls < sim->step_collapses().size(); ++falls) {
         const std::string w = sim->step_collapses()[falls].message();
         warnings.push_back(w);
@@ -523,7 +534,7 @@ int run_case(const RunOptions& o) {
   if (!root) return std::stoi(mpi::broadcast("", 0));
   try {
     code = report_run(o, c, *sim, writer, dir, status, code, seconds_since(t0), communication,
-                      warnings);
+                      warnings, references);
   } catch (...) {
     mpi::broadcast("1", 0);
     throw;
@@ -537,7 +548,8 @@ namespace {
 // Rank 0's part after the run: the summary with the case's checks, and the table.
 int report_run(const RunOptions& o, const Case& c, const Simulation& s, OutputWriter& writer,
                const std::string& dir, const std::string& status, int code, double wall,
-               double communication, const std::vector<std::string>& warnings) {
+               double communication, const std::vector<std::string>& warnings,
+               ReferenceRecorder& references) {
   const Simulation* sim = &s;
   writer.close();
   Json summary = summary_json(c, *sim, writer, status, wall, warnings);
@@ -574,7 +586,7 @@ int report_run(const RunOptions& o, const Case& c, const Simulation& s, OutputWr
   }
   std::vector<ReferenceResult> refs;
   if (code == 0 && !c.references.empty()) {
-    refs = evaluate_references(c.references, sim->model(), sim->state(), sim->run_figures());
+    refs = references.finish(sim->model(), sim->state(), sim->run_figures());
     Json list = Json::array();
     bool all = true;
     for (const ReferenceResult& r : refs) {

@@ -174,9 +174,11 @@ Row sweep_run(const Case& c, const std::vector<std::string>& values) {
           std::max(std::isnan(row.depth_over_h) ? 0.0 : row.depth_over_h, p.max_depth_over_h);
       row.crossings = std::max(row.crossings, p.crossings);
     };
+    ReferenceRecorder references(c.references);
     try {
       while (!sim.done()) {
         sim.step();
+        references.measure_due(sim.state().t, sim.model(), sim.state(), sim.run_figures());
         if (probe && sim.state().t >= next) {
           measure();
           next += c.end_time / 20.0;
@@ -194,7 +196,7 @@ Row sweep_run(const Case& c, const std::vector<std::string>& values) {
     row.figures = comparable_figures(sim);
     if (row.status == "ok")
       for (const ReferenceResult& ref :
-           evaluate_references(c.references, sim.model(), sim.state(), sim.run_figures()))
+           references.finish(sim.model(), sim.state(), sim.run_figures()))
         row.ref_error.push_back(ref.relative_error);
   } catch (const SetupError& e) {
     row.status = std::string("bad input: ") + e.what();

@@ -1,12 +1,148 @@
 #include "tetcontact/diagnostics/reference.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
+#include <unordered_map>
 
 namespace tc {
 
 namespace {
+
+// The debris beyond a reference's plane: particles (node indices) and cells of other bodies.
+struct Debris {
+  std::vector<Index> cells, particles;
+};
+Debris debris_beyond(const ReferenceSpec& r, const Model& model, const State& st) {
+  const auto beyond = [&](const Vec3& x) {
+    const Vec3 off = x - r.plane_point;
+    const double along = off.dot(r.plane_normal);
+    return along > 0.0 && (r.within == 0.0 || (off - along * r.plane_normal).norm() <= r.within);
+  };
+  const auto counted = [&](Index t) {
+    const std::string& name = model.mesh.bodies[model.mesh.tet_body[t]].name;
+    return r.debris_of.empty() ||
+           std::find(r.debris_of.begin(), r.debris_of.end(), name) != r.debris_of.end();
+  };
+  Debris d;
+  bool known = false;
+  for (std::size_t t = 0; t < model.mesh.tets.size(); ++t) {
+    const bool own = model.mesh.bodies[model.mesh.tet_body[t]].name == r.body;
+    known = known || own;
+    if (own || !counted(static_cast<Index>(t)) ||
+        (!st.damage.empty() && st.damage[t] == Damage::particle))
+      continue;
+    const Tet& k = model.mesh.tets[t];
+    if (beyond(0.25 * (st.x[k[0]] + st.x[k[1]] + st.x[k[2]] + st.x[k[3]])))
+      d.cells.push_back(static_cast<Index>(t));
+  }
+  if (!known)
+    throw std::runtime_error("reference '" + r.name + "': no body named '" + r.body + "'");
+  for (Index i = 0; i < st.particle_count(); ++i)
+    if (counted(st.particle_tet[i]) && beyond(st.x[st.first_particle + i]))
+      d.particles.push_back(st.first_particle + i);
+  return d;
+}
+
+double cell_mass(const Model& model, const State& st, Index t) {
+  return model.materials[st.tet_material[t]].density * st.vol0[t];
+}
+Vec3 cell_centre(const Model& model, const State& st, Index t) {
+  const Tet& k = model.mesh.tets[t];
+  return 0.25 * (st.x[k[0]] + st.x[k[1]] + st.x[k[2]] + st.x[k[3]]);
+}
+Vec3 cell_velocity(const Model& model, const State& st, Index t) {
+  const Tet& k = model.mesh.tets[t];
+  return 0.25 * (st.v[k[0]] + st.v[k[1]] + st.v[k[2]] + st.v[k[3]]);
+}
+
+// The largest fragment: cells joined through shared nodes (union–find), or one particle.
+double largest_fragment(const Model& model, const State& st, const Debris& d) {
+  std::vector<Index> parent(d.cells.size());
+  for (std::size_t i = 0; i < parent.size(); ++i) parent[i] = static_cast<Index>(i);
+  const auto find = [&](Index i) {
+    while (parent[i] != i) i = parent[i] = parent[parent[i]];
+    return i;
+  };
+  std::unordered_map<Index, Index> first_at;  // node → the first debris cell holding it
+  for (std::size_t i = 0; i < d.cells.size(); ++i)
+    for (Index k : model.mesh.tets[d.cells[i]]) {
+      const auto [it, fresh] = first_at.emplace(k, static_cast<Index>(i));
+      if (!fresh) parent[find(static_cast<Index>(i))] = find(it->second);
+    }
+  std::vector<double> mass(d.cells.size(), 0.0);
+  double best = 0.0;
+  for (std::size_t i = 0; i < d.cells.size(); ++i) {
+    double& m = mass[find(static_cast<Index>(i))];
+    m += cell_mass(model, st, d.cells[i]);
+    best = std::max(best, m);
+  }
+  for (Index n : d.particles) best = std::max(best, st.m[n]);
+  return best;
+}
+
+double debris_measure(const ReferenceSpec& r, const Model& model, const State& st) {
+  using M = ReferenceSpec::Measure;
+  const Debris d = debris_beyond(r, model, st);
+  if (r.measure == M::largest_fragment) return largest_fragment(model, st, d);
+  // Each item: mass, position, velocity.
+  struct Item {
+    double m;
+    Vec3 x, v;
+  };
+  std::vector<Item> items;
+  for (Index t : d.cells)
+    items.push_back(
+        {cell_mass(model, st, t), cell_centre(model, st, t), cell_velocity(model, st, t)});
+  double particle_mass = 0.0;
+  for (Index n : d.particles) {
+    items.push_back({st.m[n], st.x[n], st.v[n]});
+    particle_mass += st.m[n];
+  }
+  if (r.measure == M::debris_particle_mass) return particle_mass;
+  double mass = 0.0, momentum = 0.0;
+  for (const Item& it : items) {
+    mass += it.m;
+    momentum += it.m * it.v.dot(r.plane_normal);
+  }
+  if (r.measure == M::mass_through) return mass;
+  if (r.measure == M::momentum_through) return momentum;
+  if (r.measure == M::perforated) return items.empty() ? 0.0 : 1.0;
+  if (items.empty())
+    throw std::runtime_error("reference '" + r.name + "': no debris beyond the plane");
+  if (r.measure == M::debris_speed) {
+    const Item* lead = &items[0];
+    for (const Item& it : items)
+      if ((it.x - r.plane_point).dot(r.plane_normal) >
+          (lead->x - r.plane_point).dot(r.plane_normal))
+        lead = &it;
+    return lead->v.dot(r.plane_normal);
+  }
+  // debris_cone_angle: of the cloud's front half (the items beyond half the leading edge's
+  // distance from the plane: the rim of the hole and the slow plug stay out), the angle from
+  // the normal of each item seen from the plane's point, and the smallest angle holding 95 % of
+  // that mass.
+  double lead = 0.0;
+  for (const Item& it : items) lead = std::max(lead, (it.x - r.plane_point).dot(r.plane_normal));
+  std::vector<std::pair<double, double>> by_angle;  // (angle, mass)
+  double front = 0.0;
+  for (const Item& it : items) {
+    const Vec3 off = it.x - r.plane_point;
+    const double along = off.dot(r.plane_normal);
+    if (along < 0.5 * lead) continue;
+    const double across = (off - along * r.plane_normal).norm();
+    by_angle.emplace_back(std::atan2(across, along) * 180.0 / M_PI, it.m);
+    front += it.m;
+  }
+  std::sort(by_angle.begin(), by_angle.end());
+  double held = 0.0;
+  for (const auto& [angle, m] : by_angle) {
+    held += m;
+    if (held >= 0.95 * front) return angle;
+  }
+  return by_angle.back().first;
+}
 
 double measure(const ReferenceSpec& r, const Model& model, const State& st, const RunFigures& run) {
   using M = ReferenceSpec::Measure;
@@ -42,6 +178,11 @@ double measure(const ReferenceSpec& r, const Model& model, const State& st, cons
     }
     throw std::runtime_error("reference '" + r.name + "': no body named '" + r.body + "'");
   }
+  if (r.measure == M::mass_through || r.measure == M::momentum_through ||
+      r.measure == M::perforated || r.measure == M::debris_speed ||
+      r.measure == M::debris_cone_angle || r.measure == M::debris_particle_mass ||
+      r.measure == M::largest_fragment)
+    return debris_measure(r, model, st);
   if (r.measure == M::hole_diameter) {
     const Vec3 centre = 0.5 * (r.region_min + r.region_max);
     double nearest = std::numeric_limits<double>::infinity();
@@ -81,23 +222,61 @@ double measure(const ReferenceSpec& r, const Model& model, const State& st, cons
   return sum / static_cast<double>(count);
 }
 
+ReferenceResult evaluate_reference(const ReferenceSpec& r, const Model& model, const State& st,
+                                   const RunFigures& run) {
+  ReferenceResult res;
+  res.spec = &r;
+  try {
+    res.measured = measure(r, model, st, run);
+    res.judged = !std::isnan(r.value);
+    res.relative_error = (res.measured - r.value) / std::abs(r.value);
+    res.pass = !res.judged || std::abs(res.relative_error) <= r.tolerance;
+  } catch (const std::runtime_error& e) {
+    res.measured = res.relative_error = std::numeric_limits<double>::quiet_NaN();
+    res.error = e.what();
+  }
+  return res;
+}
+
 }  // namespace
 
 std::vector<ReferenceResult> evaluate_references(const std::vector<ReferenceSpec>& refs,
                                                  const Model& model, const State& st,
                                                  const RunFigures& run) {
   std::vector<ReferenceResult> out;
-  for (const ReferenceSpec& r : refs) {
-    ReferenceResult res;
-    res.spec = &r;
-    try {
-      res.measured = measure(r, model, st, run);
-      res.judged = !std::isnan(r.value);
-      res.relative_error = (res.measured - r.value) / std::abs(r.value);
-      res.pass = !res.judged || std::abs(res.relative_error) <= r.tolerance;
-    } catch (const std::runtime_error& e) {
+  for (const ReferenceSpec& r : refs) out.push_back(evaluate_reference(r, model, st, run));
+  return out;
+}
+
+ReferenceRecorder::ReferenceRecorder(const std::vector<ReferenceSpec>& refs)
+    : refs_(refs), done_(refs.size()) {}
+
+bool ReferenceRecorder::due(double t) const {
+  for (std::size_t i = 0; i < refs_.size(); ++i)
+    if (refs_[i].time > 0.0 && !done_[i] && t >= refs_[i].time) return true;
+  return false;
+}
+
+void ReferenceRecorder::measure_due(double t, const Model& model, const State& st,
+                                    const RunFigures& run) {
+  for (std::size_t i = 0; i < refs_.size(); ++i)
+    if (refs_[i].time > 0.0 && !done_[i] && t >= refs_[i].time)
+      done_[i] = evaluate_reference(refs_[i], model, st, run);
+}
+
+std::vector<ReferenceResult> ReferenceRecorder::finish(const Model& model, const State& st,
+                                                       const RunFigures& run) {
+  std::vector<ReferenceResult> out;
+  for (std::size_t i = 0; i < refs_.size(); ++i) {
+    if (done_[i]) {
+      out.push_back(*done_[i]);
+      continue;
+    }
+    ReferenceResult res = evaluate_reference(refs_[i], model, st, run);
+    if (refs_[i].time > 0.0) {  // the run ended before its time: not measured
       res.measured = res.relative_error = std::numeric_limits<double>::quiet_NaN();
-      res.error = e.what();
+      res.pass = false;
+      res.error = "reference '" + refs_[i].name + "': the run ended before its time";
     }
     out.push_back(res);
   }

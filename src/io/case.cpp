@@ -836,8 +836,8 @@ void read_references(const Reader& r, const YAML::Node& root, Case& c) {
   if (const YAML::Node refs = root["reference"]) {
     r.each(refs, "reference", "reference values", [&](const YAML::Node& n, const std::string& p) {
       r.keys(n, p,
-             {"name", "measure", "body", "axis", "component", "region", "area", "value",
-              "tolerance", "source", "kind"});
+             {"name", "measure", "body", "axis", "component", "region", "area", "plane",
+              "debris_of", "within", "time", "value", "tolerance", "source", "kind"});
       ReferenceSpec ref;
       ref.name = r.string(r.require(n, p, "name"), join(p, "name"));
       if (n["kind"]) {
@@ -866,12 +866,53 @@ void read_references(const Reader& r, const YAML::Node& root, Case& c) {
         ref.measure = M::contact_mean_pressure;
       else if (measure == "hole_diameter")
         ref.measure = M::hole_diameter;
+      else if (measure == "mass_through")
+        ref.measure = M::mass_through;
+      else if (measure == "momentum_through")
+        ref.measure = M::momentum_through;
+      else if (measure == "perforated")
+        ref.measure = M::perforated;
+      else if (measure == "debris_speed")
+        ref.measure = M::debris_speed;
+      else if (measure == "debris_cone_angle")
+        ref.measure = M::debris_cone_angle;
+      else if (measure == "debris_particle_mass")
+        ref.measure = M::debris_particle_mass;
+      else if (measure == "largest_fragment")
+        ref.measure = M::largest_fragment;
       else
         r.fail(m, join(p, "measure"),
                "measure must be length, radius, mean_stress, mean_pressure, velocity, "
-               "contact_duration, contact_max_force, contact_mean_pressure or hole_diameter");
+               "contact_duration, contact_max_force, contact_mean_pressure, hole_diameter, "
+               "mass_through, momentum_through, perforated, debris_speed, debris_cone_angle, "
+               "debris_particle_mass or largest_fragment");
+      const bool debris = ref.measure >= M::mass_through;
       if (ref.measure == M::contact_duration || ref.measure == M::contact_max_force) {
         // whole-run figures: nothing more to say
+      } else if (debris) {
+        const YAML::Node b = r.require(n, p, "body");
+        ref.body = r.string(b, join(p, "body"));
+        if (std::none_of(c.bodies.begin(), c.bodies.end(),
+                         [&](const BodySpec& s) { return s.name == ref.body; }))
+          r.fail(b, join(p, "body"), "no body named '" + ref.body + "'");
+        const std::string pp = join(p, "plane");
+        const YAML::Node pl = r.require(n, p, "plane");
+        r.map(pl, pp);
+        r.keys(pl, pp, {"point", "normal"});
+        ref.plane_point = r.vec3(r.require(pl, pp, "point"), join(pp, "point"));
+        const Vec3 normal = r.vec3(r.require(pl, pp, "normal"), join(pp, "normal"));
+        if (normal.norm() == 0.0) r.fail(pl["normal"], join(pp, "normal"), "must be non-zero");
+        ref.plane_normal = normal.normalized();
+        if (n["within"]) ref.within = r.positive(n["within"], join(p, "within"), "m");
+        if (const YAML::Node of = n["debris_of"])
+          r.each(of, join(p, "debris_of"), "body names",
+                 [&](const YAML::Node& e, const std::string& ep) {
+                   const std::string name = r.string(e, ep);
+                   if (std::none_of(c.bodies.begin(), c.bodies.end(),
+                                    [&](const BodySpec& s) { return s.name == name; }))
+                     r.fail(e, ep, "no body named '" + name + "'");
+                   ref.debris_of.push_back(name);
+                 });
       } else if (ref.measure == M::contact_mean_pressure) {
         ref.area = r.positive(r.require(n, p, "area"), join(p, "area"), "m^2");
       } else if (ref.measure == M::length || ref.measure == M::radius ||
@@ -916,6 +957,13 @@ void read_references(const Reader& r, const YAML::Node& root, Case& c) {
         ref.value = ref.tolerance = std::numeric_limits<double>::quiet_NaN();
       }
       if (n["source"]) ref.source = r.string(n["source"], join(p, "source"));
+      if (const YAML::Node t = n["time"]) {
+        if (ref.measure == M::contact_duration || ref.measure == M::contact_max_force ||
+            ref.measure == M::contact_mean_pressure || ref.measure == M::velocity)
+          r.fail(t, join(p, "time"), "this measure is of the whole run: it has no time");
+        ref.time = r.positive(t, join(p, "time"), "s");
+        if (ref.time > c.end_time) r.fail(t, join(p, "time"), "after the case's end_time");
+      }
       c.references.push_back(ref);
     });
   }

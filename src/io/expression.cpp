@@ -1,10 +1,12 @@
 // A recursive-descent evaluator of the grammar in expression.hpp.
 #include "tetcontact/io/expression.hpp"
 
+#include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <cstdlib>
 #include <numbers>
+#include <vector>
 
 namespace tc {
 namespace {
@@ -96,9 +98,10 @@ class Parser {
       ++i_;
     const std::string name = s_.substr(start, i_ - start);
     if (eat('(')) {
-      const double x = sum();
+      std::vector<double> args{sum()};
+      while (eat(',')) args.push_back(sum());
       if (!eat(')')) fail("expected ')'");
-      return call(name, x, start);
+      return call(name, args, start);
     }
     if (const auto it = names_.find(name); it != names_.end()) return it->second;
     if (name == "pi") return std::numbers::pi;
@@ -106,7 +109,19 @@ class Parser {
     i_ = start;
     fail("unknown name '" + name + "'");
   }
-  double call(const std::string& f, double x, std::size_t at) {
+  double call(const std::string& f, const std::vector<double>& args, std::size_t at) {
+    const bool two = f == "min" || f == "max";
+    if (args.size() != (two ? 2u : 1u)) {
+      const bool known = two || f == "sin" || f == "cos" || f == "tan" || f == "asin" ||
+                         f == "acos" || f == "atan" || f == "sqrt" || f == "exp" || f == "log" ||
+                         f == "abs" || f == "round" || f == "ceil" || f == "floor";
+      i_ = at;
+      if (!known) fail("unknown function '" + f + "'");
+      fail("'" + f + "' takes " + (two ? "two arguments" : "one argument"));
+    }
+    if (f == "min") return std::min(args[0], args[1]);
+    if (f == "max") return std::max(args[0], args[1]);
+    const double x = args[0];
     if (f == "sin") return std::sin(x);
     if (f == "cos") return std::cos(x);
     if (f == "tan") return std::tan(x);
@@ -117,6 +132,9 @@ class Parser {
     if (f == "exp") return std::exp(x);
     if (f == "log") return std::log(x);
     if (f == "abs") return std::abs(x);
+    if (f == "round") return std::round(x);
+    if (f == "ceil") return std::ceil(x);
+    if (f == "floor") return std::floor(x);
     i_ = at;
     fail("unknown function '" + f + "'");
   }

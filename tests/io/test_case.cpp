@@ -342,7 +342,10 @@ TEST(CaseFile, ReadmeExampleIsValid) {
   EXPECT_TRUE(c.fracture);
   EXPECT_EQ(c.materials.size(), 6u);
   EXPECT_EQ(c.walls.size(), 1u);
-  EXPECT_EQ(c.references.size(), 2u);
+  ASSERT_EQ(c.references.size(), 3u);
+  EXPECT_EQ(c.references[2].measure, ReferenceSpec::Measure::perforated);
+  EXPECT_EQ(c.references[2].debris_of, std::vector<std::string>{"rod"});
+  EXPECT_EQ(c.references[2].time, 1.0e-5);
   EXPECT_EQ(c.material("target").yield_stress, 0.3e9);
   EXPECT_EQ(c.material("hot_rod").strength, StrengthModel::johnson_cook);
   EXPECT_EQ(c.material("hot_rod").johnson_cook.n, 0.31);

@@ -25,6 +25,8 @@ TEST(Expression, EvaluatesWithPrecedenceFunctionsAndNames) {
                    -6500.0 * std::cos(30.0 * std::numbers::pi / 180.0));
   EXPECT_DOUBLE_EQ(evaluate_expression("sqrt(abs(-16)) + exp(0) + log(1) + atan(1) * 4", n),
                    4.0 + 1.0 + 0.0 + std::numbers::pi);
+  EXPECT_EQ(evaluate_expression("round(2.5) + ceil(0.1) + floor(-0.1)", n), 3.0 + 1.0 - 1.0);
+  EXPECT_EQ(evaluate_expression("max(1, round(d / 2e-3)) + min(-1, 2)", n), 2.0 - 1.0);
 }
 
 TEST(Expression, ErrorsNameTheProblemAndTheColumn) {
@@ -43,6 +45,7 @@ TEST(Expression, ErrorsNameTheProblemAndTheColumn) {
   EXPECT_EQ(message("d +"), "expected a number, a name or '(' at column 4");
   EXPECT_EQ(message("d 2"), "unexpected '2' at column 3");
   EXPECT_EQ(message("1 / 0"), "the value is not finite at column 6");
+  EXPECT_EQ(message("max(1)"), "'max' takes two arguments at column 1");
 }
 
 namespace {

@@ -27,6 +27,9 @@ TEST(ContactOff, EveryShippedContactCaseFailsItsChecks) {
        "--set end_time=10.0e-6 --set bodies.0.mesh.sphere.growth=0.3 "
        "--set bodies.1.mesh.sphere.growth=0.3 --set bodies.0.mesh.sphere.cell_size=1.0e-3 "
        "--set bodies.1.mesh.sphere.cell_size=1.0e-3"},
+      {"whipple",
+       "--set parameters.hb=1.0e-3 --set parameters.hw=2.0e-3 --set parameters.np=6 "
+       "--set parameters.wb=16e-3 --set parameters.end=3.0e-6"},
       {"taylor-symmetric",
        "--set end_time=10.0e-6 --set bodies.0.mesh.cylinder.cells_across=6 "
        "--set bodies.0.mesh.cylinder.cells_axial=30 --set bodies.1.mesh.cylinder.cells_across=6 "
@@ -57,8 +60,8 @@ TEST(ContactOff, EveryShippedContactCaseFailsItsChecks) {
     const bool refs_failed = s.contains("references_pass") && s.at("references_pass") == false;
     EXPECT_TRUE(expect_failed || refs_failed) << s.dump(2);
   }
-  const std::vector<std::string> all = {"ball-plate",      "bars-impact",     "cubes-edge",
-                                        "cylinders",       "hertz-spheres",   "spall-plate",
-                                        "staggered-patch", "taylor-symmetric"};
+  const std::vector<std::string> all = {"ball-plate",      "bars-impact",      "cubes-edge",
+                                        "cylinders",       "hertz-spheres",    "spall-plate",
+                                        "staggered-patch", "taylor-symmetric", "whipple"};
   EXPECT_EQ(checked, all);
 }

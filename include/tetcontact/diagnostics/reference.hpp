@@ -23,14 +23,34 @@ struct ReferenceSpec {
     contact_mean_pressure,  // total normal contact impulse / (duration · `area`)
     hole_diameter,          // twice the distance from the line along `axis` through the centre of
                             // `region` to the nearest centre of a cell of `body` in `region`
+    // Beyond a `plane` (issue 18: shields), counting the debris of `body`'s plane: every
+    // particle beyond it, and every cell of another body whose centre is beyond it (the
+    // body's own cells are not debris: a bulging wall is not perforated); with `debris_of`,
+    // only the particles and cells of those bodies.
+    mass_through,          // the debris' mass, kg
+    momentum_through,      // the debris' momentum along the plane's normal, kg m/s
+    perforated,            // 1 when any debris is beyond the plane, else 0
+    debris_speed,          // the leading edge's speed along the normal: of the debris item
+                           // farthest beyond the plane, m/s
+    debris_cone_angle,     // half-angle (degrees) about the normal through the plane's point of
+                           // the cone holding 95 % of the mass of the cloud's front half (the
+                           // debris beyond half the leading edge's distance from the plane)
+    debris_particle_mass,  // the mass of the particles beyond the plane, kg
+    largest_fragment,      // the largest debris fragment's mass: cells beyond the plane joined
+                           // through shared nodes, or one particle, kg
   };
   std::string name;  // shown in tables
   Measure measure = Measure::length;
-  std::string body;   // length, radius, velocity, hole_diameter
+  std::string body;   // length, radius, velocity, hole_diameter, the debris measures
   int axis = 2;       // 0, 1, 2 for x, y, z
   int component = 2;  // mean_stress: 0..5 in the order xx yy zz xy yz xz
-  Vec3 region_min = Vec3::Zero(), region_max = Vec3::Zero();  // mean_stress, mean_pressure
-  double area = 0.0;                                          // contact_mean_pressure
+  Vec3 region_min = Vec3::Zero(), region_max = Vec3::Zero();      // mean_stress, mean_pressure
+  Vec3 plane_point = Vec3::Zero(), plane_normal = Vec3::UnitZ();  // the debris measures (unit n)
+  std::vector<std::string> debris_of;  // the debris measures: only these bodies (empty: all)
+  double within = 0.0;     // the debris measures: > 0, only within this distance of the normal
+                           // through the plane's point (a wall's footprint), m
+  double area = 0.0;       // contact_mean_pressure
+  double time = 0.0;       // > 0: measured at the first step at or after this time, s; 0: the end
   double value = 0.0;      // the reference; NaN: measured and reported, not judged
   double tolerance = 0.0;  // allowed relative error
   std::string source;      // where the reference comes from
@@ -63,5 +83,22 @@ struct RunFigures {
 std::vector<ReferenceResult> evaluate_references(const std::vector<ReferenceSpec>& refs,
                                                  const Model& model, const State& st,
                                                  const RunFigures& run = {});
+
+/// The references of a run as it goes: those with a `time` measured at the first step at or
+/// after it (`measure_due` after each step), the rest at the end (`finish`), in the case's order.
+class ReferenceRecorder {
+ public:
+  explicit ReferenceRecorder(const std::vector<ReferenceSpec>& refs);
+  /// Whether a timed reference not yet measured is due at time t (a distributed run gathers its
+  /// state first).
+  bool due(double t) const;
+  void measure_due(double t, const Model& model, const State& st, const RunFigures& run);
+  std::vector<ReferenceResult> finish(const Model& model, const State& st,
+                                      const RunFigures& run = {});
+
+ private:
+  const std::vector<ReferenceSpec>& refs_;
+  std::vector<std::optional<ReferenceResult>> done_;
+};
 
 }  // namespace tc

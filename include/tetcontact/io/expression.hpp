@@ -6,7 +6,8 @@
 //
 // Grammar: sum := product (('+' | '-') product)*; product := power (('*' | '/') power)*;
 // power := unary ('^' power)?; unary := ('-' | '+') unary | primary; primary := number | name |
-// name '(' sum ')' | '(' sum ')'. Functions: sin cos tan asin acos atan sqrt exp log abs.
+// name '(' sum (',' sum)* ')' | '(' sum ')'. Functions: sin cos tan asin acos atan sqrt exp log
+// abs round ceil floor (a cell count must come out an integer), and min max of two.
 // Constants: pi, deg (= pi / 180).
 #pragma once
 
