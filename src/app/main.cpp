@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "tetcontact/app/ccd.hpp"
+#include "tetcontact/app/limit.hpp"
 #include "tetcontact/app/partition.hpp"
 #include "tetcontact/app/profile.hpp"
 #include "tetcontact/app/run.hpp"
@@ -35,6 +36,26 @@ void add_overrides(CLI::App* cmd, std::vector<std::string>& overrides) {
       ->type_name("KEY=VALUE")
       ->expected(1)
       ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+}
+
+// --vary KEY=V1,V2,...: a case key and its values.
+CLI::Option* add_vary(CLI::App* cmd,
+                      std::vector<std::pair<std::string, std::vector<std::string>>>& vary,
+                      const std::string& help) {
+  return cmd
+      ->add_option_function<std::vector<std::string>>(
+          "--vary",
+          [&vary](const std::vector<std::string>& all) {
+            for (const std::string& v : all) {
+              const std::size_t eq = v.find('=');
+              if (eq == std::string::npos || eq == 0 || eq + 1 == v.size())
+                throw CLI::ValidationError("--vary", "needs KEY=V1,V2,...: '" + v + "'");
+              vary.emplace_back(v.substr(0, eq), tc::split_values(v.substr(eq + 1)));
+            }
+          },
+          help)
+      ->type_name("KEY=V1,V2,...")
+      ->expected(1);
 }
 
 CLI::App* add_run(CLI::App& app, tc::RunOptions& o) {
@@ -125,20 +146,9 @@ CLI::App* add_sweep(CLI::App& app, tc::SweepOptions& w) {
   CLI::App* cmd = app.add_subcommand(
       "sweep", "error against run time over combinations of case keys (sweep.csv)");
   cmd->add_option("case", w.case_path, "the case file (YAML)")->required();
-  cmd->add_option_function<std::vector<std::string>>(
-         "--vary",
-         [&w](const std::vector<std::string>& all) {
-           for (const std::string& v : all) {
-             const std::size_t eq = v.find('=');
-             if (eq == std::string::npos || eq == 0 || eq + 1 == v.size())
-               throw CLI::ValidationError("--vary", "needs KEY=V1,V2,...: '" + v + "'");
-             w.vary.emplace_back(v.substr(0, eq), tc::split_values(v.substr(eq + 1)));
-           }
-         },
-         "KEY=V1,V2,...: the values of a case key (a value may be a YAML list; keys joined by + "
-         "take the same values); repeatable, the last varying fastest")
-      ->type_name("KEY=V1,V2,...")
-      ->expected(1)
+  add_vary(cmd, w.vary,
+           "KEY=V1,V2,...: the values of a case key (a value may be a YAML list; keys joined by + "
+           "take the same values); repeatable, the last varying fastest")
       ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll)
       ->required();
   cmd->add_option("--reference", w.reference,
@@ -153,6 +163,48 @@ CLI::App* add_sweep(CLI::App& app, tc::SweepOptions& w) {
       "error, each declared reference's error, momentum_error, energy_balance_max,\n"
       "penetration_depth_over_h and crossings. Plot with tools/plot_sweep.py DIR/sweep.csv.\n"
       "Exit codes: 0, 1 a run failed (its row says so), 2 bad input (nothing run).");
+  return cmd;
+}
+
+CLI::App* add_limit(CLI::App& app, tc::LimitOptions& l) {
+  CLI::App* cmd = app.add_subcommand(
+      "limit", "bracket a ballistic limit: the value of a case key where a criterion flips");
+  cmd->add_option("case", l.case_path, "the case file (YAML)")->required();
+  cmd->add_option("--find", l.find, "the case key narrowed, e.g. parameters.d")->required();
+  cmd->add_option_function<std::vector<double>>(
+         "--between",
+         [&l](const std::vector<double>& v) {
+           l.lo = v[0];
+           l.hi = v[1];
+         },
+         "LO HI: the key's values at the two ends (the criterion must differ there)")
+      ->expected(2)
+      ->required();
+  cmd->add_option("--criterion", l.criterion,
+                  "perforated:BODY: the case's `reference:` entry with measure perforated and "
+                  "that body")
+      ->required();
+  add_vary(cmd, l.vary,
+           "KEY=V1,V2,...: a second key, a bracket for each of its values (the curve)");
+  cmd->add_option("--jobs", l.jobs,
+                  "runs at once, each a process of one thread (default: the "
+                  "cores)")
+      ->check(CLI::Range(1, 1024));
+  cmd->add_option("--tolerance", l.tolerance,
+                  "stop when the bracket's width is at most this fraction of its upper end "
+                  "(default 0.05)")
+      ->check(CLI::Range(1e-6, 1.0));
+  cmd->add_option("--out", l.out_dir,
+                  "output directory (default results/<case name>-limit); a folder holding an "
+                  "earlier search's runs/ is resumed");
+  add_overrides(cmd, l.overrides);
+  cmd->add_flag("--quiet", l.quiet, "no progress lines");
+  cmd->footer(
+      "Each run is `tetcontact run` into DIR/runs/<KEY2=w>/<KEY=x>/ (summary.json, run.log);\n"
+      "a run whose summary.json is there is read, not run again, so an interrupted search\n"
+      "resumes. Writes DIR/limit.csv: per bracket the key, its ends, the criterion at each,\n"
+      "runs, reused runs, wall seconds and status.\n"
+      "Exit codes: 0 every bracket found, 1 one was not (its line says why), 2 bad input.");
   return cmd;
 }
 
@@ -260,6 +312,7 @@ int tetcontact_main(int argc, char** argv) {
   tc::SweepOptions sweep;
   tc::ProfileOptions profile;
   tc::PartitionOptions partition;
+  tc::LimitOptions limit;
   CLI::App* run_cmd = add_run(app, run);
   CLI::App* check_cmd = add_check(app, check);
   CLI::App* ccd_cmd = add_ccd(app, ccd);
@@ -267,6 +320,7 @@ int tetcontact_main(int argc, char** argv) {
   CLI::App* sweep_cmd = add_sweep(app, sweep);
   CLI::App* profile_cmd = add_profile(app, profile);
   CLI::App* partition_cmd = add_partition(app, partition);
+  CLI::App* limit_cmd = add_limit(app, limit);
   int run_threads = 0, sweep_threads = 0, profile_threads = 0;
   add_threads(run_cmd, run_threads);
   add_threads(sweep_cmd, sweep_threads);
@@ -300,6 +354,7 @@ int tetcontact_main(int argc, char** argv) {
   if (sweep_cmd->parsed()) return guarded([&] { return tc::sweep_command(sweep); });
   if (profile_cmd->parsed()) return guarded([&] { return tc::profile_command(profile); });
   if (partition_cmd->parsed()) return guarded([&] { return tc::partition_command(partition); });
+  if (limit_cmd->parsed()) return guarded([&] { return tc::limit_command(limit); });
   return k_bad_usage;
 }
 

@@ -19,6 +19,13 @@
 
 namespace tc {
 
+std::string csv_field(const std::string& s) {
+  if (s.find_first_of(",\"") == std::string::npos) return s;
+  std::string q = "\"";
+  for (char ch : s) q += ch == '"' ? std::string("\"\"") : std::string(1, ch);
+  return q + "\"";
+}
+
 std::vector<std::string> split_values(const std::string& list) {
   std::vector<std::string> out(1);
   int depth = 0;
@@ -120,13 +127,6 @@ struct Row {
   Figures figures;
   double error = NAN;  // against the sweep's reference
 };
-
-std::string csv_field(const std::string& s) {
-  if (s.find_first_of(",\"") == std::string::npos) return s;
-  std::string q = "\"";
-  for (char ch : s) q += ch == '"' ? std::string("\"\"") : std::string(1, ch);
-  return q + "\"";
-}
 
 std::string num(double v) {
   if (std::isnan(v)) return "";

@@ -23,6 +23,9 @@ struct SweepOptions {
   std::vector<std::string> overrides;  // --set, applied to every run
 };
 
+/// A CSV field: quoted (quotes doubled) when it holds a comma or a quote.
+std::string csv_field(const std::string& s);
+
 /// Splits "v1,v2,[a,b],v4" at the commas outside brackets and braces.
 std::vector<std::string> split_values(const std::string& list);
 

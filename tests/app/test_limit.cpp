@@ -1,0 +1,156 @@
+// `tetcontact limit` (issue 18): bracketing the speed at which a ball perforates a plate.
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <filesystem>
+#include <sstream>
+#include <thread>
+
+#include "../test_util.hpp"
+
+using namespace tc;
+
+namespace {
+
+namespace fs = std::filesystem;
+
+// An aluminium ball (4 mm) onto an aluminium plate of thickness tb, coarse: it perforates from
+// between 600 and 1,000 m/s for a 1 mm plate (measured), each run under a second.
+const char* k_plate = R"yaml(name: limit-plate
+parameters:
+  v: 1000
+  tb: 1.0e-3
+end_time: 4.0e-6
+materials:
+  al: {from: al6061-t6}
+bodies:
+  - name: ball
+    material: al
+    mesh: {sphere: {radius: 2.0e-3, cells_across: 4}}
+    transform: [{translate: [0, 0, 2.0e-3]}]
+    velocity: [0, 0, "= -v"]
+  - name: plate
+    material: al
+    mesh: {box: {size: [12.0e-3, 12.0e-3, "= tb"], cells: [8, 8, "= max(1, round(tb / 1.0e-3))"]}}
+    transform: [{translate: [0, 0, "= -tb / 2"]}]
+contact: {enabled: true, broadphase: grid}
+fracture: {enabled: true}
+output: {interval: 4.0e-6, fields: [velocity]}
+reference:
+  - name: plate perforated
+    measure: perforated
+    body: plate
+    plane: {point: [0, 0, "= -tb"], normal: [0, 0, -1]}
+    within: 6.0e-3
+)yaml";
+
+struct Line {
+  std::string vary, lo, hi, at_lo, at_hi, status;
+  int runs = 0, reused = 0;
+};
+// limit.csv's lines (no field of this test's is quoted).
+std::vector<Line> read_limit(const std::string& path, bool vary) {
+  std::istringstream in(test::read_text(path));
+  std::string row;
+  std::getline(in, row);  // header
+  std::vector<Line> out;
+  while (std::getline(in, row)) {
+    std::vector<std::string> f;
+    std::stringstream ss(row);
+    for (std::string x; std::getline(ss, x, ',');) f.push_back(x);
+    const std::size_t k = vary ? 1 : 0;
+    Line l;
+    if (vary) l.vary = f[0];
+    l.lo = f[k + 1];
+    l.hi = f[k + 2];
+    l.at_lo = f[k + 3];
+    l.at_hi = f[k + 4];
+    l.runs = std::stoi(f[k + 5]);
+    l.reused = std::stoi(f[k + 6]);
+    l.status = f[k + 8];
+    out.push_back(l);
+  }
+  return out;
+}
+
+const std::string k_search =
+    "--find parameters.v --between 200 4000 --criterion perforated:plate --jobs 2 "
+    "--tolerance 0.05";
+
+}  // namespace
+
+// The bracket: not perforated at its lower end, perforated at its upper end, 5 % wide; a
+// thicker plate needs a higher speed; every run's summary kept.
+TEST(Limit, BracketsThePerforationSpeed) {
+  test::TempDir dir("limit");
+  test::write_text(dir / "plate.yaml", k_plate);
+  const auto r =
+      test::run_cli("limit '" + dir / "plate.yaml" + "' " + k_search +
+                        " --vary parameters.tb=1.0e-3,2.0e-3 --out '" + dir / "out" + "'",
+                    dir.str());
+  ASSERT_EQ(r.code, 0) << r.err;
+  const std::vector<Line> lines = read_limit(dir / "out/limit.csv", true);
+  ASSERT_EQ(lines.size(), 2u);
+  for (const Line& l : lines) {
+    EXPECT_EQ(l.status, "ok");
+    EXPECT_EQ(l.at_lo, "0");
+    EXPECT_EQ(l.at_hi, "1");
+    const double lo = std::stod(l.lo), hi = std::stod(l.hi);
+    EXPECT_LT(lo, hi);
+    EXPECT_LE(hi - lo, 0.05 * hi);
+    EXPECT_TRUE(fs::exists(
+        dir / ("out/runs/parameters.tb=" + l.vary + "/parameters.v=" + l.lo + "/summary.json")));
+  }
+  EXPECT_GT(std::stod(lines[0].lo), 600.0);  // 1 mm: between 600 and 1,000 m/s (single runs)
+  EXPECT_LT(std::stod(lines[0].hi), 1000.0);
+  EXPECT_GT(std::stod(lines[1].lo), std::stod(lines[0].hi));  // 2 mm: higher
+  // Bad input: a criterion the case does not measure; nothing run.
+  const auto bad = test::run_cli("limit '" + dir / "plate.yaml" +
+                                     "' --find parameters.v --between 200 4000 --criterion "
+                                     "perforated:ball --out '" +
+                                     dir / "bad" + "'",
+                                 dir.str());
+  EXPECT_EQ(bad.code, 2);
+  EXPECT_NE(bad.err.find("measure: perforated and body: ball"), std::string::npos) << bad.err;
+  EXPECT_FALSE(fs::exists(dir / "bad/runs"));
+}
+
+// Killed after some runs had finished (the whole process group, runs included), the search
+// resumes: the finished runs are read, not run again, and the bracket is the one an
+// uninterrupted search finds (runs are deterministic).
+TEST(Limit, ResumesAfterAKill) {
+  test::TempDir dir("limit-resume");
+  test::write_text(dir / "plate.yaml", k_plate);
+  const std::string cmd = "limit '" + dir / "plate.yaml" + "' " + k_search + " --quiet --out '";
+  const auto whole = test::run_cli(cmd + dir / "whole" + "'", dir.str());
+  ASSERT_EQ(whole.code, 0) << whole.err;
+  const Line expected = read_limit(dir / "whole/limit.csv", false).at(0);
+  // Start the search in its own process group, wait for 3 finished runs, kill the group.
+  const std::string out = dir / "killed";
+  const std::string script =
+      "setsid '" + std::string(TETCONTACT_BINARY) + "' " + cmd + out +
+      "' >/dev/null 2>&1 & pid=$!; for i in $(seq 1 600); do "
+      "n=$(find '" +
+      out +
+      "' -name summary.json 2>/dev/null | wc -l); "
+      "[ \"$n\" -ge 3 ] && break; sleep 0.05; done; kill -9 -- -$pid; wait $pid 2>/dev/null; true";
+  ASSERT_EQ(std::system(("bash -c \"" +
+                         [&] {
+                           std::string s;
+                           for (char c : script)
+                             s += c == '"' || c == '$' ? std::string("\\") + c : std::string(1, c);
+                           return s;
+                         }() +
+                         "\"")
+                            .c_str()),
+            0);
+  ASSERT_FALSE(fs::exists(out + "/limit.csv"));  // killed before the end
+  const auto resumed = test::run_cli(cmd + out + "'", dir.str());
+  ASSERT_EQ(resumed.code, 0) << resumed.err;
+  const Line l = read_limit(out + "/limit.csv", false).at(0);
+  EXPECT_EQ(l.lo, expected.lo);
+  EXPECT_EQ(l.hi, expected.hi);
+  EXPECT_EQ(l.runs, expected.runs);
+  EXPECT_GE(l.reused, 3);  // the runs finished before the kill
+  EXPECT_LT(l.reused, l.runs);
+}
