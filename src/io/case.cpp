@@ -887,6 +887,10 @@ void read_references(const Reader& r, const YAML::Node& root, Case& c) {
                "mass_through, momentum_through, perforated, debris_speed, debris_cone_angle, "
                "debris_particle_mass or largest_fragment");
       const bool debris = ref.measure >= M::mass_through;
+      for (const char* k : {"plane", "debris_of", "within"})
+        if (!debris && n[k])
+          r.fail(n[k], join(p, k),
+                 "only the debris measures (perforated, mass_through, ...) take it");
       if (ref.measure == M::contact_duration || ref.measure == M::contact_max_force) {
         // whole-run figures: nothing more to say
       } else if (debris) {
