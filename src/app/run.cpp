@@ -477,8 +477,11 @@ int run_case(const RunOptions& o) {
       throw SetupError(c.file + ": " + e.what());
     }
     warnings = mach_warnings(c, sim->model());
-    if (!o.quiet)
+    if (!o.quiet && root) {
       for (const std::string& w : warnings) std::cerr << "tetcontact: warning: " << w << "\n";
+      for (const std::string& n : regime_notes(c, sim->model()))
+        std::cerr << "tetcontact: regime: " << n << "\n";
+    }
     dir = o.out_dir.empty() ? "results/" + c.name : o.out_dir;
     // Only now, when the input is known to be good; in a distributed run rank 0 alone writes.
     if (root) prepare_output_dir(dir, o.force);
@@ -553,6 +556,8 @@ int report_run(const RunOptions& o, const Case& c, const Simulation& s, OutputWr
   const Simulation* sim = &s;
   writer.close();
   Json summary = summary_json(c, *sim, writer, status, wall, warnings);
+  if (const std::vector<std::string> regimes = regime_notes(c, sim->model()); !regimes.empty())
+    summary["regimes"] = regimes;
   summary["parallel"] = parallel_json(*sim, communication);
   // The case's stated bounds (`expect`), each against its summary figure.
   std::string expect_lines;

@@ -216,7 +216,11 @@ void check_initial_overlap(const Case& c, const Model& model) {
   throw SetupError(os.str());
 }
 
-std::vector<std::string> mach_warnings(const Case& c, const Model& model) {
+namespace {
+
+// The impact Mach number of each pair (bodies, and bodies against walls): `notes` false, the
+// warnings of mach_warnings; true, the statements of regime_notes.
+std::vector<std::string> mach_report(const Case& c, const Model& model, bool notes) {
   std::vector<std::string> out;
   const std::size_t nb = model.mesh.bodies.size();
   std::vector<Vec3> velocity(nb, Vec3::Zero());
@@ -246,6 +250,14 @@ std::vector<std::string> mach_warnings(const Case& c, const Model& model) {
         " (U0 = " + std::to_string(static_cast<long>(std::lround(u0))) +
         " m/s, C0 = " + std::to_string(static_cast<long>(std::lround(mat.bulk_sound_speed()))) +
         " m/s)";
+    if (notes) {
+      if (m0 > 0.75 && m0 < 1.5 && mat.eos == EosKind::mie_gruneisen)
+        out.push_back(head +
+                      " is in the paper's hydrodynamic range (0.75 < M0 < 1.5): the "
+                      "Mie-Gruneisen EOS carries the shock; melting's latent heat, vaporisation "
+                      "and the EOS far off the Hugoniot are not modelled");
+      return;
+    }
     if (m0 >= 1.5)
       out.push_back(head + " is beyond the paper's models (M0 < 1.5)");
     else if (m0 > 0.75 && mat.eos == EosKind::linear)
@@ -266,6 +278,16 @@ std::vector<std::string> mach_warnings(const Case& c, const Model& model) {
     }
   }
   return out;
+}
+
+}  // namespace
+
+std::vector<std::string> mach_warnings(const Case& c, const Model& model) {
+  return mach_report(c, model, false);
+}
+
+std::vector<std::string> regime_notes(const Case& c, const Model& model) {
+  return mach_report(c, model, true);
 }
 
 }  // namespace tc

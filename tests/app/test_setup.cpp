@@ -23,11 +23,12 @@ bodies:
     velocity: [0, 0, -1000]
 )";
 
-std::vector<std::string> warnings_for(const std::vector<std::string>& overrides) {
+std::vector<std::string> warnings_for(const std::vector<std::string>& overrides,
+                                      bool notes = false) {
   test::TempDir dir("setup-mach");
   test::write_text(dir / "c.yaml", k_two_bodies);
   const Case c = load_case(dir / "c.yaml", overrides);
-  return mach_warnings(c, build_model(c));
+  return notes ? regime_notes(c, build_model(c)) : mach_warnings(c, build_model(c));
 }
 
 }  // namespace
@@ -52,4 +53,17 @@ TEST(Setup, MachWarningsFollowThePapersModelRanges) {
   w = warnings_for({"bodies.1.velocity=[0,0,-9000]", "walls=[{point: [0,0,-1], normal: [0,0,1]}]",
                     "bodies.0.velocity=[0,0,-9000]"});
   EXPECT_EQ(w.size(), 2u);  // both against the wall; none between the co-moving bodies
+}
+
+// The regime a run states (issue 18): 0.75 < M0 < 1.5 with a Mie–Grüneisen EOS — the impactor
+// at 5 km/s (M0 = 0.95), not at 1 km/s (inside the elastic-plastic range) nor at 9 km/s (beyond:
+// warned instead), and not the linear-EOS target (warned).
+TEST(Setup, RegimeNotesStateTheHydrodynamicRange) {
+  EXPECT_TRUE(warnings_for({}, true).empty());
+  const auto n = warnings_for({"bodies.1.velocity=[0,0,-5000]"}, true);
+  ASSERT_EQ(n.size(), 1u);
+  EXPECT_NE(n[0].find("body 'impactor'"), std::string::npos) << n[0];
+  EXPECT_NE(n[0].find("hydrodynamic range"), std::string::npos) << n[0];
+  EXPECT_NE(n[0].find("vaporisation"), std::string::npos) << n[0];
+  EXPECT_TRUE(warnings_for({"bodies.1.velocity=[0,0,-9000]"}, true).empty());
 }

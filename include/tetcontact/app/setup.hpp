@@ -33,4 +33,9 @@ void check_initial_overlap(const Case& c, const Model& model);
 /// body's bulk sound speed. One line per finding.
 std::vector<std::string> mach_warnings(const Case& c, const Model& model);
 
+/// The regime each impact is in where it is inside the paper's models but past the
+/// elastic-plastic one: 0.75 < M0 < 1.5 with a Mie–Grüneisen EOS (issue 18: a run states the
+/// regime it is in, and what the model leaves out there). Not warnings: statements.
+std::vector<std::string> regime_notes(const Case& c, const Model& model);
+
 }  // namespace tc
