@@ -10,6 +10,18 @@ namespace tc {
 
 namespace {
 
+double cell_mass(const Model& model, const State& st, Index t) {
+  return model.materials[st.tet_material[t]].density * st.vol0[t];
+}
+Vec3 cell_centre(const Model& model, const State& st, Index t) {
+  const Tet& k = model.mesh.tets[t];
+  return 0.25 * (st.x[k[0]] + st.x[k[1]] + st.x[k[2]] + st.x[k[3]]);
+}
+Vec3 cell_velocity(const Model& model, const State& st, Index t) {
+  const Tet& k = model.mesh.tets[t];
+  return 0.25 * (st.v[k[0]] + st.v[k[1]] + st.v[k[2]] + st.v[k[3]]);
+}
+
 // The debris beyond a reference's plane: particles (node indices) and cells of other bodies.
 struct Debris {
   std::vector<Index> cells, particles;
@@ -33,8 +45,7 @@ Debris debris_beyond(const ReferenceSpec& r, const Model& model, const State& st
     if (own || !counted(static_cast<Index>(t)) ||
         (!st.damage.empty() && st.damage[t] == Damage::particle))
       continue;
-    const Tet& k = model.mesh.tets[t];
-    if (beyond(0.25 * (st.x[k[0]] + st.x[k[1]] + st.x[k[2]] + st.x[k[3]])))
+    if (beyond(cell_centre(model, st, static_cast<Index>(t))))
       d.cells.push_back(static_cast<Index>(t));
   }
   if (!known)
@@ -43,18 +54,6 @@ Debris debris_beyond(const ReferenceSpec& r, const Model& model, const State& st
     if (counted(st.particle_tet[i]) && beyond(st.x[st.first_particle + i]))
       d.particles.push_back(st.first_particle + i);
   return d;
-}
-
-double cell_mass(const Model& model, const State& st, Index t) {
-  return model.materials[st.tet_material[t]].density * st.vol0[t];
-}
-Vec3 cell_centre(const Model& model, const State& st, Index t) {
-  const Tet& k = model.mesh.tets[t];
-  return 0.25 * (st.x[k[0]] + st.x[k[1]] + st.x[k[2]] + st.x[k[3]]);
-}
-Vec3 cell_velocity(const Model& model, const State& st, Index t) {
-  const Tet& k = model.mesh.tets[t];
-  return 0.25 * (st.v[k[0]] + st.v[k[1]] + st.v[k[2]] + st.v[k[3]]);
 }
 
 // The largest fragment: cells joined through shared nodes (union–find), or one particle.

@@ -832,6 +832,14 @@ void read_walls(const Reader& r, const YAML::Node& root, Case& c) {
 
 // The case's reference values and measures.
 void read_references(const Reader& r, const YAML::Node& root, Case& c) {
+  // A body the case has, by name.
+  const auto body_name = [&](const YAML::Node& node, const std::string& path) {
+    const std::string name = r.string(node, path);
+    if (std::none_of(c.bodies.begin(), c.bodies.end(),
+                     [&](const BodySpec& s) { return s.name == name; }))
+      r.fail(node, path, "no body named '" + name + "'");
+    return name;
+  };
   // Reference values.
   if (const YAML::Node refs = root["reference"]) {
     r.each(refs, "reference", "reference values", [&](const YAML::Node& n, const std::string& p) {
@@ -894,11 +902,7 @@ void read_references(const Reader& r, const YAML::Node& root, Case& c) {
       if (ref.measure == M::contact_duration || ref.measure == M::contact_max_force) {
         // whole-run figures: nothing more to say
       } else if (debris) {
-        const YAML::Node b = r.require(n, p, "body");
-        ref.body = r.string(b, join(p, "body"));
-        if (std::none_of(c.bodies.begin(), c.bodies.end(),
-                         [&](const BodySpec& s) { return s.name == ref.body; }))
-          r.fail(b, join(p, "body"), "no body named '" + ref.body + "'");
+        ref.body = body_name(r.require(n, p, "body"), join(p, "body"));
         const std::string pp = join(p, "plane");
         const YAML::Node pl = r.require(n, p, "plane");
         r.map(pl, pp);
@@ -911,21 +915,13 @@ void read_references(const Reader& r, const YAML::Node& root, Case& c) {
         if (const YAML::Node of = n["debris_of"])
           r.each(of, join(p, "debris_of"), "body names",
                  [&](const YAML::Node& e, const std::string& ep) {
-                   const std::string name = r.string(e, ep);
-                   if (std::none_of(c.bodies.begin(), c.bodies.end(),
-                                    [&](const BodySpec& s) { return s.name == name; }))
-                     r.fail(e, ep, "no body named '" + name + "'");
-                   ref.debris_of.push_back(name);
+                   ref.debris_of.push_back(body_name(e, ep));
                  });
       } else if (ref.measure == M::contact_mean_pressure) {
         ref.area = r.positive(r.require(n, p, "area"), join(p, "area"), "m^2");
       } else if (ref.measure == M::length || ref.measure == M::radius ||
                  ref.measure == M::velocity || ref.measure == M::hole_diameter) {
-        const YAML::Node b = r.require(n, p, "body");
-        ref.body = r.string(b, join(p, "body"));
-        if (std::none_of(c.bodies.begin(), c.bodies.end(),
-                         [&](const BodySpec& s) { return s.name == ref.body; }))
-          r.fail(b, join(p, "body"), "no body named '" + ref.body + "'");
+        ref.body = body_name(r.require(n, p, "body"), join(p, "body"));
         const YAML::Node a = r.require(n, p, "axis");
         const std::string axis = r.string(a, join(p, "axis"));
         if (axis != "x" && axis != "y" && axis != "z")

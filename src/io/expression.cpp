@@ -110,33 +110,31 @@ class Parser {
     fail("unknown name '" + name + "'");
   }
   double call(const std::string& f, const std::vector<double>& args, std::size_t at) {
+    using One = double (*)(double);
+    static const std::map<std::string, One> one{{"sin", [](double x) { return std::sin(x); }},
+                                                {"cos", [](double x) { return std::cos(x); }},
+                                                {"tan", [](double x) { return std::tan(x); }},
+                                                {"asin", [](double x) { return std::asin(x); }},
+                                                {"acos", [](double x) { return std::acos(x); }},
+                                                {"atan", [](double x) { return std::atan(x); }},
+                                                {"sqrt", [](double x) { return std::sqrt(x); }},
+                                                {"exp", [](double x) { return std::exp(x); }},
+                                                {"log", [](double x) { return std::log(x); }},
+                                                {"abs", [](double x) { return std::abs(x); }},
+                                                {"round", [](double x) { return std::round(x); }},
+                                                {"ceil", [](double x) { return std::ceil(x); }},
+                                                {"floor", [](double x) { return std::floor(x); }}};
     const bool two = f == "min" || f == "max";
-    if (args.size() != (two ? 2u : 1u)) {
-      const bool known = two || f == "sin" || f == "cos" || f == "tan" || f == "asin" ||
-                         f == "acos" || f == "atan" || f == "sqrt" || f == "exp" || f == "log" ||
-                         f == "abs" || f == "round" || f == "ceil" || f == "floor";
-      i_ = at;
-      if (!known) fail("unknown function '" + f + "'");
-      fail("'" + f + "' takes " + (two ? "two arguments" : "one argument"));
-    }
-    if (f == "min") return std::min(args[0], args[1]);
-    if (f == "max") return std::max(args[0], args[1]);
-    const double x = args[0];
-    if (f == "sin") return std::sin(x);
-    if (f == "cos") return std::cos(x);
-    if (f == "tan") return std::tan(x);
-    if (f == "asin") return std::asin(x);
-    if (f == "acos") return std::acos(x);
-    if (f == "atan") return std::atan(x);
-    if (f == "sqrt") return std::sqrt(x);
-    if (f == "exp") return std::exp(x);
-    if (f == "log") return std::log(x);
-    if (f == "abs") return std::abs(x);
-    if (f == "round") return std::round(x);
-    if (f == "ceil") return std::ceil(x);
-    if (f == "floor") return std::floor(x);
-    i_ = at;
-    fail("unknown function '" + f + "'");
+    const auto it = one.find(f);
+    const auto fail_at = [&](const std::string& msg) {
+      i_ = at;  // the error's column: the function's name
+      fail(msg);
+    };
+    if (!two && it == one.end()) fail_at("unknown function '" + f + "'");
+    if (args.size() != (two ? 2u : 1u))
+      fail_at("'" + f + "' takes " + (two ? "two arguments" : "one argument"));
+    if (two) return f == "min" ? std::min(args[0], args[1]) : std::max(args[0], args[1]);
+    return it->second(args[0]);
   }
 
   const std::string& s_;

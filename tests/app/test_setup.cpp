@@ -25,7 +25,7 @@ bodies:
 
 std::vector<std::string> warnings_for(const std::vector<std::string>& overrides,
                                       bool notes = false) {
-  test::TempDir dir("setup-mach");
+  test::TempDir dir(notes ? "setup-regime" : "setup-mach");  // tests may run at once
   test::write_text(dir / "c.yaml", k_two_bodies);
   const Case c = load_case(dir / "c.yaml", overrides);
   return notes ? regime_notes(c, build_model(c)) : mach_warnings(c, build_model(c));
