@@ -18,6 +18,9 @@ never retyped).
     tools/readme_tables.py whipple BINARY                   the Whipple shield's coarse runs
                                                             (the test's) beside Christiansen's
                                                             critical diameter
+    tools/readme_tables.py whipple-mesh BINARY              the shipped Whipple shield on three
+                                                            meshes (coarse, medium, default) on
+                                                            2 threads: measures and run times
     tools/readme_tables.py strength BINARY                  the strength laws side by side: the
                                                             aluminium Taylor rod and the 6061-T6
                                                             plate impact's precursor (HEL) under
@@ -422,7 +425,7 @@ def strength(binary, work):
 
 
 WHIPPLE_COARSE = ["parameters.hb=1.0e-3", "parameters.hw=2.0e-3", "parameters.np=6",
-                  "parameters.wb=16e-3"]
+                  "parameters.tear=5.0e-6"]
 WHIPPLE_ROWS = [  # (what, sets): the test's two shields
     ("2 mm wall, 15 mm behind", ["parameters.S=15e-3", "parameters.tw=2e-3", "parameters.ww=30e-3"]),
     ("8 mm wall, 30 mm behind", ["parameters.S=30e-3", "parameters.tw=8e-3"]),
@@ -456,11 +459,41 @@ def whipple(binary, work):
               f"{g(s['energy']['balance_error'])} |", flush=True)
 
 
+WHIPPLE_MESHES = [  # (what, sets): the shipped shield on three meshes, the same geometry
+    ("coarse: bumper 1 mm, wall 2 mm, sphere 6 across", ["parameters.hb=1.0e-3",
+                                                         "parameters.hw=2.0e-3", "parameters.np=6"]),
+    ("medium: 0.7 mm, 1.4 mm, 7 across", ["parameters.hb=0.7e-3", "parameters.hw=1.4e-3",
+                                          "parameters.np=7"]),
+    ("default: 0.5 mm, 1 mm, 8 across", []),
+]
+
+
+def whipple_mesh(binary, work):
+    """The shipped Whipple shield on three meshes: the measures and the run time of each."""
+    print("| mesh | tets | steps, wall time (2 threads) | hole | leading edge | cone half-angle | "
+          "debris | wall perforated: mass through | cells failed (ductile) | energy balance |")
+    print("|---|---|---|---|---|---|---|---|---|---|")
+    for k, (what, sets) in enumerate(WHIPPLE_MESHES):
+        extra = ["--threads", "2"]
+        for kv in sets:
+            extra += ["--set", kv]
+        s, _ = run(binary, os.path.join(ROOT, "data/cases/whipple.yaml"),
+                   os.path.join(work, f"mesh{k}"), extra)
+        m = {r["name"]: r["measured"] for r in s["references"]}
+        print(f"| {what} | {s['mesh']['tets']:,} | {s['steps']:,}, {s['wall_seconds']:.0f} s | "
+              f"{m['bumper hole diameter'] * 1e3:.1f} mm | "
+              f"{m['debris leading-edge speed']:,.0f} m/s | {m['debris cone half-angle']:.0f}° | "
+              f"{m['debris mass'] * 1e3:.3f} g | "
+              f"{'yes' if m['wall perforated'] else 'no'}: {m['mass through the wall'] * 1e6:.1f} mg | "
+              f"{s['fracture']['ductile_failed']:,} | {g(s['energy']['balance_error'])} |",
+              flush=True)
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawTextHelpFormatter)
     ap.add_argument("table",
                     choices=["stability", "micro", "profile", "threads", "verify", "verify-full",
-                             "mpi", "strength", "whipple"])
+                             "mpi", "strength", "whipple", "whipple-mesh"])
     ap.add_argument("binary")
     ap.add_argument("--work", help="keep the runs here (default: a temporary folder)")
     ap.add_argument("--cases", nargs="*", help="threads: only the cases whose file names "
@@ -480,6 +513,8 @@ def main():
         mpi(os.path.abspath(a.binary), a.work or tempfile.mkdtemp(prefix="mpi-"))
     elif a.table == "whipple":
         whipple(os.path.abspath(a.binary), a.work or tempfile.mkdtemp(prefix="whipple-"))
+    elif a.table == "whipple-mesh":
+        whipple_mesh(os.path.abspath(a.binary), a.work or tempfile.mkdtemp(prefix="whipple-mesh-"))
     elif a.table == "strength":
         strength(os.path.abspath(a.binary), a.work or tempfile.mkdtemp(prefix="strength-"))
     else:

@@ -118,16 +118,21 @@ def section(pts, conn, axis, at):
     return polys, cells
 
 
-def rasterize(polys, cells, body, width, extent):
-    allp = np.vstack(polys)
-    lo, hi = allp.min(axis=0), allp.max(axis=0)
-    span = np.maximum(hi - lo, 1e-300)
-    pad = 0.03 * span.max()
-    lo, hi = lo - pad, hi + pad
+def rasterize(polys, cells, body, width, extent, window=None, bodies=None):
+    """Pixels covered by each body: over the polygons' extent (padded), or over a fixed
+    window (lo, hi) of in-plane coordinates (a sequence of frames at one scale)."""
+    if window is None:
+        allp = np.vstack(polys)
+        lo, hi = allp.min(axis=0), allp.max(axis=0)
+        span = np.maximum(hi - lo, 1e-300)
+        pad = 0.03 * span.max()
+        lo, hi = lo - pad, hi + pad
+    else:
+        lo, hi = np.asarray(window[0], dtype=float), np.asarray(window[1], dtype=float)
     span = hi - lo
     px = span[0] / width
     height = max(1, int(round(span[1] / px)))
-    nb = int(body.max()) + 1
+    nb = int(body.max()) + 1 if bodies is None else bodies
     cover = np.zeros((nb, height, width), dtype=bool)
     extent[:] = [lo]
     for q, c in zip(polys, cells):
@@ -167,13 +172,15 @@ def write_png(path, rgb):
     os.replace(tmp, path)
 
 
-def main(argv):
-    args, opts = [], {"--normal": "y", "--at": None, "--width": "800", "--particles": None}
+def parse_args(argv, opts, doc, fail=fail):
+    """Positional arguments and `--key value` options over the defaults in `opts`; None when
+    help was asked for (the doc is printed)."""
+    args = []
     i = 0
     while i < len(argv):
         if argv[i] in ("-h", "--help"):
-            print(__doc__)
-            return 0
+            print(doc)
+            return None
         if argv[i] in opts:
             if i + 1 >= len(argv):
                 fail(argv[i] + " needs a value")
@@ -182,6 +189,14 @@ def main(argv):
         else:
             args.append(argv[i])
             i += 1
+    return args
+
+
+def main(argv):
+    opts = {"--normal": "y", "--at": None, "--width": "800", "--particles": None}
+    args = parse_args(argv, opts, __doc__)
+    if args is None:
+        return 0
     if len(args) != 2:
         fail("usage: section_png.py FRAME.vtu OUT.png [--normal x|y|z] [--at C] [--width PX]")
     if opts["--normal"] not in ("x", "y", "z"):

@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -260,6 +261,13 @@ Json fracture_json(const Case& c, const Simulation& sim) {
   fr["conversion_mass_error"] = l->mass_error;
   fr["particle_contacts"] = sim.contact_totals().particle_contacts;
   fr["eroded"] = l->eroded;  // a safeguard: cells whose step fell below the erosion limit
+  // Cells failed by Johnson–Cook's ductile damage (D ≥ 1; eroded, so among `eroded`).
+  const bool ductile = std::any_of(model.materials.begin(), model.materials.end(),
+                                   [](const Material& m) { return m.ductile_failure; });
+  fr["ductile_failed"] =
+      ductile ? Json(static_cast<long>(std::count_if(st.ductile.begin(), st.ductile.end(),
+                                                     [](double d) { return d >= 1.0; })))
+              : Json();
   fr["particles_moved_out"] = sim.contact_totals().particles_moved_out;  // a safeguard
   fr["particle_move_max"] = sim.contact_totals().particle_move_max;
   double kinetic = 0.0;
@@ -290,7 +298,8 @@ Json safeguards_json(const Simulation& sim) {
   const ConversionLedger* conv = sim.conversions();
   Json safe = Json::object();
   bool erodes = sim.model().erosion_step_ratio > 0;
-  for (const Material& m : sim.model().materials) erodes = erodes || m.erosion_plastic_strain > 0;
+  for (const Material& m : sim.model().materials)
+    erodes = erodes || m.erosion_plastic_strain > 0 || m.ductile_failure;
   safe["eroded"] = conv && erodes ? Json(conv->eroded) : Json();
   safe["particles_moved_out"] = conv ? Json(sim.contact_totals().particles_moved_out) : Json();
   return safe;

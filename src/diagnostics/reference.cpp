@@ -22,15 +22,45 @@ Vec3 cell_velocity(const Model& model, const State& st, Index t) {
   return 0.25 * (st.v[k[0]] + st.v[k[1]] + st.v[k[2]] + st.v[k[3]]);
 }
 
+// Does the ray o + s d, s > 0, meet the triangle (a, b, c)? Möller–Trumbore with closed
+// barycentric bounds (a ray through a shared edge meets a triangle on either side).
+bool ray_meets_triangle(const Vec3& o, const Vec3& d, const Vec3& a, const Vec3& b, const Vec3& c) {
+  const Vec3 e1 = b - a, e2 = c - a;
+  const Vec3 p = d.cross(e2);
+  const double det = e1.dot(p);
+  if (det == 0.0) return false;  // the ray parallel to the triangle's plane
+  const Vec3 q = o - a;
+  const double u = q.dot(p) / det;
+  if (u < 0.0 || u > 1.0) return false;
+  const Vec3 r = q.cross(e1);
+  const double v = d.dot(r) / det;
+  if (v < 0.0 || u + v > 1.0) return false;
+  return e2.dot(r) / det > 0.0;
+}
+
 // The debris beyond a reference's plane: particles (node indices) and cells of other bodies.
+// An item beyond the plane counts only where it is behind the plane's body as it stands: the
+// ray from it along the normal meets none of that body's surface faces (debris resting in the
+// dent of a bulged wall lies beyond the wall's original rear face, but in front of the wall).
 struct Debris {
   std::vector<Index> cells, particles;
 };
 Debris debris_beyond(const ReferenceSpec& r, const Model& model, const State& st) {
+  const std::vector<Surface>& surfaces = st.surfaces.empty() ? model.surfaces : st.surfaces;
+  std::vector<const Face*> own_faces;
+  for (const Surface& s : surfaces)
+    if (model.mesh.bodies[s.body].name == r.body)
+      for (const Face& f : s.faces) own_faces.push_back(&f);
+  const auto behind_body = [&](const Vec3& x) {
+    return std::none_of(own_faces.begin(), own_faces.end(), [&](const Face* f) {
+      return ray_meets_triangle(x, r.plane_normal, st.x[(*f)[0]], st.x[(*f)[1]], st.x[(*f)[2]]);
+    });
+  };
   const auto beyond = [&](const Vec3& x) {
     const Vec3 off = x - r.plane_point;
     const double along = off.dot(r.plane_normal);
-    return along > 0.0 && (r.within == 0.0 || (off - along * r.plane_normal).norm() <= r.within);
+    return along > 0.0 && (r.within == 0.0 || (off - along * r.plane_normal).norm() <= r.within) &&
+           behind_body(x);
   };
   const auto counted = [&](Index t) {
     const std::string& name = model.mesh.bodies[model.mesh.tet_body[t]].name;

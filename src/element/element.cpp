@@ -283,6 +283,7 @@ void share_tets(ElementScratch& scratch, State& st, unsigned what,
       io(st.p[t]);
       io(st.q[t]);
       io(st.eps_p[t]);
+      io(st.ductile[t]);
       io(st.sound2[t]);
       io(st.trace_d[t]);
       io(st.vol[t]);
@@ -597,6 +598,16 @@ ForceResult update_material(const std::vector<Tet>& tets, const std::vector<Mate
           // Erosion by strain: the cell is listed with those whose step is too short.
           if (mat.erosion_plastic_strain > 0.0 && st.eps_p[t] >= mat.erosion_plastic_strain)
             blocks[blk].eroding.push_back(ti);
+          // Ductile failure: D += Δε̄p / ε_f(σ*, ε̇p, T), σ* = −p / σ_eq with the pressure of
+          // the step's start and the returned deviator; eroded as the strain limit is, at D = 1.
+          if (mat.ductile_failure) {
+            const double eq = von_mises(s_new);
+            const double triax = eq > 0.0 ? -st.p[t] / eq : 0.0;
+            st.ductile[t] +=
+                inc.dplastic / johnson_cook_failure_strain(mat.johnson_cook_failure, triax,
+                                                           inc.dplastic / tau, st.temperature[t]);
+            if (st.ductile[t] >= 1.0) blocks[blk].eroding.push_back(ti);
+          }
         }
 
         // Viscosity from the mid-step strain rate; its work is the trapezoid of the values at

@@ -488,14 +488,75 @@ void read_strength(const Reader& r, const YAML::Node& m, const std::string& p, M
         r.positive(m["initial_temperature"], join(p, "initial_temperature"), "K");
 }
 
+// Johnson–Cook's failure constants (`johnson_cook_failure`, a library entry may carry them) and
+// the switch `ductile_failure`. The temperatures default to the strength law's.
+void read_ductile_failure(const Reader& r, const YAML::Node& m, const std::string& p,
+                          Material& mat) {
+  JohnsonCookFailure& f = mat.johnson_cook_failure;
+  if (const YAML::Node fn = m["johnson_cook_failure"]) {
+    const std::string fp = join(p, "johnson_cook_failure");
+    r.map(fn, fp);
+    r.keys(fn, fp,
+           {"D1", "D2", "D3", "D4", "D5", "reference_strain_rate", "room_temperature",
+            "melt_temperature", "min_strain", "source"});
+    f.d1 = r.number(r.require(fn, fp, "D1"), join(fp, "D1"));
+    for (const auto& [key, value] :
+         {std::pair{"D2", &f.d2}, {"D3", &f.d3}, {"D4", &f.d4}, {"D5", &f.d5}})
+      if (fn[key]) *value = r.number(fn[key], join(fp, key));
+    if (fn["reference_strain_rate"])
+      f.reference_rate =
+          r.positive(fn["reference_strain_rate"], join(fp, "reference_strain_rate"), "1/s");
+    if (fn["room_temperature"])
+      f.room_temperature = r.positive(fn["room_temperature"], join(fp, "room_temperature"), "K");
+    if (fn["melt_temperature"])
+      f.melt_temperature = r.positive(fn["melt_temperature"], join(fp, "melt_temperature"), "K");
+    if (fn["min_strain"])
+      f.min_strain = r.positive(fn["min_strain"], join(fp, "min_strain"), "dimensionless");
+  }
+  const bool jc = mat.strength == StrengthModel::johnson_cook;
+  if (f.room_temperature == 0.0)
+    f.room_temperature = jc ? mat.johnson_cook.room_temperature
+                         : mat.strength == StrengthModel::steinberg_guinan
+                             ? mat.steinberg_guinan.reference_temperature
+                             : 293.0;
+  if (f.melt_temperature == 0.0)
+    f.melt_temperature =
+        jc ? mat.johnson_cook.melt_temperature : mat.steinberg_guinan.melt_temperature;
+  if (const YAML::Node dn = m["ductile_failure"]) {
+    mat.ductile_failure = r.boolean(dn, join(p, "ductile_failure"));
+    if (mat.ductile_failure && !m["johnson_cook_failure"])
+      r.fail(dn, join(p, "ductile_failure"),
+             "ductile failure needs the material's johnson_cook_failure constants (D1 ... D5)");
+  }
+  if (mat.ductile_failure && f.d5 != 0.0 && !(f.melt_temperature > f.room_temperature))
+    r.fail(m["johnson_cook_failure"], join(p, "johnson_cook_failure"),
+           "D5 needs a melt temperature above the room temperature: give melt_temperature");
+}
+
 // One material's keys: density; elasticity as (youngs_modulus, poisson_ratio) or
 // (shear_modulus [, bulk_modulus]); optional strength; optional EOS.
 Material parse_material(const Reader& r, const YAML::Node& m, const std::string& p) {
   r.keys(m, p,
-         {"from", "density", "youngs_modulus", "poisson_ratio", "shear_modulus", "bulk_modulus",
-          "yield_stress", "hardening_modulus", "eos", "spall_strength", "loosening_limit",
-          "strength", "johnson_cook", "steinberg_guinan", "specific_heat", "taylor_quinney",
-          "initial_temperature", "erosion_plastic_strain"});
+         {"from",
+          "density",
+          "youngs_modulus",
+          "poisson_ratio",
+          "shear_modulus",
+          "bulk_modulus",
+          "yield_stress",
+          "hardening_modulus",
+          "eos",
+          "spall_strength",
+          "loosening_limit",
+          "strength",
+          "johnson_cook",
+          "steinberg_guinan",
+          "specific_heat",
+          "taylor_quinney",
+          "initial_temperature",
+          "erosion_plastic_strain",
+          "ductile_failure",
+          "johnson_cook_failure"});
   Material mat;
   mat.density = r.positive(r.require(m, p, "density"), join(p, "density"), "kg/m^3");
   const bool by_young = m["youngs_modulus"] || m["poisson_ratio"];
@@ -561,6 +622,7 @@ Material parse_material(const Reader& r, const YAML::Node& m, const std::string&
   if (m["erosion_plastic_strain"])
     mat.erosion_plastic_strain =
         r.non_negative(m["erosion_plastic_strain"], join(p, "erosion_plastic_strain"));
+  read_ductile_failure(r, m, p, mat);
   if (const YAML::Node l = m["loosening_limit"]) {
     mat.loosening_limit = r.number(l, join(p, "loosening_limit"));
     if (!(mat.loosening_limit > 0.0 && mat.loosening_limit < 1.0))
@@ -609,8 +671,9 @@ std::vector<Material> load_material_library(const std::string& path) {
 
 const std::vector<std::string>& known_output_fields() {
   static const std::vector<std::string> f = {
-      "displacement",   "velocity",        "stress",    "pressure", "body",       "von_mises",
-      "plastic_strain", "internal_energy", "viscosity", "damage",   "temperature"};
+      "displacement", "velocity",  "stress",         "pressure",
+      "body",         "von_mises", "plastic_strain", "internal_energy",
+      "viscosity",    "damage",    "temperature",    "ductile_damage"};
   return f;
 }
 

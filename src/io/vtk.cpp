@@ -246,6 +246,9 @@ Piece frame_piece(const Model& model, const State& st, const std::vector<std::st
                 [&](std::size_t i, int) { return st.e_int[cells[i]] / st.vol0[cells[i]]; });
     if (wants(fields, "viscosity"))
       out.array("Float64", "viscosity", 1, m, [&](std::size_t i, int) { return st.q[cells[i]]; });
+    if (wants(fields, "ductile_damage"))  // Johnson–Cook's D (failed at 1)
+      out.array("Float64", "ductile_damage", 1, m,
+                [&](std::size_t i, int) { return st.ductile[cells[i]]; });
     if (wants(fields, "temperature"))  // K
       out.array("Float64", "temperature", 1, m,
                 [&](std::size_t i, int) { return st.temperature[cells[i]]; });

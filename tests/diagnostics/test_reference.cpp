@@ -47,3 +47,66 @@ TEST(Reference, HoleDiameterAfterTheCentralCellsAreGone) {
   EXPECT_TRUE(r[0].judged);
   EXPECT_EQ(r[0].pass, std::abs(r[0].measured - 3.0) <= 3e-6);
 }
+
+// Perforation (issue 18) is debris behind the wall as it stands, not merely beyond its
+// original rear face: a plate bulged 2 units at its centre, with debris (a small cube of another
+// body) resting in the dent beyond the rear face's plane, is not perforated; the same debris
+// behind the bulge is; and through a hole (the central cells gone) debris just beyond the
+// plane is too.
+TEST(Reference, PerforationIsDebrisBehindTheDeformedWall) {
+  Model model;
+  add_body(model.mesh, "plate", make_box(Vec3(4, 4, 1), {4, 4, 1}, HexSplit::six));
+  add_body(model.mesh, "debris", make_box(Vec3(0.2, 0.2, 0.2), {1, 1, 1}, HexSplit::six));
+  model.materials = {test::aluminium()};
+  model.body_material = {0, 0};
+  model.surfaces = build_surfaces(model.mesh);
+  model.initial_velocity.assign(model.mesh.x.size(), Vec3::Zero());
+  State st = initial_state(model);
+  const BodyRange& plate = model.mesh.bodies[0];
+  const BodyRange& debris = model.mesh.bodies[1];
+  double rear = 0.0;
+  for (Index i = plate.node_begin; i < plate.node_end; ++i) rear = std::min(rear, st.x[i].z());
+  ASSERT_NEAR(rear, -0.5, 1e-12);
+  ReferenceSpec through;
+  through.name = "perforated";
+  through.measure = ReferenceSpec::Measure::perforated;
+  through.body = "plate";
+  through.plane_point = Vec3(0, 0, rear);
+  through.plane_normal = Vec3(0, 0, -1);
+  through.value = through.tolerance = std::nan("");
+  const auto place_debris = [&](double z) {  // its centre at (0.1, 0.1, z)
+    for (Index i = debris.node_begin; i < debris.node_end; ++i)
+      st.x[i] = model.mesh.x[i] + Vec3(0.1, 0.1, z);
+  };
+  const auto perforated = [&] {
+    const auto r = evaluate_references({through}, model, st);
+    EXPECT_TRUE(r[0].error.empty()) << r[0].error;
+    return r[0].measured;
+  };
+  place_debris(2.0);  // in front of the flat plate
+  EXPECT_EQ(perforated(), 0.0);
+  place_debris(-1.0);  // behind it
+  EXPECT_EQ(perforated(), 1.0);
+  // The bulge: nodes move back by 2 (1 − r/2.5), the centre's front face to z = −1.5.
+  for (Index i = plate.node_begin; i < plate.node_end; ++i) {
+    const double r = std::hypot(model.mesh.x[i].x(), model.mesh.x[i].y());
+    st.x[i].z() -= 2.0 * std::max(0.0, 1.0 - r / 2.5);
+  }
+  place_debris(-1.0);  // beyond the original rear face, but in the dent
+  EXPECT_EQ(perforated(), 0.0);
+  place_debris(-3.0);  // behind the bulge (its rear face at −2.5 at the centre)
+  EXPECT_EQ(perforated(), 1.0);
+  // A hole: the four central hexes gone (the surfaces without them, as fracture leaves them).
+  for (Index i = plate.node_begin; i < plate.node_end; ++i) st.x[i] = model.mesh.x[i];
+  std::vector<char> removed(model.mesh.tet_count(), 0);
+  for (Index t = plate.tet_begin; t < plate.tet_end; ++t) {
+    Vec3 c = Vec3::Zero();
+    for (Index k : model.mesh.tets[t]) c += 0.25 * model.mesh.x[k];
+    if (std::abs(c.x()) < 1 && std::abs(c.y()) < 1) removed[t] = 1, st.damage[t] = Damage::particle;
+  }
+  st.surfaces = build_surfaces(model.mesh, tet_neighbours(model.mesh), removed);
+  place_debris(-1.0);
+  EXPECT_EQ(perforated(), 1.0);
+  place_debris(2.0);
+  EXPECT_EQ(perforated(), 0.0);
+}

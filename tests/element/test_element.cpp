@@ -277,3 +277,61 @@ TEST_P(Failure, SpallDamagesAndLooseningDestroys) {
 }
 INSTANTIATE_TEST_SUITE_P(Pressure, Failure, ::testing::Values(false, true),
                          [](const auto& info) { return info.param ? "nodal" : "per_tet"; });
+
+// Johnson–Cook ductile damage (issue 18) in the element pass: a box of perfectly plastic
+// aluminium stretched step by step along x (F = diag(λ, λ^-1/2, λ^-1/2) a step) while its volume
+// grows (tension) or shrinks (compression) by J a step. Each step's damage increment is
+// Δε̄p / ε_f(σ*, Δε̄p/τ, T), σ* = −p/σ_eq from the step's starting pressure and the returned
+// deviator, to round-off; the cell is listed for erosion exactly when D reaches 1; the same
+// stretch under compression leaves D far lower (D3 < 0: triaxiality matters, with its sign).
+TEST(Element, DuctileDamageIsThePlasticStrainOverTheFailureStrain) {
+  Material mat = test::aluminium();
+  mat.yield_stress = 300e6;
+  mat.ductile_failure = true;
+  mat.johnson_cook_failure.d1 = 0.1;
+  mat.johnson_cook_failure.d2 = 0.5;
+  mat.johnson_cook_failure.d3 = -3.0;
+  mat.johnson_cook_failure.d4 = 0.01;
+  const Model m =
+      test::single_body_model(make_box(Vec3(0.01, 0.01, 0.01), {1, 1, 1}, HexSplit::six), mat);
+  ElementScratch scratch;
+  const double tau = 1e-8, lambda = 1.002;
+  struct Pulled {
+    int steps = 0;
+    double damage = 0.0;
+    bool listed = false;
+  };
+  const auto pull = [&](double j, int max_steps) {
+    State st = initial_state(m);
+    Mat3 F = Mat3::Zero();
+    F.diagonal() << lambda, 1.0 / std::sqrt(lambda), 1.0 / std::sqrt(lambda);
+    F *= std::cbrt(j);
+    Pulled out;
+    for (; out.steps < max_steps && !out.listed; ++out.steps) {
+      const std::vector<double> p0 = st.p, e0 = st.eps_p, d0 = st.ductile, temp0 = st.temperature;
+      for (std::size_t i = 0; i < st.x.size(); ++i) {
+        const Vec3 next = F * st.x[i];
+        st.v[i] = (next - st.x[i]) / tau;
+        st.x[i] = next;
+      }
+      const ForceResult r = update_material(m.mesh.tets, m.materials, m.element, tau, st, scratch);
+      for (std::size_t t = 0; t < st.p.size(); ++t) {
+        const double de = st.eps_p[t] - e0[t];
+        const double expected = de > 0.0 ? de / johnson_cook_failure_strain(
+                                                    mat.johnson_cook_failure,
+                                                    -p0[t] / von_mises(st.s[t]), de / tau, temp0[t])
+                                         : 0.0;
+        EXPECT_NEAR(st.ductile[t] - d0[t], expected, 1e-12) << "step " << out.steps << " tet " << t;
+      }
+      out.listed = std::find(r.eroding.begin(), r.eroding.end(), Index{0}) != r.eroding.end();
+      EXPECT_EQ(out.listed, st.ductile[0] >= 1.0) << "step " << out.steps;
+      out.damage = st.ductile[0];
+    }
+    return out;
+  };
+  const Pulled tension = pull(1.0 + 2e-5, 1000);
+  EXPECT_TRUE(tension.listed) << "D " << tension.damage << " after " << tension.steps << " steps";
+  const Pulled compression = pull(1.0 - 2e-5, tension.steps);
+  EXPECT_FALSE(compression.listed);
+  EXPECT_LT(compression.damage, 0.5);
+}

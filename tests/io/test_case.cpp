@@ -403,6 +403,10 @@ TEST(MaterialLibrary, CaseTakesAnEntryAndOverridesKeys) {
   EXPECT_EQ(m.johnson_cook.a, 90e6);
   EXPECT_EQ(m.johnson_cook.melt_temperature, 1356);
   EXPECT_EQ(m.specific_heat, 383);
+  // So do its fracture constants [JC85]; ductile failure stays off until a case turns it on.
+  EXPECT_FALSE(m.ductile_failure);
+  EXPECT_EQ(m.johnson_cook_failure.d2, 4.89);
+  EXPECT_EQ(m.johnson_cook_failure.melt_temperature, 1356);
   test::write_text(dir / "jc.yaml", replace(v, "from: ofhc-copper",
                                             "from: ofhc-copper\n    strength: johnson_cook"));
   const Case jc = load_case(dir / "jc.yaml");
@@ -552,6 +556,27 @@ TEST(CaseFile, MaterialAndWallErrors) {
        ":10:",
        "materials.al.johnson_cook.melt_temperature",
        "above the room temperature"},
+      {"ductile failure without constants",
+       replace(v, "    poisson_ratio: 0.3", "    poisson_ratio: 0.3\n    ductile_failure: true"),
+       {},
+       ":10:",
+       "materials.al.ductile_failure",
+       "needs the material's johnson_cook_failure constants"},
+      {"failure constants without D1",
+       replace(v, "    poisson_ratio: 0.3",
+               "    poisson_ratio: 0.3\n    johnson_cook_failure: {D2: 1.0}"),
+       {},
+       ":10:",
+       "materials.al.johnson_cook_failure.D1",
+       "missing required key"},
+      {"D5 without a melt temperature",
+       replace(v, "    poisson_ratio: 0.3",
+               "    poisson_ratio: 0.3\n    ductile_failure: true\n    johnson_cook_failure: {D1: "
+               "0.5, D5: 1.0}"),
+       {},
+       ":11:",
+       "materials.al.johnson_cook_failure",
+       "D5 needs a melt temperature"},
   };
   expect_errors(cases, "case-material-errors");
 }

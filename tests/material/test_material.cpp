@@ -441,3 +441,32 @@ TEST(Material, SteinbergGuinanAdiabaticSofteningFollowsTheExponential) {
   EXPECT_NEAR(von_mises(r.s) / (0.29e9 * std::exp(-k * r.eps)), 1.0, 2e-3);
   EXPECT_NEAR(r.temperature, 300.0 + (1.0 - std::exp(-k * r.eps)) / 6.16e-4, 0.5);
 }
+
+// Johnson–Cook's failure strain (issue 18) against its closed form, with 4340 steel's [JC85]
+// constants: ε_f = [D1 + D2 exp(D3 σ*)] [1 + D4 ln ε̇*] [1 + D5 T*]; no rate term below the
+// reference rate, T* clamped to [0, 1], and the floor where D1 < 0 makes it negative.
+TEST(Material, JohnsonCookFailureStrainIsItsClosedForm) {
+  JohnsonCookFailure f;
+  f.d1 = 0.05, f.d2 = 3.44, f.d3 = -2.12, f.d4 = 0.002, f.d5 = 0.61;
+  f.room_temperature = 293.0, f.melt_temperature = 1793.0;
+  // Uniaxial tension (σ* = 1/3) at the reference rate and room temperature.
+  const double uniaxial = 0.05 + 3.44 * std::exp(-2.12 / 3.0);
+  EXPECT_NEAR(johnson_cook_failure_strain(f, 1.0 / 3.0, 1.0, 293.0), uniaxial, 1e-15);
+  EXPECT_NEAR(uniaxial, 1.7469, 1e-4);  // the number by hand
+  // Higher triaxiality fails sooner (D3 < 0); compression later.
+  EXPECT_LT(johnson_cook_failure_strain(f, 1.0, 1.0, 293.0), uniaxial);
+  EXPECT_GT(johnson_cook_failure_strain(f, -0.3, 1.0, 293.0), uniaxial);
+  // Rate: 1 + D4 ln(ε̇/ε̇0) above the reference rate, none below it.
+  EXPECT_NEAR(johnson_cook_failure_strain(f, 1.0 / 3.0, 1e4, 293.0),
+              uniaxial * (1.0 + 0.002 * std::log(1e4)), 1e-14);
+  EXPECT_EQ(johnson_cook_failure_strain(f, 1.0 / 3.0, 1e-3, 293.0), uniaxial);
+  // Temperature: 1 + D5 T*, T* = 0.5 halfway to melt, clamped at melt and below room.
+  EXPECT_NEAR(johnson_cook_failure_strain(f, 1.0 / 3.0, 1.0, 1043.0), uniaxial * 1.305, 1e-14);
+  EXPECT_NEAR(johnson_cook_failure_strain(f, 1.0 / 3.0, 1.0, 5000.0), uniaxial * 1.61, 1e-14);
+  EXPECT_EQ(johnson_cook_failure_strain(f, 1.0 / 3.0, 1.0, 100.0), uniaxial);
+  // 6061-T6 [L01]: D1 = −0.77 makes ε_f negative above σ* ≈ 1.36: floored at min_strain.
+  JohnsonCookFailure al;
+  al.d1 = -0.77, al.d2 = 1.45, al.d3 = -0.47;
+  EXPECT_NEAR(johnson_cook_failure_strain(al, 0.0, 1.0, 293.0), 0.68, 1e-15);
+  EXPECT_EQ(johnson_cook_failure_strain(al, 2.0, 1.0, 293.0), al.min_strain);
+}

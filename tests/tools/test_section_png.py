@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""tools/section_png.py on the paper's cubes case: the t = 0 section areas against the exact
+"""tools/section_png.py (and sequence_png.py) on the paper's cubes case: the t = 0 section areas against the exact
 ones, the PNG decoded back (its red pixels are the reported overlap), and the on/off contrast
 (edge-edge contact on: no overlap at 20 us; off: the cubes overlap).
 
@@ -72,4 +72,19 @@ check(red_pixels(os.path.join(out, "off.png")) == off, "red pixels = reported ov
 r = subprocess.run([sys.executable, tool, os.path.join(out, "missing.vtu"), os.path.join(out, "x.png")],
                    capture_output=True, text=True)
 check(r.returncode == 2 and "missing.vtu: no such file" in r.stderr, "missing frame: " + r.stderr)
+
+# The picture sequence (tools/sequence_png.py): three frames of the edge-on run side by side
+# at one scale, times from case.pvd; a frame the run lacks is refused (exit 2).
+seq = os.path.join(src, "tools/sequence_png.py")
+r = subprocess.run([sys.executable, seq, os.path.join(out, "on"), os.path.join(out, "seq.png"),
+                    "--frames", "0,10,20", "--normal", "z"], capture_output=True, text=True)
+check(r.returncode == 0, "sequence: " + r.stderr)
+lines = re.findall(r"frame (\d+): t = ([0-9.e+-]+) s, (\d+) polygons cut", r.stdout)
+check([int(f) for f, _, _ in lines] == [0, 10, 20], "sequence frames: " + r.stdout)
+check(abs(float(lines[-1][1]) - 20e-6) < 1e-6 if lines else False, "last frame at 20 us")  # first step at or after
+check(all(int(n) > 0 for _, _, n in lines), "every panel cuts cells")
+check(open(os.path.join(out, "seq.png"), "rb").read()[:8] == b"\x89PNG\r\n\x1a\n", "PNG")
+r = subprocess.run([sys.executable, seq, os.path.join(out, "on"), os.path.join(out, "x.png"),
+                    "--frames", "99"], capture_output=True, text=True)
+check(r.returncode == 2 and "no frame 99" in r.stderr, "missing frame in a sequence: " + r.stderr)
 finish("section_png", " (overlap on %d, off %d pixels)" % (on, off))

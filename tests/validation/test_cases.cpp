@@ -190,15 +190,24 @@ TEST(Validation, StrainErosionTurnsCellsPastTheLimitIntoParticles) {
   const State& st = eroding->state();
   ASSERT_EQ(st.particle_count(), l.particles);
   for (const Index t : st.particle_tet) EXPECT_GE(st.eps_p[t], 1.0) << t;
-  // Without particles to turn cells into, the limit is refused, naming the key.
-  const Case bare = load_case(test::source_path("data/cases/taylor-aluminium.yaml"),
-                              {"materials.al.erosion_plastic_strain=1.0"});
-  try {
-    build_model(bare);
-    ADD_FAILURE() << "erosion without particles accepted";
-  } catch (const SetupError& e) {
-    EXPECT_NE(std::string(e.what()).find("materials.al.erosion_plastic_strain"), std::string::npos)
-        << e.what();
+  // Johnson–Cook's ductile failure with a constant failure strain (D1 = 1, D2–D5 = 0) is this
+  // same erosion: D = Σ Δε̄p / 1 = ε̄p, the same cells turned into particles at the same steps.
+  const auto ductile = coarse_aluminium_rod(
+      "8.0e-6", {"fracture.enabled=true", "materials.al.spall_strength=0",
+                 "materials.al.ductile_failure=true", "materials.al.johnson_cook_failure.D1=1.0"});
+  EXPECT_EQ(ductile->state().particle_tet, st.particle_tet);
+  EXPECT_EQ(ductile->state().x, st.x);
+  // Without particles to turn cells into, either is refused, naming the key.
+  for (const std::string key : {"erosion_plastic_strain=1.0", "ductile_failure=true"}) {
+    const Case bare =
+        load_case(test::source_path("data/cases/taylor-aluminium.yaml"), {"materials.al." + key});
+    try {
+      build_model(bare);
+      ADD_FAILURE() << key << " without particles accepted";
+    } catch (const SetupError& e) {
+      const std::string name = "materials.al." + key.substr(0, key.find('='));
+      EXPECT_NE(std::string(e.what()).find(name), std::string::npos) << e.what();
+    }
   }
 }
 
@@ -414,7 +423,7 @@ TEST(Validation, CylindersEdgeOnAndOff) {
 // speed, a cone, particles.
 TEST(Validation, WhippleCoarsePerforatesAboveTheLimitAndNotBelow) {
   const std::vector<std::string> coarse{"parameters.hb=1.0e-3", "parameters.hw=2.0e-3",
-                                        "parameters.np=6", "parameters.wb=16e-3"};
+                                        "parameters.np=6", "parameters.tear=5.0e-6"};
   const auto run = [&](std::vector<std::string> sets) {
     sets.insert(sets.end(), coarse.begin(), coarse.end());
     return run_case("data/cases/whipple.yaml", sets);

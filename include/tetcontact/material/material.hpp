@@ -54,6 +54,37 @@ struct SteinbergGuinan {
   double gamma0 = 0.0, a = 0.0;          // Lindemann's Γ0 and a
 };
 
+/// Johnson–Cook ductile failure (G. R. Johnson, W. H. Cook, Eng. Fract. Mech. 21, 31, 1985):
+/// damage accumulates with the plastic strain as
+///   D = Σ Δε̄p / ε_f,   ε_f = [D1 + D2 exp(D3 σ*)] [1 + D4 ln ε̇*] [1 + D5 T*],
+/// σ* = σ_m / σ_eq the stress triaxiality (mean stress over von Mises, tension > 0),
+/// ε̇* = max(ε̇p / ε̇0, 1), T* = (T − T_room) / (T_melt − T_room) clamped to [0, 1]; the cell
+/// fails at D = 1 (it is then eroded: turned into a particle). ε_f is floored at min_strain (a
+/// set with D1 < 0 gives a negative ε_f at high triaxiality).
+struct JohnsonCookFailure {
+  double d1 = 0.0, d2 = 0.0, d3 = 0.0, d4 = 0.0, d5 = 0.0;
+  double reference_rate = 1.0;    // ε̇0, 1/s
+  double room_temperature = 0.0;  // K (0: the strength law's reference temperature)
+  double melt_temperature = 0.0;  // K (0: the strength law's; none: no temperature term)
+  double min_strain = 0.01;       // floor of ε_f
+};
+
+/// ε_f of Johnson–Cook's failure law at triaxiality σ*, plastic strain rate ε̇p and
+/// temperature T.
+inline double johnson_cook_failure_strain(const JohnsonCookFailure& f, double triaxiality,
+                                          double rate, double temperature) {
+  const double stress = f.d1 + f.d2 * std::exp(std::min(f.d3 * triaxiality, 50.0));
+  const double star = rate / f.reference_rate;
+  const double rate_factor = star > 1.0 ? 1.0 + f.d4 * std::log(star) : 1.0;
+  double thermal = 1.0;
+  if (f.melt_temperature > f.room_temperature) {
+    const double ts =
+        (temperature - f.room_temperature) / (f.melt_temperature - f.room_temperature);
+    thermal = 1.0 + f.d5 * std::clamp(ts, 0.0, 1.0);
+  }
+  return std::max(stress * rate_factor * thermal, f.min_strain);
+}
+
 struct Material {
   std::string name;
   double density = 0.0;        // ρ0, kg/m³
@@ -83,6 +114,10 @@ struct Material {
   // Erosion by strain (issue 17, a hydrocode safeguard; needs fracture with particles): a cell
   // whose equivalent plastic strain reaches this becomes a particle. 0: off.
   double erosion_plastic_strain = 0.0;
+  // Ductile failure (issue 18; needs fracture with particles): Johnson–Cook's damage D, a cell
+  // eroded at D = 1. Off unless ductile_failure is set; the constants may come from a library.
+  bool ductile_failure = false;
+  JohnsonCookFailure johnson_cook_failure;
 
   bool plastic() const { return strength != StrengthModel::bilinear || yield_stress > 0.0; }
   bool thermal() const { return specific_heat > 0.0; }

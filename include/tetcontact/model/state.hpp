@@ -36,6 +36,7 @@ struct State {
   std::vector<double> q;            // artificial bulk viscosity (a pressure, ≥ 0)
   std::vector<double> e_int;        // internal energy, J (elastic + plastic work + viscous heat)
   std::vector<double> eps_p;        // equivalent plastic strain ε̄p
+  std::vector<double> ductile;      // Johnson–Cook's ductile damage D (failed at 1)
   std::vector<double> w_plastic;    // plastic work, J
   std::vector<double> w_viscous;    // viscous dissipation, J
   std::vector<double> sound2;       // current dilatational sound speed squared, m²/s²
