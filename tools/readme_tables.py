@@ -21,6 +21,9 @@ never retyped).
     tools/readme_tables.py whipple-mesh BINARY              the shipped Whipple shield on three
                                                             meshes (coarse, medium, default) on
                                                             2 threads: measures and run times
+    tools/readme_tables.py whipple-hole BINARY              the bumper's hole at 8 µs on four
+                                                            meshes (the fourth: 3 cells through
+                                                            the bumper), 2 threads
     tools/readme_tables.py strength BINARY                  the strength laws side by side: the
                                                             aluminium Taylor rod and the 6061-T6
                                                             plate impact's precursor (HEL) under
@@ -489,11 +492,36 @@ def whipple_mesh(binary, work):
               flush=True)
 
 
+WHIPPLE_HOLE_MESHES = WHIPPLE_MESHES + [  # and a fourth: three cells through the bumper
+    ("fine: 0.33 mm (wall 1 mm), 12 across", ["parameters.hb=0.333e-3", "parameters.np=12"]),
+]
+
+
+def whipple_hole(binary, work):
+    """The bumper's hole at 8 µs (the debris has just reached the wall) on four meshes."""
+    print("| mesh | tets | steps, wall time (2 threads) | hole at 8 µs | leading edge | "
+          "cells failed (ductile) | energy balance |")
+    print("|---|---|---|---|---|---|---|")
+    for k, (what, sets) in enumerate(WHIPPLE_HOLE_MESHES):
+        extra = ["--threads", "2", "--set", "parameters.end=8.0e-6"]
+        for kv in sets:
+            extra += ["--set", kv]
+        s, _ = run(binary, os.path.join(ROOT, "data/cases/whipple.yaml"),
+                   os.path.join(work, f"hole{k}"), extra)
+        m = {r["name"]: r["measured"] for r in s["references"]}
+        print(f"| {what} | {s['mesh']['tets']:,} | {s['steps']:,}, {s['wall_seconds']:.0f} s | "
+              f"{m['bumper hole diameter'] * 1e3:.1f} mm | "
+              f"{m['debris leading-edge speed']:,.0f} m/s | "
+              f"{s['fracture']['ductile_failed']:,} | {g(s['energy']['balance_error'])} |",
+              flush=True)
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawTextHelpFormatter)
     ap.add_argument("table",
                     choices=["stability", "micro", "profile", "threads", "verify", "verify-full",
-                             "mpi", "strength", "whipple", "whipple-mesh"])
+                             "mpi", "strength", "whipple", "whipple-mesh",
+                             "whipple-hole"])
     ap.add_argument("binary")
     ap.add_argument("--work", help="keep the runs here (default: a temporary folder)")
     ap.add_argument("--cases", nargs="*", help="threads: only the cases whose file names "
@@ -515,6 +543,8 @@ def main():
         whipple(os.path.abspath(a.binary), a.work or tempfile.mkdtemp(prefix="whipple-"))
     elif a.table == "whipple-mesh":
         whipple_mesh(os.path.abspath(a.binary), a.work or tempfile.mkdtemp(prefix="whipple-mesh-"))
+    elif a.table == "whipple-hole":
+        whipple_hole(os.path.abspath(a.binary), a.work or tempfile.mkdtemp(prefix="whipple-hole-"))
     elif a.table == "strength":
         strength(os.path.abspath(a.binary), a.work or tempfile.mkdtemp(prefix="strength-"))
     else:

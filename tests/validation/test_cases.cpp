@@ -442,15 +442,15 @@ TEST(Validation, WhippleCoarsePerforatesAboveTheLimitAndNotBelow) {
   EXPECT_GT(measured(above, "mass through the wall"), 0.0);
   EXPECT_GT(measured(above, "momentum through the wall"), 0.0);  // along the shot
   const double lead = measured(above, "debris leading-edge speed");
-  EXPECT_GT(lead, 0.8 * 6500.0);  // 5,889 m/s measured
+  EXPECT_GT(lead, 0.8 * 6500.0);  // 6,326 m/s measured
   EXPECT_LT(lead, 1.1 * 6500.0);
-  const double cone = measured(above, "debris cone half-angle");  // 44.8° measured
+  const double cone = measured(above, "debris cone half-angle");  // 44° measured
   EXPECT_GT(cone, 10.0);
   EXPECT_LT(cone, 80.0);
   EXPECT_GT(measured(above, "debris mass in particles"), 0.0);
   EXPECT_GT(measured(above, "bumper hole diameter"), 4.0e-3);  // wider than the sphere
   EXPECT_LT(above.momentum_error, 1e-12);
-  EXPECT_LT(above.balance_error_max, 1e-3);  // 1.8e-4 measured
+  EXPECT_LT(above.balance_error_max, 1e-3);  // 5.1e-5 measured
 
   const std::vector<std::string> thick{"parameters.S=30e-3", "parameters.tw=8e-3"};
   const Outcome below = run(thick);
