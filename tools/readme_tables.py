@@ -471,18 +471,24 @@ WHIPPLE_MESHES = [  # (what, sets): the shipped shield on three meshes, the same
 ]
 
 
+def whipple_meshes(binary, work, meshes, extra, prefix):
+    """Runs the Whipple case once per mesh (2 threads, `extra` --set values): yields the row's
+    label, the summary and its measures by name."""
+    for k, (what, sets) in enumerate(meshes):
+        args = ["--threads", "2"]
+        for kv in extra + sets:
+            args += ["--set", kv]
+        s, _ = run(binary, os.path.join(ROOT, "data/cases/whipple.yaml"),
+                   os.path.join(work, f"{prefix}{k}"), args)
+        yield what, s, {r["name"]: r["measured"] for r in s["references"]}
+
+
 def whipple_mesh(binary, work):
     """The shipped Whipple shield on three meshes: the measures and the run time of each."""
     print("| mesh | tets | steps, wall time (2 threads) | hole | leading edge | cone half-angle | "
           "debris | wall perforated: mass through | cells failed (ductile) | energy balance |")
     print("|---|---|---|---|---|---|---|---|---|---|")
-    for k, (what, sets) in enumerate(WHIPPLE_MESHES):
-        extra = ["--threads", "2"]
-        for kv in sets:
-            extra += ["--set", kv]
-        s, _ = run(binary, os.path.join(ROOT, "data/cases/whipple.yaml"),
-                   os.path.join(work, f"mesh{k}"), extra)
-        m = {r["name"]: r["measured"] for r in s["references"]}
+    for what, s, m in whipple_meshes(binary, work, WHIPPLE_MESHES, [], "mesh"):
         print(f"| {what} | {s['mesh']['tets']:,} | {s['steps']:,}, {s['wall_seconds']:.0f} s | "
               f"{m['bumper hole diameter'] * 1e3:.1f} mm | "
               f"{m['debris leading-edge speed']:,.0f} m/s | {m['debris cone half-angle']:.0f}° | "
@@ -502,13 +508,8 @@ def whipple_hole(binary, work):
     print("| mesh | tets | steps, wall time (2 threads) | hole at 8 µs | leading edge | "
           "cells failed (ductile) | energy balance |")
     print("|---|---|---|---|---|---|---|")
-    for k, (what, sets) in enumerate(WHIPPLE_HOLE_MESHES):
-        extra = ["--threads", "2", "--set", "parameters.end=8.0e-6"]
-        for kv in sets:
-            extra += ["--set", kv]
-        s, _ = run(binary, os.path.join(ROOT, "data/cases/whipple.yaml"),
-                   os.path.join(work, f"hole{k}"), extra)
-        m = {r["name"]: r["measured"] for r in s["references"]}
+    for what, s, m in whipple_meshes(binary, work, WHIPPLE_HOLE_MESHES,
+                                     ["parameters.end=8.0e-6"], "hole"):
         print(f"| {what} | {s['mesh']['tets']:,} | {s['steps']:,}, {s['wall_seconds']:.0f} s | "
               f"{m['bumper hole diameter'] * 1e3:.1f} mm | "
               f"{m['debris leading-edge speed']:,.0f} m/s | "
