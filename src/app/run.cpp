@@ -135,9 +135,10 @@ Json bodies_json(const Model& model, const State& st) {
     Json o = Json::object();
     o["name"] = b.name;
     o["mass"] = b.mass;
-    o["velocity"] = b.velocity;
-    o["bbox_min"] = b.bbox_min;
-    o["bbox_max"] = b.bbox_max;
+    o["velocity"] = b.velocity;  // NaN, so null, for a body with no cell left
+    // A body with no cell left (all particles) has no extent: its orphaned nodes are not one.
+    o["bbox_min"] = b.mass > 0.0 ? Json(b.bbox_min) : Json();
+    o["bbox_max"] = b.mass > 0.0 ? Json(b.bbox_max) : Json();
     bodies.push_back(o);
   }
   return bodies;
@@ -393,9 +394,13 @@ void print_table(const Case& c, const Simulation& sim, const std::string& status
   os << "  momentum   initial " << fmt3(first.momentum) << "   final " << fmt3(last.momentum)
      << " kg m/s\n";
   for (const BodyStats& b : body_stats(sim.model(), sim.state()))
-    os << "  body       " << b.name << ": mass " << fmt(b.mass) << " kg, velocity "
-       << fmt3(b.velocity) << " m/s, bbox " << fmt3(b.bbox_min) << " – " << fmt3(b.bbox_max)
-       << " m\n";
+    if (b.mass > 0.0)
+      os << "  body       " << b.name << ": mass " << fmt(b.mass) << " kg, velocity "
+         << fmt3(b.velocity) << " m/s, bbox " << fmt3(b.bbox_min) << " – " << fmt3(b.bbox_max)
+         << " m\n";
+    else  // no velocity to average: not a NaN printed as one
+      os << "  body       " << b.name
+         << ": no cell left, all turned into particles (summary.fracture.from_bodies)\n";
   const double total = sim.profile().total();
   os << "  timings   ";
   for (const auto& [name, s] : sim.profile().stages)
