@@ -31,6 +31,8 @@ def main(argv):
     title = None
     if "--title" in argv:
         i = argv.index("--title")
+        if i + 1 >= len(argv):
+            fail("--title needs a text")
         title = argv[i + 1]
         del argv[i:i + 2]
     if "--shield" not in argv:
