@@ -81,3 +81,50 @@ TEST(Architecture, ModelIsTheDataLayer) {
   EXPECT_EQ(order[3], "model");
   EXPECT_EQ(order.back(), "app");
 }
+
+// The project speaks of itself alone: no tracker numbers, no work-log words and no shorthand
+// for the two papers in the manual, the sources, the tests, the tools or the case files (a
+// paper is named by its authors). The words are spelled in pieces here so that this file does
+// not find itself.
+TEST(Architecture, NoTrackerNumbersOrLogWordsInTheTree) {
+  const std::vector<std::regex> banned = {std::regex("\\biss"
+                                                     "ues? #?[0-9]",
+                                                     std::regex::icase),
+                                          std::regex("\\bsess"
+                                                     "ions?\\b",
+                                                     std::regex::icase),
+                                          std::regex("\\bse"
+                                                     "ed (document|paper|0)",
+                                                     std::regex::icase),
+                                          std::regex("\\bse"
+                                                     "eds? 0",
+                                                     std::regex::icase)};
+  const std::vector<std::string> extensions = {".md",   ".cpp",   ".hpp", ".py",
+                                               ".yaml", ".cmake", ".txt"};
+  std::vector<fs::path> files = {
+      tc::test::source_path("README.md"), tc::test::source_path("ARCHITECTURE.md"),
+      tc::test::source_path("CMakeLists.txt"), tc::test::source_path("Makefile"),
+      tc::test::source_path("data/materials.yaml")};
+  for (const char* root : {"docs", "src", "include", "tests", "tools", "bench", "data/cases"}) {
+    const fs::path dir = tc::test::source_path(root);
+    if (!fs::is_directory(dir)) continue;
+    for (const auto& e : fs::recursive_directory_iterator(dir))
+      if (e.is_regular_file() && std::find(extensions.begin(), extensions.end(),
+                                           e.path().extension().string()) != extensions.end())
+        files.push_back(e.path());
+  }
+  long lines = 0;
+  for (const fs::path& file : files) {
+    std::ifstream in(file);
+    ASSERT_TRUE(in) << file;
+    long number = 0;
+    for (std::string line; std::getline(in, line);) {
+      ++number;
+      ++lines;
+      for (const std::regex& word : banned)
+        EXPECT_FALSE(std::regex_search(line, word))
+            << file.string() << ":" << number << ": " << line;
+    }
+  }
+  EXPECT_GT(lines, 20000);  // the scan saw the tree
+}

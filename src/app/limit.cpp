@@ -12,6 +12,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -132,7 +133,8 @@ struct Bracket {
   double a = 0.0, b = 0.0;
   int value_a = -1, value_b = -1;
   int runs = 0, reused = 0;
-  double wall = 0.0;
+  double wall = 0.0;     // the search's elapsed time, s
+  double run_sum = 0.0;  // the runs' own wall times added up (runs go side by side), s
   std::string status = "ok";
 };
 
@@ -199,6 +201,7 @@ int limit_command(const LimitOptions& o) {
   for (const std::string& w : values) {
     Bracket br;
     br.vary_value = w;
+    const auto started = std::chrono::steady_clock::now();
     const std::string group =
         dir + "/runs/" + (o.vary.empty() ? "all" : o.vary.front().first + "=" + w);
     std::map<std::string, Run> known;  // by the value's text
@@ -210,8 +213,10 @@ int limit_command(const LimitOptions& o) {
         Run& r = known[key];
         r.x = x;
         r.dir = group + "/" + o.find + "=" + key;
-        r.args = {"run",     o.case_path, "--out", r.dir,   "--force",
-                  "--quiet", "--threads", "1",     "--set", o.find + "=" + key};
+        // Not quiet: run.log keeps the run's table, notes and warnings (no progress bar: the
+        // log is not a terminal).
+        r.args = {"run", o.case_path, "--out",           r.dir, "--force", "--threads",
+                  "1",   "--set",     o.find + "=" + key};
         if (!o.vary.empty()) r.args.insert(r.args.end(), {"--set", o.vary.front().first + "=" + w});
         for (const std::string& s : o.overrides) r.args.insert(r.args.end(), {"--set", s});
         if (read_run(r, measure_name)) {
@@ -266,7 +271,8 @@ int limit_command(const LimitOptions& o) {
     br.b = b;
     br.value_a = value(a).value;
     br.value_b = value(b).value;
-    for (const auto& [key, r] : known) br.wall += r.reused ? 0.0 : r.wall;
+    for (const auto& [key, r] : known) br.run_sum += r.reused ? 0.0 : r.wall;
+    br.wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
     if (br.status != "ok") code = 1;
     if (!o.quiet)
       std::cerr << "limit: " << (w.empty() ? "" : o.vary.front().first + "=" + w + ": ") << o.find
@@ -277,12 +283,12 @@ int limit_command(const LimitOptions& o) {
 
   std::ostringstream csv;
   csv << (o.vary.empty() ? "" : csv_field(o.vary.front().first) + ",")
-      << "key,lo,hi,criterion_lo,criterion_hi,runs,reused,wall_seconds,status\n";
+      << "key,lo,hi,criterion_lo,criterion_hi,runs,reused,wall_seconds,run_seconds,status\n";
   for (const Bracket& br : brackets) {
     if (!o.vary.empty()) csv << csv_field(br.vary_value) << ',';
     csv << csv_field(o.find) << ',' << fmt(br.a) << ',' << fmt(br.b) << ',' << br.value_a << ','
         << br.value_b << ',' << br.runs << ',' << br.reused << ',' << fmt(br.wall) << ','
-        << csv_field(br.status) << '\n';
+        << fmt(br.run_sum) << ',' << csv_field(br.status) << '\n';
   }
   write_file_atomic(dir + "/limit.csv", csv.str());
   std::cout << "written: " << dir << "/limit.csv\n";

@@ -66,7 +66,8 @@ CLI::App* add_run(CLI::App& app, tc::RunOptions& o) {
                   "refused");
   cmd->add_flag("--force", o.force, "reuse a non-empty --out, replacing a previous run's files");
   add_overrides(cmd, o.overrides);
-  cmd->add_flag("--quiet", o.quiet, "no progress and no final table");
+  cmd->add_flag("--quiet", o.quiet,
+                "no progress and no final table (notes and warnings still go to stderr)");
   cmd->add_flag("--check", o.check,
                 "exit 1 when the run misses a bound of the case's `expect:` or a value of its "
                 "`reference:` (summary.json lists them in any case)");
@@ -161,7 +162,7 @@ CLI::App* add_sweep(CLI::App& app, tc::SweepOptions& w) {
   cmd->footer(
       "Writes DIR/sweep.csv: per run the varied values, status, wall_seconds, steps, tets,\n"
       "error, each declared reference's error, momentum_error, energy_balance_max,\n"
-      "penetration_depth_over_h and crossings. Plot with tools/plot_sweep.py DIR/sweep.csv.\n"
+      "penetration_depth_over_h and crossings. Plot with tools/post/plot_sweep.py DIR/sweep.csv.\n"
       "Exit codes: 0, 1 a run failed (its row says so), 2 bad input (nothing run).");
   return cmd;
 }
@@ -203,7 +204,9 @@ CLI::App* add_limit(CLI::App& app, tc::LimitOptions& l) {
       "Each run is `tetcontact run` into DIR/runs/<KEY2=w>/<KEY=x>/ (summary.json, run.log);\n"
       "a run whose summary.json is there is read, not run again, so an interrupted search\n"
       "resumes. Writes DIR/limit.csv: per bracket the key, its ends, the criterion at each,\n"
-      "runs, reused runs, wall seconds and status.\n"
+      "runs, reused runs, wall_seconds (the search's elapsed time), run_seconds (the runs'\n"
+      "own times added up; they run side by side) and status. Each run.log holds that run's\n"
+      "table, notes and warnings.\n"
       "Exit codes: 0 every bracket found, 1 one was not (its line says why), 2 bad input.");
   return cmd;
 }
@@ -338,7 +341,7 @@ int tetcontact_main(int argc, char** argv) {
   if (tc::mpi::ranks() > 1 && !run_cmd->parsed()) {
     if (tc::mpi::rank() == 0)
       std::cerr << "tetcontact: error: started as one of " << tc::mpi::ranks()
-                << " processes: only `run` runs distributed (issue 16); run this command as one "
+                << " processes: only `run` runs distributed; run this command as one "
                    "process, with --threads N for the cores of a machine\n";
     return k_bad_usage;
   }

@@ -337,7 +337,7 @@ Json summary_json(const Case& c, const Simulation& sim, const OutputWriter& writ
   j["schema"] = "tetcontact.summary/1";
   j["case"] = c.name;
   j["case_file"] = c.file;
-  if (!c.parameters.empty()) {  // the values the case's expressions used (issue 18)
+  if (!c.parameters.empty()) {  // the values the case's expressions used
     Json params = Json::object();
     for (const auto& [name, value] : c.parameters) params[name] = value;
     j["parameters"] = params;
@@ -432,7 +432,7 @@ Json parallel_json(const Simulation& sim, double communication) {
   Json j = Json::object();
   j["ranks"] = p.ranks;
   j["threads"] = parallel::threads();
-  // Issue 16's first increment: every rank holds the whole state and repeats all but the
+  // Distributed runs: every rank holds the whole state and repeats all but the
   // element stage, whose tets are cut between the ranks, and the verification's exact tests.
   j["distributed"] =
       p.ranks > 1 ? Json("element stage, verification tests; state replicated") : Json();
@@ -464,8 +464,9 @@ int check_case(const RunOptions& o) {
       Simulation sim(std::move(model), solver_settings(c));
       std::cout << c.file << ": ok — case '" << c.name << "', " << names.size() << " bodies, "
                 << nodes << " nodes, " << tets << " tets; first time step " << fmt(sim.state().dt)
-                << " s, about " << fmt(std::ceil(c.end_time / sim.state().dt), "%.0f")
-                << " steps to " << fmt(c.end_time) << " s\n";
+                << " s: " << fmt(std::ceil(c.end_time / sim.state().dt), "%.0f") << " steps to "
+                << fmt(c.end_time)
+                << " s if the step kept that size (an impact shrinks it: expect more)\n";
     } catch (const RunFailure& e) {
       throw SetupError(c.file + ": " + e.what());
     }
@@ -483,7 +484,9 @@ int run_case(const RunOptions& o) {
     c = load_case(o.case_path, o.overrides);
     std::vector<std::string> notes;
     Model model = build_model(c, &notes);
-    if (!o.quiet)
+    // Notes, warnings and regime statements go to stderr even under --quiet (which silences
+    // only the progress and the table): a batch of runs keeps them in its logs.
+    if (root)
       for (const std::string& n : notes) std::cerr << "tetcontact: note: " << n << "\n";
     try {
       sim = std::make_unique<Simulation>(std::move(model), solver_settings(c));
@@ -491,7 +494,7 @@ int run_case(const RunOptions& o) {
       throw SetupError(c.file + ": " + e.what());
     }
     warnings = mach_warnings(c, sim->model());
-    if (!o.quiet && root) {
+    if (root) {
       for (const std::string& w : warnings) std::cerr << "tetcontact: warning: " << w << "\n";
       for (const std::string& n : regime_notes(c, sim->model()))
         std::cerr << "tetcontact: regime: " << n << "\n";
@@ -536,7 +539,7 @@ int run_case(const RunOptions& o) {
       for (; falls < sim->step_collapses().size(); ++falls) {
         const std::string w = sim->step_collapses()[falls].message();
         warnings.push_back(w);
-        if (root && !o.quiet) std::cerr << "\ntetcontact: warning: " << w << "\n";
+        if (root) std::cerr << (o.quiet ? "" : "\n") << "tetcontact: warning: " << w << "\n";
       }
     }
     sim->finish();
@@ -611,6 +614,8 @@ int report_run(const RunOptions& o, const Case& c, const Simulation& s, OutputWr
     for (const ReferenceResult& r : refs) {
       Json o = Json::object();
       o["name"] = r.spec->name;
+      o["measure"] = name_of(ReferenceSpec::k_measure_names, r.spec->measure);
+      o["unit"] = name_of(ReferenceSpec::k_measure_units, r.spec->measure);
       o["measured"] = r.measured;
       o["reference"] = r.judged ? Json(r.spec->value) : Json();  // null: measured only
       o["relative_error"] = r.judged ? Json(r.relative_error) : Json();
@@ -629,19 +634,21 @@ int report_run(const RunOptions& o, const Case& c, const Simulation& s, OutputWr
   write_file_atomic(dir + "/summary.json", summary.dump(2) + "\n");
   if (!o.quiet || code != 0) {
     print_table(c, *sim, status, dir, writer.frames(), wall);
-    for (const ReferenceResult& r : refs)
+    for (const ReferenceResult& r : refs) {
+      const std::string unit(name_of(ReferenceSpec::k_measure_units, r.spec->measure));
+      const std::string u = unit.empty() ? "" : " " + unit;
       if (!r.error.empty())
         std::printf("  reference  %-28s not measured: %s\n", r.spec->name.c_str(), r.error.c_str());
       else if (!r.judged)
-        std::printf("  measure    %-28s %.5g\n", r.spec->name.c_str(), r.measured);
+        std::printf("  measure    %-28s %.5g%s\n", r.spec->name.c_str(), r.measured, u.c_str());
       else
         std::printf(
-            "  %-10s %-28s measured %-11.5g reference %-11.5g error %+7.2f%% (tolerance "
-            "%.1f%%) "
-            "%s\n",
+            "  %-10s %-28s measured %.5g%s, reference %.5g%s, error %+.2f%% (tolerance "
+            "%.1f%%) %s\n",
             r.spec->kind == "regression" ? "regression" : "reference", r.spec->name.c_str(),
-            r.measured, r.spec->value, 100 * r.relative_error, 100 * r.spec->tolerance,
-            r.pass ? "pass" : "FAIL");
+            r.measured, u.c_str(), r.spec->value, u.c_str(), 100 * r.relative_error,
+            100 * r.spec->tolerance, r.pass ? "pass" : "FAIL");
+    }
   }
   if (!o.quiet || code != 0) std::cout << expect_lines;
   if (o.check && code != 0 && status == "ok")

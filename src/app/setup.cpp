@@ -244,42 +244,58 @@ std::vector<std::string> mach_report(const Case& c, const Model& model, bool not
     }
     velocity[b] /= mass[b];
   }
-  auto check = [&](std::size_t b, double u0, const std::string& against) {
+  // What the paper's models say of body b's material at impact Mach number m0: `notes`, the
+  // statement of the hydrodynamic range; else the warning; "" when there is nothing to say.
+  const auto judge = [&](std::size_t b, double m0) -> std::string {
     const Material& mat = model.materials[model.body_material[b]];
-    const double m0 = u0 / mat.bulk_sound_speed();
+    if (notes)
+      return m0 > 0.75 && m0 < 1.5 && mat.eos == EosKind::mie_gruneisen
+                 ? " is in the paper's hydrodynamic range (0.75 < M0 < 1.5): the "
+                   "Mie-Gruneisen EOS carries the shock; melting's latent heat, vaporisation "
+                   "and the EOS far off the Hugoniot are not modelled"
+                 : "";
+    if (m0 >= 1.5) return " is beyond the paper's models (M0 < 1.5)";
+    if (m0 > 0.75 && mat.eos == EosKind::linear)
+      return " is above 0.75, where the paper leaves the elastic-plastic model with a linear "
+             "EOS for a hydrodynamic one: give material '" +
+             mat.name + "' a mie_gruneisen eos";
+    return "";
+  };
+  const auto c0 = [&](std::size_t b) {
+    return model.materials[model.body_material[b]].bulk_sound_speed();
+  };
+  const auto mach = [&](double m0, double u0, double c) {
     char buf[64];
     std::snprintf(buf, sizeof buf, "%.3g", m0);
-    const std::string head =
-        "body '" + model.mesh.bodies[b].name + "' against " + against +
-        ": impact Mach number M0 = " + buf +
-        " (U0 = " + std::to_string(static_cast<long>(std::lround(u0))) +
-        " m/s, C0 = " + std::to_string(static_cast<long>(std::lround(mat.bulk_sound_speed()))) +
-        " m/s)";
-    if (notes) {
-      if (m0 > 0.75 && m0 < 1.5 && mat.eos == EosKind::mie_gruneisen)
-        out.push_back(head +
-                      " is in the paper's hydrodynamic range (0.75 < M0 < 1.5): the "
-                      "Mie-Gruneisen EOS carries the shock; melting's latent heat, vaporisation "
-                      "and the EOS far off the Hugoniot are not modelled");
-      return;
-    }
-    if (m0 >= 1.5)
-      out.push_back(head + " is beyond the paper's models (M0 < 1.5)");
-    else if (m0 > 0.75 && mat.eos == EosKind::linear)
-      out.push_back(head +
-                    " is above 0.75, where the paper leaves the elastic-plastic model with "
-                    "a linear EOS for a hydrodynamic one: give material '" +
-                    mat.name + "' a mie_gruneisen eos");
+    return std::string("impact Mach number M0 = ") + buf +
+           " (U0 = " + std::to_string(static_cast<long>(std::lround(u0))) +
+           " m/s, C0 = " + std::to_string(static_cast<long>(std::lround(c))) + " m/s)";
   };
+  const auto name = [&](std::size_t b) { return "'" + model.mesh.bodies[b].name + "'"; };
   for (std::size_t a = 0; a < nb; ++a) {
+    // A pair of bodies: one line when both are judged alike (the same sound speed and the same
+    // statement), else a line for each body that has one.
     for (std::size_t b = a + 1; b < nb; ++b) {
       const double u0 = (velocity[a] - velocity[b]).norm();
-      check(a, u0, "body '" + model.mesh.bodies[b].name + "'");
-      check(b, u0, "body '" + model.mesh.bodies[a].name + "'");
+      const std::string ja = judge(a, u0 / c0(a)), jb = judge(b, u0 / c0(b));
+      if (!ja.empty() && ja == jb && c0(a) == c0(b)) {
+        out.push_back("bodies " + name(a) + " and " + name(b) + ": " + mach(u0 / c0(a), u0, c0(a)) +
+                      ja);
+        continue;
+      }
+      if (!ja.empty())
+        out.push_back("body " + name(a) + " against body " + name(b) + ": " +
+                      mach(u0 / c0(a), u0, c0(a)) + ja);
+      if (!jb.empty())
+        out.push_back("body " + name(b) + " against body " + name(a) + ": " +
+                      mach(u0 / c0(b), u0, c0(b)) + jb);
     }
     for (const RigidWall& w : c.walls) {
       const double u0 = std::max(0.0, -velocity[a].dot(w.normal));
-      if (u0 > 0.0) check(a, u0, "wall '" + w.name + "'");
+      if (u0 <= 0.0) continue;
+      if (const std::string j = judge(a, u0 / c0(a)); !j.empty())
+        out.push_back("body " + name(a) + " against wall '" + w.name +
+                      "': " + mach(u0 / c0(a), u0, c0(a)) + j);
     }
   }
   return out;

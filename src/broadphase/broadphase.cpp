@@ -147,8 +147,8 @@ class Sweep : public Broadphase {
   }
 };
 
-// Seed 001's spatial index: a virtual uniform grid of cubes (i, j, k), hashed into a flat
-// table of buckets; each box is entered in every cube it overlaps with that cube's
+// The contact-boundary notes' spatial index: a virtual uniform grid of cubes (i, j, k), hashed into
+// a flat table of buckets; each box is entered in every cube it overlaps with that cube's
 // coordinates. A node finds the faces in its cubes; two edges pair in the one cube that holds
 // the lower corner of their boxes' intersection (both boxes cover it), so each pair comes
 // once. Queries run on the threads; the candidates come out sorted.

@@ -44,7 +44,8 @@ void StepVerifier::build(const std::vector<Surface>& surfaces, Index first_parti
   in.node_box.resize(in.node_id.size());
   in.face_box.resize(in.face_nodes.size());
   in.edge_box.resize(in.edge_nodes.size());
-  // The lists' reach: 0.2 of the smallest mean tet edge (seed 001's binding lists).
+  // The lists' reach: 0.2 of the smallest mean tet edge (the contact-boundary notes' binding
+  // lists).
   reach_ = 0.0;
   for (const Surface& s : surfaces)
     if (s.mean_edge_length > 0.0)

@@ -534,12 +534,12 @@ double vertex_on_edge(const PVec& p, const PVec& a, const PVec& b, bool earliest
       g, polys, [&](Point& pt) { return on_segment(p, a, b, pt); }, earliest);
 }
 
-// Motion coplanar all step (the cubic of seed 000 eq. 13 vanishes identically). The times where
-// the primitives meet form a closed set; at a time on its boundary other than 0 and 1 a vertex
-// lies on an edge of the other primitive, because in a plane a proper crossing of two segments
-// and a vertex strictly inside a triangle persist under small motions. So they meet at some time
-// iff they meet at t = 0, at t = 1, or when a vertex passes over an edge, and the earliest time
-// is among those. `passes` lists (vertex, edge end, edge end).
+// Motion coplanar all step (the cubic of Dobritsa et al. eq. 13 vanishes identically). The times
+// where the primitives meet form a closed set; at a time on its boundary other than 0 and 1 a
+// vertex lies on an edge of the other primitive, because in a plane a proper crossing of two
+// segments and a vertex strictly inside a triangle persist under small motions. So they meet at
+// some time iff they meet at t = 0, at t = 1, or when a vertex passes over an edge, and the
+// earliest time is among those. `passes` lists (vertex, edge end, edge end).
 double coplanar_motion(const std::function<bool(Point&)>& meet,
                        const std::vector<std::array<const PVec*, 3>>& passes, bool earliest) {
   Point start{true, Q(0), {}, {}, {}};
@@ -569,7 +569,7 @@ bool boxes_apart(const std::array<Vec3, 8>& q, const std::array<int, 8>& side) {
   return false;
 }
 
-// Certified floating-point filter: the coplanarity determinant (seed 000 eq. 13)
+// Certified floating-point filter: the coplanarity determinant (Dobritsa et al. eq. 13)
 //   f(t) = det[u(t), v(t), w(t)],  u = P_i − P_o, v = P_j − P_o, w = P_k − P_o, each linear in t,
 // is trilinear in (u, v, w), so in the Bernstein basis of [0, 1]
 //   f(t) = Σ_k S_k C(3,k)⁻¹ · C(3,k) (1 − t)^{3−k} t^k,  S_k = Σ of det[u_a, v_b, w_c] over

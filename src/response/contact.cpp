@@ -176,13 +176,14 @@ void NodeFaceContact::refresh_lists(const State& st, ContactStepStats& stats) {
   }
 }
 
-// Node–face contacts of the listed pairs (seed 001 §3), in the lists' order (the pairs are
-// tested on the threads and the ranks; their points made block by block, joined in order).
+// Node–face contacts of the listed pairs (the contact-boundary notes §3), in the lists' order (the
+// pairs are tested on the threads and the ranks; their points made block by block, joined in
+// order).
 void NodeFaceContact::node_face_contacts(const State& st, std::vector<ContactPoint>& contacts) {
   const std::vector<Vec3>& x0 = st.x;
   const std::vector<Vec3>& x1 = st.x_star;
   const Candidates& cand = candidates_;
-  // Node normals (seed 001's contact normal), only when asked for.
+  // Node normals (the contact-boundary notes' contact normal), only when asked for.
   std::vector<std::vector<Vec3>> normals;
   if (settings_.normal == ContactSettings::Normal::node)
     for (const Surface& s : surfaces_) normals.push_back(node_normals(s, x0));
@@ -217,7 +218,7 @@ void NodeFaceContact::node_face_contacts(const State& st, std::vector<ContactPoi
     const double vol = tet_signed_volume(x1[tet[0]], x1[tet[1]], x1[tet[2]], x1[tet[3]]);
     const double area = 0.5 * (x1[f[1]] - x1[f[0]]).cross(x1[f[2]] - x1[f[0]]).norm();
     const double depth = area > 0.0 ? 3.0 * vol / area : 0.0;
-    // The swept test is the exact one (issue 5): the floating-point test missed or invented
+    // The swept test is the exact one: the floating-point test missed or invented
     // contacts on coplanar and degenerate configurations (the `stress` table).
     touches[k] = behind_face(x1[node], x1[f[0]], x1[f[1]], x1[f[2]], depth) ||
                  exact_vertex_face_ccd({x0[node], x0[f[0]], x0[f[1]], x0[f[2]], x1[node], x1[f[0]],
@@ -259,14 +260,14 @@ void NodeFaceContact::node_face_contacts(const State& st, std::vector<ContactPoi
     contacts.insert(contacts.end(), block.begin(), block.end());
 }
 
-// Edge–edge contacts (seed 000): the pairs in contact last step that are still close, then
+// Edge–edge contacts (Dobritsa et al.): the pairs in contact last step that are still close, then
 // the listed pairs that cross during the step (exact CCD); remembers this step's pairs.
 void NodeFaceContact::edge_edge_contacts(const State& st, ContactStepStats& stats,
                                          std::vector<ContactPoint>& contacts) {
   const std::vector<Vec3>& x0 = st.x;
   const std::vector<Vec3>& x1 = st.x_star;
   const Candidates& cand = candidates_;
-  // Seed 000: surface edges of different bodies that cross during the step, and the pairs in
+  // Dobritsa et al.: surface edges of different bodies that cross during the step, and the pairs in
   // contact last step that are still close (kept with their normal's orientation).
   stats.edge_candidates = static_cast<long>(cand.edge_edge.size());
   stats.edge_contacts = 0;

@@ -88,12 +88,13 @@ Simulation::Simulation(Model model, SolverSettings settings)
                   model_.element.average_nodal_pressure[k]);
   }
   modules_.push_back(plastic ? "material:elastic_plastic" : "material:elastic");
-  const char* law_names[3] = {"strength:bilinear", "strength:johnson_cook",
-                              "strength:steinberg_guinan"};
   for (int l = 0; l < 3; ++l)
-    if (laws[l]) modules_.push_back(law_names[l]);
+    if (laws[l])
+      modules_.push_back("strength:" +
+                         std::string(name_of(k_strength_names, static_cast<StrengthModel>(l))));
   if (thermal) modules_.push_back("material:temperature");
-  modules_.push_back(mie ? "eos:mie_gruneisen" : "eos:linear");
+  modules_.push_back(
+      "eos:" + std::string(name_of(k_eos_names, mie ? EosKind::mie_gruneisen : EosKind::linear)));
   if (anp) modules_.push_back("elements:average_nodal_pressure");
   if (model_.element.viscosity_linear > 0 || model_.element.viscosity_quadratic > 0)
     modules_.push_back("elements:bulk_viscosity");
@@ -136,7 +137,7 @@ Simulation::Simulation(Model model, SolverSettings settings)
     profile_[stage] = 0.0;
   }
   if (mpi::ranks() > 1) {
-    // Distributed (issue 16, first increments): every process holds the nodes' whole state
+    // Distributed: every process holds the nodes' whole state
     // and runs the whole step, but updates only its own tets in the element stage and receives
     // what the step needs of the others' (element.cpp: nodal forces, damage). Each process
     // cuts the mesh itself: METIS gives the same pieces for the same mesh, ranks and seed.
@@ -166,7 +167,8 @@ bool Simulation::done() const {
   return state_.t >= settings_.end_time;
 }
 
-// The step, in the seed's order: predict, corrections (walls; contact later), commit.
+// The step, in the paper's order (Dobritsa et al.): predict, corrections (walls; contact later),
+// commit.
 void Simulation::step() {
   if (state_.step >= settings_.max_steps) {
     std::ostringstream os;
@@ -178,7 +180,7 @@ void Simulation::step() {
     StageTimer t(profile_["predict"]);
     predict_stage();
   }               // U*, x* (eqs. 2, 3)
-  corrections();  // walls (contact: issues 4, 5)
+  corrections();  // walls and contact
   {
     StageTimer t(profile_["balance"]);
     sample_stage();
@@ -217,7 +219,7 @@ void Simulation::finish() {
   }
 }
 
-// The corrections of U* (seed 000: after the prediction, before positions are committed):
+// The corrections of U* (Dobritsa et al.: after the prediction, before positions are committed):
 // walls and node–face contacts, each correction seeing the velocities the ones before it
 // left, repeated in `passes` sequential passes.
 void Simulation::corrections(bool verify) {
@@ -594,8 +596,9 @@ std::string StepCollapse::message() const {
      << "', tet " << body_tet << " at (" << position.x() << ", " << position.y() << ", "
      << position.z() << ") m, V/V0 = " << volume_ratio << ", p = " << pressure
      << " Pa, plastic strain " << plastic_strain << ", " << damage_names[std::clamp(damage, 0, 3)]
-     << "; about " << std::fixed << std::setprecision(0) << steps_to_end
-     << " more steps to end_time at this step";
+     << "; at this step size " << std::fixed << std::setprecision(0) << steps_to_end
+     << " more steps would reach end_time (the step may recover or fall further: not a "
+        "forecast)";
   return os.str();
 }
 

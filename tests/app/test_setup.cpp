@@ -55,7 +55,7 @@ TEST(Setup, MachWarningsFollowThePapersModelRanges) {
   EXPECT_EQ(w.size(), 2u);  // both against the wall; none between the co-moving bodies
 }
 
-// The regime a run states (issue 18): 0.75 < M0 < 1.5 with a Mie–Grüneisen EOS — the impactor
+// The regime a run states: 0.75 < M0 < 1.5 with a Mie–Grüneisen EOS — the impactor
 // at 5 km/s (M0 = 0.95), not at 1 km/s (inside the elastic-plastic range) nor at 9 km/s (beyond:
 // warned instead), and not the linear-EOS target (warned).
 TEST(Setup, RegimeNotesStateTheHydrodynamicRange) {
@@ -66,4 +66,9 @@ TEST(Setup, RegimeNotesStateTheHydrodynamicRange) {
   EXPECT_NE(n[0].find("hydrodynamic range"), std::string::npos) << n[0];
   EXPECT_NE(n[0].find("vaporisation"), std::string::npos) << n[0];
   EXPECT_TRUE(warnings_for({"bodies.1.velocity=[0,0,-9000]"}, true).empty());
+  // Two bodies of one material are one pair and one statement, not one per body.
+  const auto both =
+      warnings_for({"bodies.1.velocity=[0,0,-5000]", "bodies.0.material=al_mg"}, true);
+  ASSERT_EQ(both.size(), 1u);
+  EXPECT_NE(both[0].find("bodies 'target' and 'impactor'"), std::string::npos) << both[0];
 }

@@ -135,7 +135,7 @@ TEST(Stress, MicroScenesFailWithContactOff) {
   }
 }
 
-// Issue 15's guarantee on the micro-scenes (edge–edge on, penetration measured after every
+// The non-penetration guarantee on the micro-scenes (edge–edge on, penetration measured after every
 // step): with the verification 0 crossings and 0 nodes inside in every scene; without it the
 // passes leave edges through faces in some.
 TEST(Stress, MicroScenesAreIntersectionFreeWithTheVerification) {

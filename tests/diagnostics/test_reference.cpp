@@ -48,7 +48,7 @@ TEST(Reference, HoleDiameterAfterTheCentralCellsAreGone) {
   EXPECT_EQ(r[0].pass, std::abs(r[0].measured - 3.0) <= 3e-6);
 }
 
-// Perforation (issue 18) is debris behind the wall as it stands, not merely beyond its
+// Perforation is debris behind the wall as it stands, not merely beyond its
 // original rear face: a plate bulged 2 units at its centre, with debris (a small cube of another
 // body) resting in the dent beyond the rear face's plane, is not perforated; the same debris
 // behind the bulge is; and through a hole (the central cells gone) debris just beyond the

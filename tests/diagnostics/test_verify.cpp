@@ -1,4 +1,4 @@
-// The step verification (issue 15): passes from apart, through, touching and sliding, touching
+// The step verification: passes from apart, through, touching and sliding, touching
 // and going on through, and particles, against motions whose answer is known by construction.
 #include <gtest/gtest.h>
 

@@ -216,9 +216,9 @@ TEST(Element, InvertedElementIsReportedWithItsBody) {
   }
 }
 
-// Seed 000's failure, per-tet and nodal pressure alike: a uniform stretch whose tension stays
-// below σ* leaves cells intact; above it every cell is damaged (no deviator, no tension carried)
-// but still carries pressure when compressed; loosened past χ* = 0.03 it is destroyed and
+// Dobritsa et al.'s failure, per-tet and nodal pressure alike: a uniform stretch whose tension
+// stays below σ* leaves cells intact; above it every cell is damaged (no deviator, no tension
+// carried) but still carries pressure when compressed; loosened past χ* = 0.03 it is destroyed and
 // carries no pressure while loosened, compressed or not, until pressed back below V0.
 class Failure : public ::testing::TestWithParam<bool> {};
 TEST_P(Failure, SpallDamagesAndLooseningDestroys) {
@@ -278,7 +278,7 @@ TEST_P(Failure, SpallDamagesAndLooseningDestroys) {
 INSTANTIATE_TEST_SUITE_P(Pressure, Failure, ::testing::Values(false, true),
                          [](const auto& info) { return info.param ? "nodal" : "per_tet"; });
 
-// Johnson–Cook ductile damage (issue 18) in the element pass: a box of perfectly plastic
+// Johnson–Cook ductile damage in the element pass: a box of perfectly plastic
 // aluminium stretched step by step along x (F = diag(λ, λ^-1/2, λ^-1/2) a step) while its volume
 // grows (tension) or shrinks (compression) by J a step. Each step's damage increment is
 // Δε̄p / ε_f(σ*, Δε̄p/τ, T), σ* = −p/σ_eq from the step's starting pressure and the returned

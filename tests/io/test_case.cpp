@@ -488,7 +488,7 @@ TEST(CaseFile, MaterialAndWallErrors) {
        {"solver.average_nodal_pressure=sometimes"},
        "--set solver.average_nodal_pressure",
        "solver.average_nodal_pressure",
-       "expected auto, true or false"},
+       "average_nodal_pressure must be auto, true or false"},
       {"anp stabilization out of range",
        v,
        {"solver.anp_stabilization=2"},
@@ -500,7 +500,7 @@ TEST(CaseFile, MaterialAndWallErrors) {
        {},
        ":10:",
        "materials.al.strength",
-       "expected bilinear, johnson_cook or steinberg_guinan"},
+       "strength must be bilinear, johnson_cook or steinberg_guinan"},
       {"a plane on a measure that takes none",
        v + "reference:\n  - {name: l, measure: length, body: block, axis: z, plane: {point: [0, 0, "
            "0], normal: [0, 0, 1]}}\n",

@@ -1,4 +1,4 @@
-// Case parameters and their expressions (issue 18).
+// Case parameters and their expressions.
 #include <gtest/gtest.h>
 
 #include <cmath>

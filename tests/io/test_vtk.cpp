@@ -1,4 +1,4 @@
-// The .vtu writer: integer arrays stay integers however large (as text; tools/check_vtu.py
+// The .vtu writer: integer arrays stay integers however large (as text; tools/post/check_vtu.py
 // reads all three formats with VTK).
 #include <gtest/gtest.h>
 

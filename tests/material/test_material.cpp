@@ -225,7 +225,7 @@ TEST(Material, FastDeviatorMatchesReference) {
   }
 }
 
-// Johnson–Cook (issue 17) against closed forms. A pure shear rate γ̇ (D12 = D21 = γ̇/2) held
+// Johnson–Cook against closed forms. A pure shear rate γ̇ (D12 = D21 = γ̇/2) held
 // until the stress is steady: the von Mises rate is ε̇ = γ̇/√3, and once steady all of it is
 // plastic.
 namespace {
@@ -341,7 +341,7 @@ TEST(Material, JohnsonCookAdiabaticSofteningFollowsTheExponential) {
   EXPECT_NEAR(r.temperature, t_expected, 0.5);
 }
 
-// Steinberg–Guinan (issue 17) against closed forms.
+// Steinberg–Guinan against closed forms.
 namespace {
 
 // Al 6061-T6's [S96] set (data/materials.yaml), with the terms a test switches off.
@@ -442,7 +442,7 @@ TEST(Material, SteinbergGuinanAdiabaticSofteningFollowsTheExponential) {
   EXPECT_NEAR(r.temperature, 300.0 + (1.0 - std::exp(-k * r.eps)) / 6.16e-4, 0.5);
 }
 
-// Johnson–Cook's failure strain (issue 18) against its closed form, with 4340 steel's [JC85]
+// Johnson–Cook's failure strain against its closed form, with 4340 steel's [JC85]
 // constants: ε_f = [D1 + D2 exp(D3 σ*)] [1 + D4 ln ε̇*] [1 + D5 T*]; no rate term below the
 // reference rate, T* clamped to [0, 1], and the floor where D1 < 0 makes it negative.
 TEST(Material, JohnsonCookFailureStrainIsItsClosedForm) {

@@ -1,8 +1,8 @@
 // A slow exact CCD reference for the tests, written apart from src/narrowphase/exact_ccd.cpp
 // and sharing no code with it: rational arithmetic (GMP's mpq_class), Sturm sequences by plain
 // polynomial division over Q, roots isolated by bisection at rational points. It decides only
-// the non-degenerate queries: the coplanarity cubic (seed 000 eq. 13) not identically zero and
-// not zero at t = 0 or 1, every root in (0, 1) isolated, and at each root the inside test
+// the non-degenerate queries: the coplanarity cubic (Dobritsa et al. eq. 13) not identically zero
+// and not zero at t = 0 or 1, every root in (0, 1) isolated, and at each root the inside test
 // strictly decided (no touching, no parallel edges, no degenerate face). For the rest it says
 // "undecided": tests compare only where it decides.
 #pragma once

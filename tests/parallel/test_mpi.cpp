@@ -1,4 +1,4 @@
-// Processes change who computes, never what (issue 16): `mpirun -np N tetcontact run CASE`
+// Processes change who computes, never what: `mpirun -np N tetcontact run CASE`
 // writes the same frames, particle frames, history and summary figures as one process, bit
 // for bit, for N = 1 to 4 (oversubscribed on a 2-core machine). A failure on any rank stops
 // every rank with the one process's message and exit code; bad input stops them all at once.
@@ -42,10 +42,10 @@ test::Json figures(test::Json s) {
   return s;
 }
 
-// tools/check_vtu.py ARGS (VTK's own readers): its exit code.
+// tools/post/check_vtu.py ARGS (VTK's own readers): its exit code.
 int check_vtu(const std::string& args) {
-  const std::string cmd =
-      "/usr/bin/python3 '" + test::source_path("tools/check_vtu.py") + "' " + args + " >/dev/null";
+  const std::string cmd = "/usr/bin/python3 '" + test::source_path("tools/post/check_vtu.py") +
+                          "' " + args + " >/dev/null";
   const int status = std::system(cmd.c_str());
   return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }

@@ -132,7 +132,7 @@ TEST(Threads, CubesEdgeContactIsBitIdenticalOn1To3Threads) {
 
 TEST(Threads, VerifiedStepsWithZonesAreBitIdenticalOn1To3Threads) {
   // The cubes without edge contact: the verification fails pairs, extra passes and rigid and
-  // translated impact zones remove them (issue 15).
+  // translated impact zones remove them.
   const test::Json s = same_on_any_thread_count(
       "verified", "data/cases/cubes-edge.yaml",
       "--set contact.verify=true --set contact.edge_edge=false --set diagnostics.every_step=true");

@@ -62,7 +62,7 @@ TEST(Impulse, ConservesMomentumAndEnforcesTheNormalVelocity) {
   }
 }
 
-// Seed 000 eq. (11)–(12), edge [a, b] of body 1 against edge [e, f] of body 2 at parameters
+// Dobritsa et al. eq. (11)–(12), edge [a, b] of body 1 against edge [e, f] of body 2 at parameters
 // α, β: N_c = [(1−α)U*_na + αU*_nb − (1−β)U*_ne − βU*_nf] / (τ Σ w²/m), and the corrected
 // normal velocities of the two contact points are equal. The kernel with weights
 // (1−α, α) and (1−β, β) is exactly that (the normal from body 2 to body 1).

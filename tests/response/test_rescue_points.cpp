@@ -1,4 +1,4 @@
-// The contact point the step's verification gives a failing pair (issue 15) sits where the pair
+// The contact point the step's verification gives a failing pair sits where the pair
 // first meets during the step, not at its closest points at the start: scenes whose closest
 // points at xⁿ are an end of an edge or a point on a face's edge, with the exact answer known.
 #include <gtest/gtest.h>

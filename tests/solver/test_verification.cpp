@@ -1,4 +1,4 @@
-// The step verification in the solver (issue 15): with it, the paper's cubes read 0 crossings
+// The step verification in the solver: with it, the paper's cubes read 0 crossings
 // and 0 nodes inside at every step even with edge–edge contact off, which without it lets the
 // edges through; momentum holds; the zones' work is reported.
 #include <gtest/gtest.h>

@@ -1,42 +1,49 @@
-#!/usr/bin/python3
-"""tools/plot_sweep.py on a real sweep (bars-impact, two meshes × two pass counts): a PNG is
-written with every finished run plotted, a failed run is left out and counted, and a file that
-is not a sweep is refused with exit code 2.
-
-    test_plot_sweep.py BINARY SOURCE_DIR OUTDIR"""
+"""tools/post/plot_sweep.py on a real sweep (bars-impact, two meshes × two pass counts): a PNG
+with every finished run plotted, a failed run left out and counted, a file that is not a sweep
+refused with exit code 2."""
 import os
-import shutil
 import subprocess
-import sys
 
-binary, src, out = sys.argv[1:4]
-tool = os.path.join(src, "tools/plot_sweep.py")
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from checks import check, finish  # noqa: E402
+import pytest
+
+from conftest import case, run_tool
 
 
-shutil.rmtree(out, ignore_errors=True)
-os.makedirs(out)
-subprocess.run([binary, "sweep", os.path.join(src, "data/cases/bars-impact.yaml"), "--vary",
-                "bodies.0.mesh.box.cells+bodies.1.mesh.box.cells=[10,1,1],[20,2,2]", "--vary",
-                "contact.passes=1,3", "--quiet", "--out", os.path.join(out, "s")], check=True,
-               capture_output=True)
-csv = os.path.join(out, "s", "sweep.csv")
-r = subprocess.run([sys.executable, tool, csv], capture_output=True, text=True)
-check(r.returncode == 0, "plot_sweep.py exits 0: " + r.stderr)
-png = os.path.join(out, "s", "sweep.png")
-check(os.path.isfile(png) and open(png, "rb").read(8) == b"\x89PNG\r\n\x1a\n", "a PNG is written")
-check("4 runs plotted, 0 left out" in r.stdout, "every run plotted: " + r.stdout)
+@pytest.fixture(scope="module")
+def sweep(binary, module_out):
+    r = subprocess.run([binary, "sweep", case("bars-impact"), "--vary",
+                        "bodies.0.mesh.box.cells+bodies.1.mesh.box.cells=[10,1,1],[20,2,2]",
+                        "--vary", "contact.passes=1,3", "--threads", "1", "--quiet", "--out",
+                        os.path.join(module_out, "s")], capture_output=True, text=True)
+    assert r.returncode == 0, r.stderr
+    return os.path.join(module_out, "s", "sweep.csv")
 
-# A failed run is left out and counted.
-lines = open(csv).read().splitlines()
-lines[1] = lines[1].replace(",ok,", ",failed: test,", 1)
-open(os.path.join(out, "edited.csv"), "w").write("\n".join(lines) + "\n")
-r = subprocess.run([sys.executable, tool, os.path.join(out, "edited.csv"), os.path.join(out, "e.png")],
-                   capture_output=True, text=True)
-check(r.returncode == 0 and "3 runs plotted, 1 left out" in r.stdout, "failed run left out: " + r.stdout)
 
-open(os.path.join(out, "bad.csv"), "w").write("a,b\n1,2\n")
-r = subprocess.run([sys.executable, tool, os.path.join(out, "bad.csv")], capture_output=True, text=True)
-check(r.returncode == 2 and "not a sweep.csv" in r.stderr, "a non-sweep file is refused")
-finish("plot_sweep")
+def test_every_run_plotted(sweep):
+    r = run_tool("post/plot_sweep.py", sweep, check=0)
+    png = os.path.splitext(sweep)[0] + ".png"
+    assert open(png, "rb").read(8) == b"\x89PNG\r\n\x1a\n"
+    assert f"{png}: 4 runs plotted, 0 left out" in r.stdout
+
+
+def test_failed_run_left_out(sweep, out):
+    lines = open(sweep).read().splitlines()
+    assert ",ok," in lines[1]
+    lines[1] = lines[1].replace(",ok,", ",failed: test,", 1)
+    edited = os.path.join(out, "edited.csv")
+    open(edited, "w").write("\n".join(lines) + "\n")
+    r = run_tool("post/plot_sweep.py", edited, os.path.join(out, "e.png"), "--title", "T",
+                 check=0)
+    assert "3 runs plotted, 1 left out" in r.stdout
+    assert os.path.isfile(os.path.join(out, "e.png"))
+
+
+def test_bad_input(out):
+    bad = os.path.join(out, "bad.csv")
+    open(bad, "w").write("a,b\n1,2\n")
+    r = run_tool("post/plot_sweep.py", bad, check=2)
+    assert "not a sweep.csv" in r.stderr
+    r = run_tool("post/plot_sweep.py", os.path.join(out, "none.csv"), check=2)
+    assert "none.csv: no such file" in r.stderr
+    r = run_tool("post/plot_sweep.py", bad, "--title", check=2)
+    assert "--title needs a text" in r.stderr

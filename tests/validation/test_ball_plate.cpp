@@ -1,6 +1,6 @@
-// The paper's ball through the plate (seed 000, Fig. 5) on a coarse mesh: perforation, the
+// The paper's ball through the plate (Dobritsa et al., Fig. 5) on a coarse mesh: perforation, the
 // ball's residual speed between the plug-momentum bound and the impact speed, particles from
-// both bodies, and the conversions' conservation (issue 6's done-means 1 and 4).
+// both bodies, and the conversions' conservation (as the fracture design asks).
 #include <gtest/gtest.h>
 
 #include <cmath>

@@ -40,8 +40,8 @@ Outcome run_case(const std::string& file, const std::vector<std::string>& overri
   return o;
 }
 
-// The aluminium rod of issue 17 on a coarse mesh (6 × 18 cells) to `end_time` with `overrides`,
-// run to its end; `each_step` sees the simulation after every step.
+// The aluminium rod whose step collapsed, on a coarse mesh (6 × 18 cells) to `end_time` with
+// `overrides`, run to its end; `each_step` sees the simulation after every step.
 std::unique_ptr<Simulation> coarse_aluminium_rod(
     const std::string& end_time, std::vector<std::string> overrides,
     const std::function<void(const Simulation&)>& each_step = {}) {
@@ -104,7 +104,7 @@ TEST(Validation, TaylorCopper) {
   expect_all_pass(run_case("data/cases/taylor-copper.yaml"), 6e-5);  // 7.9e-6 measured
 }
 
-// The aluminium rod of issue 17 as it was first run, perfectly plastic at Y0 (coarse, to
+// The aluminium rod whose step collapsed, as it was first run, perfectly plastic at Y0 (coarse, to
 // 20 µs): with the plain average nodal pressure the tets at the axis next to the wall are
 // crushed (V/V0 0.50 measured) and the step falls 20×, which the run reports as a collapse
 // naming the tet; with the stabilization (the default) the tet that sets the step stays at V/V0
@@ -168,7 +168,7 @@ TEST(Validation, JohnsonCookRodHeatsByItsPlasticAndViscousWork) {
   EXPECT_LT(z_hottest, 2.0e-3);                      // next to the wall
 }
 
-// Erosion by strain (issue 17): with fracture and particles on, no spall, and a limit of
+// Erosion by strain: with fracture and particles on, no spall, and a limit of
 // ε̄p = 1, the rod's cells that reach it become particles (the conversion ledger counts them,
 // mass is kept); without the limit none does, though cells pass ε̄p = 1.
 TEST(Validation, StrainErosionTurnsCellsPastTheLimitIntoParticles) {
@@ -275,8 +275,8 @@ TEST(Validation, TaylorSymmetric) {
   }
 }
 
-// Seed 001's binding lists (candidates reused while nodes stay within their reach) change
-// nothing but the cost: the same contacts in the same order, bit for bit, with edge–edge
+// The contact-boundary notes' binding lists (candidates reused while nodes stay within their reach)
+// change nothing but the cost: the same contacts in the same order, bit for bit, with edge–edge
 // contact off and on.
 TEST(Validation, BindingListsGiveIdenticalResults) {
   for (const std::string edges : {"false", "true"}) {
@@ -388,7 +388,7 @@ TEST(Validation, HertzSpheresSeparateWithEdgeEdgeContact) {
   EXPECT_LT(momentum_error(sim.first_sample(), sim.last_sample()), 1e-12);
 }
 
-// The paper's cubes meeting edge on edge (seed 000, Figs. 2–3): node–face contact alone lets
+// The paper's cubes meeting edge on edge (Dobritsa et al., Figs. 2–3): node–face contact alone lets
 // the edges cross deep into the other cube; with edge–edge contact no edge crosses a face and
 // no node is inside the other cube at any output time.
 TEST(Validation, CubesEdgeOnAndOff) {
@@ -414,7 +414,7 @@ TEST(Validation, CylindersEdgeOnAndOff) {
   expect_on_off(on, off, h, 0.01, 0.05);
 }
 
-// The Whipple shield (issue 18) on a coarse mesh (bumper cells 1 mm, wall cells 2 mm, the sphere
+// The Whipple shield on a coarse mesh (bumper cells 1 mm, wall cells 2 mm, the sphere
 // 6 across): a 4 mm aluminium sphere at 6.5 km/s on a 1 mm bumper. Christiansen's equation
 // puts the critical diameter near 2.2 mm for a 2 mm wall 15 mm behind (so 4 mm is 1.8× above
 // the limit: perforated), and near 7 mm for an 8 mm wall 30 mm behind (0.57× below: not

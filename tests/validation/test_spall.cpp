@@ -1,4 +1,4 @@
-// Spall (seed 000's failure model) in a 1-D plate impact: the spall plane where the release
+// Spall (Dobritsa et al.'s failure model) in a 1-D plate impact: the spall plane where the release
 // waves meet, and no damage below the velocity whose pulse reaches the spall strength.
 #include <gtest/gtest.h>
 

@@ -1,5 +1,5 @@
-// Seed 001's iteration study in 3-D: the residual of the sequential exchange against the
-// solution of the whole contact patch falls monotonically with the number of passes.
+// The contact-boundary notes' iteration study in 3-D: the residual of the sequential exchange
+// against the solution of the whole contact patch falls monotonically with the number of passes.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -69,8 +69,8 @@ TEST(Validation, StaggeredPatchIteration) {
   EXPECT_LT(previous_median, 0.05);
 }
 
-// The documented alternatives — seed 001's averaged node normal, input order — also detect the
-// contacts, conserve momentum to round-off and stop the approach.
+// The documented alternatives — the contact-boundary notes' averaged node normal, input order —
+// also detect the contacts, conserve momentum to round-off and stop the approach.
 TEST(Validation, StaggeredPatchNodeNormalAndInputOrder) {
   for (const char* option : {"contact.normal=node", "contact.order=input"}) {
     const Case c = load_case(test::source_path("data/cases/staggered-patch.yaml"),

@@ -1,4 +1,4 @@
-// `tetcontact limit` (issue 18): the ballistic limit of a case by bracketing. A case key (a
+// `tetcontact limit`: the ballistic limit of a case by bracketing. A case key (a
 // projectile's diameter, or the speed) is narrowed between two values where a criterion flips
 // (perforated or not) to a stated tolerance, for each value of a second key (the speed: the
 // curve), running the case in parallel processes and keeping every run.

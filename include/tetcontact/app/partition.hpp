@@ -1,4 +1,4 @@
-// `tetcontact partition`: the decomposition a distributed run would use (issue 16), reported
+// `tetcontact partition`: the decomposition a distributed run would use, reported
 // before any run: per rank its tets, boundary faces, nodes, shared and ghost nodes, the faces
 // cut and the imbalance of the element and contact work.
 #pragma once

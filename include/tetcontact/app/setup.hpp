@@ -26,7 +26,7 @@ SolverSettings solver_settings(const Case& c);
 /// depth. build_model calls it unless the case sets contact.initial_overlap: allow.
 void check_initial_overlap(const Case& c, const Model& model);
 
-/// Impact Mach numbers M0 = U0 / C0 outside the range of the model a body uses (seed 000:
+/// Impact Mach numbers M0 = U0 / C0 outside the range of the model a body uses (Dobritsa et al.:
 /// elastic-plastic flow with a linear EOS for M0 ≤ 0.75, a hydrodynamic model with a richer
 /// EOS for 0.75 < M0 < 1.5). U0 is the closing speed of each pair of bodies (difference of
 /// their mass-averaged initial velocities) and of each body against each wall; C0 is the
@@ -34,7 +34,7 @@ void check_initial_overlap(const Case& c, const Model& model);
 std::vector<std::string> mach_warnings(const Case& c, const Model& model);
 
 /// The regime each impact is in where it is inside the paper's models but past the
-/// elastic-plastic one: 0.75 < M0 < 1.5 with a Mie–Grüneisen EOS (issue 18: a run states the
+/// elastic-plastic one: 0.75 < M0 < 1.5 with a Mie–Grüneisen EOS (a run states the
 /// regime it is in, and what the model leaves out there). Not warnings: statements.
 std::vector<std::string> regime_notes(const Case& c, const Model& model);
 

@@ -52,7 +52,7 @@ struct SceneResult {
 std::vector<SceneResult> run_micro_scenes(const std::string& dir,
                                           const std::vector<std::string>& overrides = {});
 
-/// Generated whole-solver scenes (issue 15): a 1 cm box of 2 × 2 × 2 cells and a 6 mm box or
+/// Generated whole-solver scenes: a 1 cm box of 2 × 2 × 2 cells and a 6 mm box or
 /// ball, `count` of them from `seed`, in turn (a) both turned at random, the projectile on a
 /// random side 0 to 0.5 mm beyond the bounding spheres, with a sideways component and spin;
 /// (b) touching face on face at t = 0 (z = 0.005 exactly), the projectile turned about z and

@@ -68,8 +68,8 @@ class Broadphase {
 };
 
 /// The methods: "brute_force" (the oracle), "sweep" (plain sort-and-sweep on x), "grid"
-/// (seed 001's hashed uniform grid, cube size `cell` or, when 0, twice the mean box size),
-/// "fcl_tree" (FCL's dynamic AABB tree, the default), "fcl_sap" (FCL's sweep-and-prune).
+/// (the contact-boundary notes' hashed uniform grid, cube size `cell` or, when 0, twice the mean
+/// box size), "fcl_tree" (FCL's dynamic AABB tree, the default), "fcl_sap" (FCL's sweep-and-prune).
 /// Throws std::invalid_argument for another name.
 std::unique_ptr<Broadphase> make_broadphase(const std::string& name, double cell = 0.0);
 

@@ -1,4 +1,4 @@
-// Interpenetration of bodies, measured independently of the contact code (issue 5's
+// Interpenetration of bodies, measured independently of the contact code (the
 // diagnostics stage): boundary nodes inside another body's tets, and boundary edges of one
 // body crossing boundary faces of another, decided with exact predicates (CGAL).
 #pragma once

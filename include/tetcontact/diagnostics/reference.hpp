@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "tetcontact/model/model.hpp"
+#include "tetcontact/model/names.hpp"
 #include "tetcontact/model/state.hpp"
 
 namespace tc {
@@ -23,7 +24,7 @@ struct ReferenceSpec {
     contact_mean_pressure,  // total normal contact impulse / (duration · `area`)
     hole_diameter,          // twice the distance from the line along `axis` through the centre of
                             // `region` to the nearest centre of a cell of `body` in `region`
-    // Beyond a `plane` (issue 18: shields), counting the debris of `body`'s plane: every
+    // Beyond a `plane` (shields), counting the debris of `body`'s plane: every
     // particle beyond it, and every cell of another body whose centre is beyond it (the
     // body's own cells are not debris: a bulging wall is not perforated); with `debris_of`,
     // only the particles and cells of those bodies.
@@ -39,6 +40,40 @@ struct ReferenceSpec {
     largest_fragment,      // the largest debris fragment's mass: cells beyond the plane joined
                            // through shared nodes, or one particle, kg
   };
+  /// Each measure's name in a case file and a summary, and its unit (SI; "" for a verdict).
+  static constexpr NameTable<Measure, 16> k_measure_names{
+      {{Measure::length, "length"},
+       {Measure::radius, "radius"},
+       {Measure::mean_stress, "mean_stress"},
+       {Measure::mean_pressure, "mean_pressure"},
+       {Measure::velocity, "velocity"},
+       {Measure::contact_duration, "contact_duration"},
+       {Measure::contact_max_force, "contact_max_force"},
+       {Measure::contact_mean_pressure, "contact_mean_pressure"},
+       {Measure::hole_diameter, "hole_diameter"},
+       {Measure::mass_through, "mass_through"},
+       {Measure::momentum_through, "momentum_through"},
+       {Measure::perforated, "perforated"},
+       {Measure::debris_speed, "debris_speed"},
+       {Measure::debris_cone_angle, "debris_cone_angle"},
+       {Measure::debris_particle_mass, "debris_particle_mass"},
+       {Measure::largest_fragment, "largest_fragment"}}};
+  static constexpr NameTable<Measure, 16> k_measure_units{{{Measure::length, "m"},
+                                                           {Measure::radius, "m"},
+                                                           {Measure::mean_stress, "Pa"},
+                                                           {Measure::mean_pressure, "Pa"},
+                                                           {Measure::velocity, "m/s"},
+                                                           {Measure::contact_duration, "s"},
+                                                           {Measure::contact_max_force, "N"},
+                                                           {Measure::contact_mean_pressure, "Pa"},
+                                                           {Measure::hole_diameter, "m"},
+                                                           {Measure::mass_through, "kg"},
+                                                           {Measure::momentum_through, "kg m/s"},
+                                                           {Measure::perforated, ""},
+                                                           {Measure::debris_speed, "m/s"},
+                                                           {Measure::debris_cone_angle, "deg"},
+                                                           {Measure::debris_particle_mass, "kg"},
+                                                           {Measure::largest_fragment, "kg"}}};
   std::string name;  // shown in tables
   Measure measure = Measure::length;
   std::string body;   // length, radius, velocity, hole_diameter, the debris measures

@@ -1,4 +1,4 @@
-// The step's motion verified free of intersection (issue 15), with the exact CCD.
+// The step's motion verified free of intersection, with the exact CCD.
 //
 // Forbidden during a step, every point moving linearly from xⁿ to xⁿ⁺¹ (as committed, in
 // doubles), for primitives of different bodies (a particle is a vertex of no body):

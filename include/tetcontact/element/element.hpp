@@ -51,7 +51,7 @@ struct ElementScratch {
   std::vector<double> tet_dvol;                // per tet: ΔV of the step
   std::vector<double> tet_energy;              // per tet: Eⁿ, its share of the nodal energy
   std::vector<char> tet_averaged;              // per tet: in the nodal averages this step
-  // Distributed runs (issue 16): every rank's tets, ascending, and this process's rank. Each
+  // Distributed runs: every rank's tets, ascending, and this process's rank. Each
   // process updates its own tets, and every process then receives what the whole step needs
   // of the others' (element.cpp): the nodal forces, and per tet the energies and damage of the
   // balance. Empty: one process, all the tets.

@@ -1,4 +1,4 @@
-// The last stage of fracture (seed 000, discussion of Fig. 5): destroyed cells on a body's
+// The last stage of fracture (Dobritsa et al., discussion of Fig. 5): destroyed cells on a body's
 // boundary turned into discrete particles, and the contacts particles make.
 //
 // A particle is a free node appended to the state (State::first_particle onward) with the

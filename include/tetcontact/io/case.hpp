@@ -12,8 +12,8 @@
 #include "tetcontact/io/vtk.hpp"
 #include "tetcontact/material/material.hpp"
 #include "tetcontact/mesh/mesh.hpp"
-#include "tetcontact/response/contact.hpp"
-#include "tetcontact/response/wall.hpp"
+#include "tetcontact/model/model.hpp"
+#include "tetcontact/model/names.hpp"
 
 namespace tc {
 
@@ -93,6 +93,8 @@ struct OutputSpec {
 
 /// Average nodal pressure (anti-locking): on for plastic materials (auto), all, or none.
 enum class AnpMode { automatic, on, off };
+inline constexpr NameTable<AnpMode, 3> k_anp_mode_names{
+    {{AnpMode::automatic, "auto"}, {AnpMode::on, "true"}, {AnpMode::off, "false"}}};
 
 struct Case {
   std::string file;  // path as given
@@ -107,7 +109,7 @@ struct Case {
   AnpMode average_nodal_pressure = AnpMode::automatic;
   double anp_stabilization = 0.02;  // solver.anp_stabilization (ElementOptions)
   std::string material_library;     // resolved path of the library used ("" if none)
-  // `parameters:` (issue 18): the values a case's expressions ("= ...") use, in file order.
+  // `parameters:`: the values a case's expressions ("= ...") use, in file order.
   std::vector<std::pair<std::string, double>> parameters;
   std::vector<Material> materials;
   std::vector<RigidWall> walls;

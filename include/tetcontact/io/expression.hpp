@@ -1,4 +1,4 @@
-// Arithmetic expressions over a case's parameters (issue 18: the values a designer varies, as
+// Arithmetic expressions over a case's parameters (the values a designer varies, as
 // case keys). A case file's scalar that starts with '=' is an expression:
 //   radius: "= d / 2"
 //   velocity: ["= v * sin(theta * deg)", 0, "= -v * cos(theta * deg)"]

@@ -15,7 +15,7 @@
 
 namespace tc {
 
-/// A distributed run's share of the output (issue 16): each rank writes the piece of its
+/// A distributed run's share of the output: each rank writes the piece of its
 /// tets at every frame (frame_NNNN_rR.vtu); rank 0 joins them in frame_NNNN.pvtu and writes
 /// the series, the history and the particles. Default: one process, whole frames.
 struct OutputPiece {
@@ -34,7 +34,7 @@ class OutputWriter : public Observer {
   /// what was written is true data up to the failure.
   void close();
   std::size_t frames() const { return frames_.size(); }
-  /// Measures interpenetration at every frame (issue 5's diagnostics; off the contact path),
+  /// Measures interpenetration at every frame (the diagnostics; off the contact path),
   /// writes it per node as `penetration_depth`, and keeps the run's maxima.
   void set_penetration_probe(PenetrationProbe* probe) { probe_ = probe; }
   /// Maxima over the frames: nodes_inside, max_depth, max_depth_over_h, crossings.

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "tetcontact/model/model.hpp"
+#include "tetcontact/model/names.hpp"
 #include "tetcontact/model/state.hpp"
 
 namespace tc {
@@ -14,6 +15,10 @@ namespace tc {
 /// section; or those bytes zlib-compressed (VTK's vtkZLibDataCompressor). All three open in
 /// ParaView. The spall plate's frames: binary 57 % of the text's bytes, compressed 19 %.
 enum class VtuFormat { ascii, binary, compressed };
+inline constexpr NameTable<VtuFormat, 3> k_vtu_format_names{
+    {{VtuFormat::ascii, "ascii"},
+     {VtuFormat::binary, "binary"},
+     {VtuFormat::compressed, "compressed"}}};
 
 /// The .vtu text of the state at t^n (the mesh's nodes, and its cells not turned into
 /// particles). Point data: displacement, velocity (time-centred),

@@ -1,6 +1,6 @@
 // Materials: hypoelastic-plastic solid (Jaumann rate, von Mises, linear isotropic hardening)
 // with a pressure from an equation of state (linear, or Mie–Grüneisen with a linear Us–up
-// Hugoniot). Seed 000, "Основные соотношения": Prandtl–Reuss flow for impact Mach number
+// Hugoniot). Dobritsa et al., "Основные соотношения": Prandtl–Reuss flow for impact Mach number
 // M0 ≤ 0.75, a hydrodynamic model with a richer equation of state for 0.75 < M0 < 1.5.
 //
 // Each model is a small pure function; the element kernel (solver/element.cpp) calls them.
@@ -17,7 +17,7 @@ namespace tc {
 
 enum class EosKind { linear, mie_gruneisen };
 
-/// How the yield stress evolves (issue 17): bilinear, σy = σy0 + H ε̄p (yield_stress,
+/// How the yield stress evolves: bilinear, σy = σy0 + H ε̄p (yield_stress,
 /// hardening_modulus), Johnson–Cook, or Steinberg–Guinan.
 enum class StrengthModel { bilinear, johnson_cook, steinberg_guinan };
 
@@ -96,7 +96,7 @@ struct Material {
   double hardening_modulus = 0.0;  // H, Pa
   JohnsonCook johnson_cook;
   SteinbergGuinan steinberg_guinan;
-  // Temperature (issue 17), tracked per tet when specific_heat > 0: heated by the viscous
+  // Temperature, tracked per tet when specific_heat > 0: heated by the viscous
   // (shock) work and by the fraction taylor_quinney of the plastic work.
   double specific_heat = 0.0;        // c_v, J/(kg K)
   double taylor_quinney = 0.9;       // χ
@@ -106,15 +106,15 @@ struct Material {
   double c0 = 0.0;      // bulk sound speed, m/s (Mie–Grüneisen)
   double s = 0.0;       // Us = c0 + s up
   double gamma0 = 0.0;  // Grüneisen coefficient Γ0
-  // Failure (seed 000, used when the case's fracture stage is on): a cell whose largest
+  // Failure (Dobritsa et al., used when the case's fracture stage is on): a cell whose largest
   // tensile principal stress exceeds σ* is damaged (it then resists only volumetric
   // compression); a damaged cell loosened past χ = 1 − V0/V > χ* is destroyed (no pressure).
   double spall_strength = 0.0;    // σ*, Pa; 0: the material does not spall
   double loosening_limit = 0.03;  // χ*
-  // Erosion by strain (issue 17, a hydrocode safeguard; needs fracture with particles): a cell
+  // Erosion by strain (a hydrocode safeguard; needs fracture with particles): a cell
   // whose equivalent plastic strain reaches this becomes a particle. 0: off.
   double erosion_plastic_strain = 0.0;
-  // Ductile failure (issue 18; needs fracture with particles): Johnson–Cook's damage D, a cell
+  // Ductile failure (needs fracture with particles): Johnson–Cook's damage D, a cell
   // eroded at D = 1. Off unless ductile_failure is set; the constants may come from a library.
   bool ductile_failure = false;
   JohnsonCookFailure johnson_cook_failure;

@@ -5,7 +5,7 @@
 //   5  — one central tet and four corner tets, mirrored on alternate cells (conforming);
 //   6  — Kuhn's split along the cell diagonal that points away from the body's centre
 //        (mirror-symmetric about the centre planes, conforming);
-//   12 — the paper's cube (seed 000, Fig. 2: one cube = 12 tets): a node at the cell centre,
+//   12 — the paper's cube (Dobritsa et al., Fig. 2: one cube = 12 tets): a node at the cell centre,
 //        each of the six faces cut along the diagonal through its even-parity corners, each
 //        face triangle joined to the centre.
 // Cylinder and sphere map the lattice with a blend between the identity at the centre and the

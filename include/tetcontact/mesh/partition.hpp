@@ -1,4 +1,4 @@
-// Decomposition of the mesh for distributed runs (issue 16): the tets cut into one piece per
+// Decomposition of the mesh for distributed runs: the tets cut into one piece per
 // rank by METIS (src/mesh/partition.cpp only) on the element graph (tets joined across the
 // faces they share), with two balance constraints per tet: its element work (1: every tet
 // costs the same in the element stage) and its contact work (its boundary faces: each carries

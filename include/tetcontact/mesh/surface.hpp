@@ -31,8 +31,9 @@ struct Surface {
   // node_faces[node_face_offsets[i] .. node_face_offsets[i+1]).
   std::vector<Index> node_face_offsets;
   std::vector<Index> node_faces;
-  double mean_edge_length = 0.0;  // over all tet edges of the body (seed 001's dx)
-  double max_edge_length = 0.0;   // over all tet edges of the body (seed 001's Rmax)
+  double mean_edge_length = 0.0;  // over all tet edges of the body (the contact-boundary notes' dx)
+  double max_edge_length =
+      0.0;  // over all tet edges of the body (the contact-boundary notes' Rmax)
   /// Euler characteristic V - E + F of the surface (2 for a closed sphere-like surface).
   long euler_characteristic() const {
     return static_cast<long>(nodes.size()) - static_cast<long>(edges.size()) +
@@ -60,8 +61,8 @@ std::vector<Surface> build_surfaces(const Mesh& mesh, const TetNeighbours& neigh
 /// Unit normal of a face at positions x (zero vector for a degenerate face).
 Vec3 face_normal(const Face& f, const std::vector<Vec3>& x);
 
-/// Averaged normals of the surface nodes at positions x (seed 001: the mean of the unit
-/// normals of the faces around the node, normalised), one per entry of surface.nodes.
+/// Averaged normals of the surface nodes at positions x (the contact-boundary notes: the mean of
+/// the unit normals of the faces around the node, normalised), one per entry of surface.nodes.
 std::vector<Vec3> node_normals(const Surface& surface, const std::vector<Vec3>& x);
 
 /// Number of surface edges not shared by exactly two surface faces (0 for a manifold surface).

@@ -12,10 +12,22 @@
 #include "tetcontact/material/material.hpp"
 #include "tetcontact/mesh/mesh.hpp"
 #include "tetcontact/mesh/surface.hpp"
+#include "tetcontact/model/names.hpp"
 
 namespace tc {
 
 enum class FrictionMode { slip, stick, coulomb };
+inline constexpr NameTable<FrictionMode, 3> k_friction_names{{{FrictionMode::slip, "slip"},
+                                                              {FrictionMode::stick, "stick"},
+                                                              {FrictionMode::coulomb, "coulomb"}}};
+
+// The names of the material's enumerations (material/ stands below this layer's names.hpp).
+inline constexpr NameTable<EosKind, 2> k_eos_names{
+    {{EosKind::linear, "linear"}, {EosKind::mie_gruneisen, "mie_gruneisen"}}};
+inline constexpr NameTable<StrengthModel, 3> k_strength_names{
+    {{StrengthModel::bilinear, "bilinear"},
+     {StrengthModel::johnson_cook, "johnson_cook"},
+     {StrengthModel::steinberg_guinan, "steinberg_guinan"}}};
 
 /// Friction of one body pair (case file `contact.pairs`).
 struct PairFriction {
@@ -30,18 +42,22 @@ struct ContactSettings {
   int passes = 3;       // sequential correction passes per step
   enum class Order { input, lighter_first } order = Order::lighter_first;
   /// face: the normal of the penetrated face (default); node: minus the averaged normal of
-  /// the faces around the penetrating node (seed 001).
+  /// the faces around the penetrating node (the contact-boundary notes).
   enum class Normal { face, node } normal = Normal::face;
+  static constexpr NameTable<Order, 2> k_order_names{
+      {{Order::lighter_first, "lighter_first"}, {Order::input, "input"}}};
+  static constexpr NameTable<Normal, 2> k_normal_names{
+      {{Normal::face, "face"}, {Normal::node, "node"}}};
   FrictionMode mode = FrictionMode::slip;  // for body pairs not listed in `pairs`
   double coefficient = 0.0;
   std::vector<PairFriction> pairs;
-  /// Seed 001's binding lists: candidates from boxes enlarged by a reach r = 0.2·dx (half of
-  /// the 0.4·dx the seed leaves between Rs and 0.75·Rmax; dx the mean tet edge), reused until
-  /// a surface node has moved r from where the lists were built. Off: the exact swept boxes
-  /// of every step.
+  /// The contact-boundary notes' binding lists: candidates from boxes enlarged by a reach r =
+  /// 0.2·dx (half of the 0.4·dx the contact-boundary notes leave between Rs and 0.75·Rmax; dx the
+  /// mean tet edge), reused until a surface node has moved r from where the lists were built. Off:
+  /// the exact swept boxes of every step.
   bool binding_lists = true;
-  /// Seed 000's edge–edge contact on top of node–face: surface edges of different bodies that
-  /// cross during the step (exact CCD) get the reaction of eqs. (11)–(12). Off by default
+  /// Dobritsa et al.'s edge–edge contact on top of node–face: surface edges of different bodies
+  /// that cross during the step (exact CCD) get the reaction of eqs. (11)–(12). Off by default
   /// until the exact test is fast (it costs ~0.2 ms a pair).
   bool edge_edge = false;
   /// Verify every step's motion with the exact CCD (diagnostics/verify.hpp); pairs that fail
@@ -73,7 +89,7 @@ struct ElementOptions {
   /// α of the average nodal pressure's stabilization: a tet's pressure gains α K (J̄ − J) / J,
   /// J its volume ratio, J̄ the mean of its nodes' (element.cpp, pass 3).
   double anp_stabilization = 0.02;
-  bool fracture = false;  // spall damage and loosening (seed 000)
+  bool fracture = false;  // spall damage and loosening (Dobritsa et al.)
   /// Erosion (a safeguard, fracture.erosion_step_ratio): tets whose stable step squared falls
   /// below this are listed in ForceResult::eroding (0: off).
   double erode_dt2 = 0.0;

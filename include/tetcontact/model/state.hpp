@@ -11,7 +11,7 @@
 
 namespace tc {
 
-/// A cell's failure state (seed 000): damaged cells resist only volumetric compression,
+/// A cell's failure state (Dobritsa et al.): damaged cells resist only volumetric compression,
 /// destroyed ones carry no stress at all, and a destroyed cell on the boundary is turned into a
 /// particle (it then leaves the element pass, the surfaces and the output mesh).
 enum class Damage : std::uint8_t { intact = 0, damaged = 1, destroyed = 2, particle = 3 };
@@ -45,8 +45,8 @@ struct State {
   std::vector<Index> tet_material;
   std::vector<Damage> damage;  // per tet
 
-  // Particles (P): destroyed boundary cells turned into free points (seed 000), appended after
-  // the mesh's nodes, so that the node arrays above carry their mass, velocity and impulses
+  // Particles (P): destroyed boundary cells turned into free points (Dobritsa et al.), appended
+  // after the mesh's nodes, so that the node arrays above carry their mass, velocity and impulses
   // and the one impulse kernel moves them. Particle i is node first_particle + i.
   Index first_particle = 0;             // the mesh's node count
   std::vector<double> particle_radius;  // m: radius of the sphere inscribed in the cell

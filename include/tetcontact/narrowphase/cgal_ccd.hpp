@@ -1,7 +1,7 @@
-// An independent exact CCD oracle on CGAL (issue 15: "CGAL confirms at the root"), sharing no
+// An independent exact CCD oracle on CGAL (the design's "CGAL confirms at the root"), sharing no
 // code with exact_ccd.cpp: the coordinates become CGAL::Gmpz integers (times one power of two),
-// the coplanarity determinant (seed 000 eq. 13) a CGAL polynomial, its real roots in [0, 1] are
-// isolated by CGAL's algebraic kernel (Algebraic_kernel_d_1: Bitstream Descartes), and at each
+// the coplanarity determinant (Dobritsa et al. eq. 13) a CGAL polynomial, its real roots in [0, 1]
+// are isolated by CGAL's algebraic kernel (Algebraic_kernel_d_1: Bitstream Descartes), and at each
 // root the kernel gives the exact sign of the inside test's polynomials. CGAL only in
 // cgal_ccd.cpp.
 //

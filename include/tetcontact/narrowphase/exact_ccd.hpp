@@ -5,7 +5,8 @@
 //
 // Method (exact integer arithmetic: the coordinates times one power of two are integers, and
 // every time where a sign is asked is a dyadic rational):
-//   - the coplanarity condition det[…](t) = 0 is a polynomial of degree ≤ 3 (seed 000 eq. 13);
+//   - the coplanarity condition det[…](t) = 0 is a polynomial of degree ≤ 3 (Dobritsa et al. eq.
+//   13);
 //     its real roots in [0, 1] are isolated with Sturm sequences on its square-free part;
 //   - at each root the intersection test needs only the signs of a few polynomials of the
 //     coordinates; a sign at an algebraic root is 0 exactly when the polynomial shares that

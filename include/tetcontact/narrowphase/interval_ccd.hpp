@@ -1,10 +1,10 @@
 // Certified floating-point CCD: decides the non-degenerate majority of queries in interval
 // arithmetic, and says "unknown" for the rest, which the exact path answers.
 //
-// The coplanarity determinant (seed 000 eq. 13) and the inside test's orientation polynomials
-// are formed once as polynomials in t with interval coefficients (every rounding widened
-// outward). The step [0, 1] is cut into time intervals T, on which each polynomial is enclosed
-// by its centred form (Taylor coefficients at T's middle), so that
+// The coplanarity determinant (Dobritsa et al. eq. 13) and the inside test's orientation
+// polynomials are formed once as polynomials in t with interval coefficients (every rounding
+// widened outward). The step [0, 1] is cut into time intervals T, on which each polynomial is
+// enclosed by its centred form (Taylor coefficients at T's middle), so that
 //   - T is dropped when the determinant is nonzero on all of T, or the inside test fails at
 //     every time of T (by its orientations, or, where those are too close to 0 to sign, as for
 //     nearly parallel coplanar edges, by a separating axis: the primitives' projections on a

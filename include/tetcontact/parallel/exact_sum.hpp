@@ -1,4 +1,4 @@
-// An exact sum of doubles, rounded once (issue 16): a superaccumulator, a fixed-point integer
+// An exact sum of doubles, rounded once: a superaccumulator, a fixed-point integer
 // wide enough for every double, in 32-bit limbs held in 64-bit words.
 //
 // The exact sum does not depend on the order of the additions, nor on how they are split into

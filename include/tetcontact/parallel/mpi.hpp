@@ -1,4 +1,4 @@
-// Processes (issue 16): OpenMPI underneath, in mpi.cpp only; nothing else includes <mpi.h>.
+// Processes: OpenMPI underneath, in mpi.cpp only; nothing else includes <mpi.h>.
 //
 // The program joins an MPI job only when a launcher started it (mpirun, srun: the variables
 // OMPI_COMM_WORLD_SIZE, PMI_SIZE or PMIX_SIZE name a size); otherwise it makes no MPI call at

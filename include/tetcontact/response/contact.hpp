@@ -1,5 +1,5 @@
-// Node–face contact between bodies (seed 001 §3–4): detection from the broadphase's
-// candidates, and the contact points the impulse kernel corrects in sequential passes.
+// Node–face contact between bodies (the contact-boundary notes §3–4): detection from the
+// broadphase's candidates, and the contact points the impulse kernel corrects in sequential passes.
 #pragma once
 
 #include <array>
@@ -54,7 +54,7 @@ class NodeFaceContact {
   double separation() const { return separation_; }
 
   /// A contact point for a pair the step's verification found failing over the motion
-  /// xⁿ = st.x → `x1` (issue 15): a vertex `node` of body `node_body` against the face `face`
+  /// xⁿ = st.x → `x1`: a vertex `node` of body `node_body` against the face `face`
   /// of body `face_body` (nodes in the surface's outward order), or the edge `a` of body
   /// `body_a` against the edge `b`. Apart at xⁿ: where they first meet during the motion (the
   /// exact time of impact t*), the normal the face's or the edges' common perpendicular at t*,
@@ -93,9 +93,9 @@ class NodeFaceContact {
   std::vector<Index> edge_body_;
   std::vector<std::array<Index, 2>>
       edge_faces_;  // the two surface faces at each edge (into faces_)
-  // Edge pairs in contact last step, with their oriented normal: seed 001 checks contacts
-  // already made for staying in contact; an edge pair that has drifted through by round-off
-  // would otherwise never be found crossing again.
+  // Edge pairs in contact last step, with their oriented normal: the contact-boundary notes checks
+  // contacts already made for staying in contact; an edge pair that has drifted through by
+  // round-off would otherwise never be found crossing again.
   std::vector<std::pair<std::pair<Index, Index>, Vec3>> active_edges_;
   BroadphaseInput input_;
   // Binding lists: the candidates, the node positions they were built from, their reach.

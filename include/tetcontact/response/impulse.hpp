@@ -1,7 +1,7 @@
 // The one impulse kernel of every contact: a point on side A (weights over up to four nodes)
 // against a point on side B (weights over up to four nodes, or none: a rigid wall), along a
 // normal n from B to A. Node–face is 1 + 3 weights, node–cell 1 + 4, a wall 1 + 0, and the
-// edge–edge contact of seed 000 is 2 + 2 (its eq. 11 has exactly this form).
+// edge–edge contact of Dobritsa et al. is 2 + 2 (its eq. 11 has exactly this form).
 #pragma once
 
 #include <array>
@@ -34,7 +34,7 @@ struct ContactPoint {
   double friction = 0.0;  // Coulomb coefficient k
   /// Close a negative gap within the step too (target −g/τ for g < 0): for edge–edge pairs,
   /// whose touching edges drift through by round-off; node–face contacts hold penetration
-  /// (seed 001: no projection back).
+  /// (the contact-boundary notes: no projection back).
   bool restore = false;
   // Accumulated over the passes of one step:
   double lambda = 0.0;             // normal impulse, N s
@@ -42,12 +42,12 @@ struct ContactPoint {
 };
 
 /// Sixteen units of rounding at the largest coordinate of the points: the separation a contact
-/// aims at, beyond touching (issue 15's verification finds a pair an ulp through otherwise).
+/// aims at, beyond touching (the step's verification finds a pair an ulp through otherwise).
 double rounding_margin(std::initializer_list<const Vec3*> points);
 
-/// One correction of a contact (seed 001 §4, seed 000 eqs. 11–12). With v_n the relative
-/// normal velocity of the two points, v_n = (Σ w_A U_A − Σ w_B U_B)·n, and the target
-/// v* = (a − g)/τ with a = s + clamp(g − s, 0, δ) (close the gap within the step: to the
+/// One correction of a contact (the contact-boundary notes §4, Dobritsa et al. eqs. 11–12). With
+/// v_n the relative normal velocity of the two points, v_n = (Σ w_A U_A − Σ w_B U_B)·n, and the
+/// target v* = (a − g)/τ with a = s + clamp(g − s, 0, δ) (close the gap within the step: to the
 /// stand-off δ beyond the rounding separation s from farther, hold a pair already within it,
 /// put a touching one s apart; 0 when penetrated deeper than s and not restoring),
 ///   Λ ← max(0, Λ + (v* − v_n) / (Σ w_A²/m_A + Σ w_B²/m_B)),   λ = change of Λ,

@@ -1,5 +1,5 @@
-// Planar rigid walls: the momentum exchange of node–face contact (seed 001 §4) with a body
-// of infinite mass.
+// Planar rigid walls: the momentum exchange of node–face contact (the contact-boundary notes §4)
+// with a body of infinite mass.
 #pragma once
 
 #include <string>

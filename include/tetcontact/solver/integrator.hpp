@@ -1,4 +1,4 @@
-// Explicit central difference, seed 000 eqs. (1)–(3).
+// Explicit central difference, Dobritsa et al. eqs. (1)–(3).
 #pragma once
 
 #include <vector>
@@ -9,15 +9,15 @@
 namespace tc {
 
 /// Predicted ("free surface") velocities and positions:
-///   seed 000 eq. (2): U*_k = U_k^n + τ_v F_k^n / m_k
-///   seed 000 eq. (3): x*_k = x_k^n + U*_k τ
+///   Dobritsa et al. eq. (2): U*_k = U_k^n + τ_v F_k^n / m_k
+///   Dobritsa et al. eq. (3): x*_k = x_k^n + U*_k τ
 /// with τ_v = (τ^{n-1/2} + τ^{n+1/2}) / 2 the centred step of the variable-step central
 /// difference (τ_v = τ when the step is constant; τ/2 on the first step, which starts the
 /// leapfrog from velocities given at t = 0). Prescribed velocity components then overwrite
 /// U*, and the impulse that took is recorded in st.bc_impulse.
 void predict(State& st, const std::vector<VelocityConstraint>& constraints);
 
-/// Committed update, seed 000 eq. (1) with the contact reactions already folded into U*:
+/// Committed update, Dobritsa et al. eq. (1) with the contact reactions already folded into U*:
 ///   U^{n+1} = U*,   x^{n+1} = x^n + U^{n+1} τ.
 void commit(State& st);
 

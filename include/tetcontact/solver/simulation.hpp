@@ -127,7 +127,7 @@ class Simulation {
   double first_dt() const { return first_dt_; }
   /// The falls of the step to a tenth of the first, a hundredth, ... (StepCollapse).
   const std::vector<StepCollapse>& step_collapses() const { return step_collapses_; }
-  /// The decomposition of a distributed run (issue 16; ranks = 1 on one process): each rank
+  /// The decomposition of a distributed run (ranks = 1 on one process): each rank
   /// updates the tets METIS gave it.
   const Partition& partition() const { return partition_; }
   /// Distributed: gathers every tet's fields on every rank (collective; the run's end, before

@@ -1,0 +1,1 @@
+"""What the tools share: summary.json / history.csv key names, Christiansen's equations."""

@@ -1,0 +1,1 @@
+"""Developer aids: surface frames at scale, random CCD queries, run comparisons, sample meshes."""

@@ -1,0 +1,1 @@
+"""The tables of README.md and docs/, regenerated from the program's own runs."""

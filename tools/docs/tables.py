@@ -1,0 +1,817 @@
+#!/usr/bin/python3
+"""The tables of README.md and docs/, regenerated from the program's own runs (numbers from
+runs, never retyped).
+
+    tools/docs/tables.py NAME BINARY [--work DIR] [--write] [--docs-root DIR] [--cases NAME...]
+    tools/docs/tables.py all BINARY [--work DIR] [--write] [--docs-root DIR]
+
+NAME, the table:
+    stability     the stability suite: each case of data/cases/stability/ as shipped (--check)
+                  and with contact off
+    micro         the micro-scenes (`stress --json`): contact on, verified, off
+    profile       the broadphase profile (bars-impact, 300 steps, every method)
+    verify        the step verification on small cases, each row with --check
+    verify-full   the shipped contact cases at full size with the verification, every step
+                  (long: ~30 min on 2 cores)
+    threads       thread scaling: bars, cylinders (edge–edge on), Hertz and ball-plate in full on
+                  1 and 2 threads (--cases: only the cases whose file names contain one of these)
+    mpi           distributed runs: each case as one process (1 and 2 threads) and under mpirun
+                  on 2 ranks of 1 thread; weak scaling of the Taylor rod
+    whipple       the Whipple shield's coarse runs (the test's) beside Christiansen's critical
+                  diameter
+    whipple-mesh  the shipped Whipple shield on three meshes on 2 threads: measures, run times
+    whipple-hole  the bumper's hole at 8 µs on four meshes (the fourth: 3 cells through the
+                  bumper), 2 threads
+    strength      the strength laws side by side: the aluminium Taylor rod and the 6061-T6 plate
+                  impact's precursor (HEL) under each law, one thread
+    all           every table above, in that order (hours on 2 cores)
+
+Without --write each table is printed, row by row as it is measured. With --write it also
+replaces the block between the lines
+
+    <!-- BEGIN generated: NAME -->
+    <!-- END generated: NAME -->
+
+in README.md or docs/**/*.md (under --docs-root, default the repository) with one line naming
+the machine and the build that measured it (CPU model and core count from /proc/cpuinfo; the
+program's --version; compiler and build type from the build folder's CMake files; the git
+commit) and the table. The markers are looked up before any run: a table whose BEGIN or END
+marker is missing, or appears twice (in one file or in two), is refused with exit code 2, the
+file named. Runs go to --work (default a temporary folder). Exit code 0, 1 when a run fails, 2
+on bad input."""
+import argparse
+import glob
+import json
+import os
+import re
+import subprocess
+import sys
+import tempfile
+
+if not __package__:  # run by path: the repository root on sys.path, for `tools.*`
+    sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))))
+
+from tools.common import christiansen  # noqa: E402
+from tools.common import summary_keys as K  # noqa: E402
+from tools.common.summary_keys import get  # noqa: E402
+
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+NAMES = ["stability", "micro", "profile", "verify", "verify-full", "threads", "mpi", "whipple",
+         "whipple-mesh", "whipple-hole", "strength"]
+
+
+def g(x):
+    """A measured number, short: two significant digits, or a compact exponent."""
+    if x is None:
+        return "–"
+    if x == 0 or 0.01 <= abs(x) < 1000:
+        return f"{x:.2g}"
+    return f"{x:.1e}".replace("e-0", "e-").replace("e+0", "e")
+
+
+def run(binary, case, out, extra):
+    """Runs a case (`extra`: more arguments); its summary.json and the exit code."""
+    cmd = [binary, "run", case, "--quiet", "--force", "--out", out] + extra
+    r = subprocess.run(cmd, capture_output=True, text=True)
+    path = os.path.join(out, "summary.json")
+    if not os.path.exists(path):
+        sys.exit(f"{case}: no summary ({r.stderr.strip()})")
+    with open(path) as f:
+        return json.load(f), r.returncode
+
+
+def sets(values):
+    """--set KEY=VALUE for each value."""
+    return [a for kv in values for a in ("--set", kv)]
+
+
+def bound(s, name):
+    """The bound of the case's `expect:` entry `name`, or None."""
+    for e in s.get(K.EXPECT[0], []):
+        if e[K.NAME] == name:
+            return e[K.BOUND]
+    return None
+
+
+def measures(s):
+    """The case's `reference:` measures by name."""
+    return {r[K.NAME]: r[K.MEASURED] for r in get(s, K.REFERENCES)}
+
+
+def missed(s):
+    """'pass', or the bounds and references the run missed, in bold."""
+    out = [f"{e[K.NAME]} {g(e[K.MEASURED])} > {g(e[K.BOUND])}"
+           for e in s.get(K.EXPECT[0], []) if not e[K.PASS]]
+    out += [f"{r[K.NAME]} {g(r[K.MEASURED])}" for r in s.get(K.REFERENCES[0], [])
+            if r.get(K.PASS) is False]
+    return "pass" if not out else "**" + "; ".join(out) + "**"
+
+
+# stability ---------------------------------------------------------------------------------------
+WHAT = {
+    "touching-coincident": "Al blocks over coincident faces at t = 0, 10 m/s",
+    "touching-gap0": "staggered meshes (4×4 / 5×5), gap 0",
+    "touching-ulp": "gap 1 ulp of 0.01 m (1.7e-18 m)",
+    "touching-1e-12": "gap 1e-12 m",
+    "sliver-contact": "steel block on an Al slab of one layer of 10 × 10 × 0.2 mm hexes "
+                      "(aspect ≥ 50), 50 m/s",
+    "plate-one-element": "steel sphere on an Al plate one element thick, 300 m/s",
+    "grazing-1deg": "Al block onto an Al plate at 1°, 200 m/s",
+    "stiff-on-soft": "tungsten alloy on E = 0.2 GPa, ρ = 1500 (stiffness ratio 1.8e3, "
+                     "density 12), 100 m/s",
+    "tiny-step": "the touching blocks with cfl 5e-6: τ = 1.0e-12 s",
+    "hypervelocity": "Al sphere on an Al plate at 7 km/s (M0 = 1.34), fracture, particles, "
+                     "erosion",
+    "spinning": "free Al cylinder at 20,000 rad/s for 0.8 rad",
+}
+STABILITY_HEADER = [
+    "| case | what | steps, min τ | momentum | energy (bound) | depth/h (bound), nodes "
+    "inside, crossings | safeguards | contact off: depth/h, `--check` |",
+    "|---|---|---|---|---|---|---|---|"]
+
+
+def stability_row(name, on, code, off, code_off):
+    """One case: `on` the summary as shipped (exit `code`), `off` with contact off (or None)."""
+    pen = "–"
+    if get(on, K.MAX_DEPTH_OVER_H) is not None and off is not None:
+        pen = (f"{g(get(on, K.MAX_DEPTH_OVER_H))} ({g(bound(on, K.EXPECT_DEPTH))}), "
+               f"{get(on, K.MAX_NODES_INSIDE)}, {get(on, K.MAX_CROSSINGS)}")
+        if K.has(on, K.PARTICLES_INSIDE_AT_END):
+            pen += f"; {get(on, K.PARTICLES_INSIDE_AT_END)} particles inside"
+    sg = "–"
+    if get(on, K.SAFEGUARDS_ERODED) is not None:
+        sg = (f"{get(on, K.SAFEGUARDS_ERODED):,} eroded, "
+              f"{get(on, K.SAFEGUARDS_PARTICLES_MOVED_OUT):,} moved out")
+    offc = "–"
+    if off is not None:
+        fails = code_off == 1 and not get(off, K.EXPECT_PASS)
+        offc = f"{g(get(off, K.MAX_DEPTH_OVER_H))}, {'fails' if fails else 'PASSES'}"
+    steps = f"{get(on, K.STEPS):,}, {g(get(on, K.TIME_STEP_MIN))} s"
+    return (f"| `{name}` | {WHAT.get(name, '')} | {steps} | {g(get(on, K.MOMENTUM_ERROR))} | "
+            f"{g(get(on, K.ENERGY_BALANCE_ERROR_MAX))} ({g(bound(on, K.EXPECT_ENERGY))}) | "
+            f"{pen} | {sg} | {offc} |" + ("" if code == 0 else " **check failed**"))
+
+
+def stability(binary, work, opts):
+    yield from STABILITY_HEADER
+    for name in WHAT:
+        case = os.path.join(ROOT, "data/cases/stability", name + ".yaml")
+        on, code = run(binary, case, os.path.join(work, name), ["--check"])
+        off, code_off = None, None
+        if any(m.startswith("broadphase:") for m in get(on, K.MODULES)):
+            off, code_off = run(binary, case, os.path.join(work, name + "-off"),
+                                ["--check", "--set", "contact.enabled=false"])
+        yield stability_row(name, on, code, off, code_off)
+
+
+# micro -------------------------------------------------------------------------------------------
+MICRO_HEADER = [
+    "| micro-scene | steps | pass | momentum error | energy balance | max depth / h (bound) | "
+    "nodes inside | edge crossings | `contact.verify` on: nodes inside / crossings, pass | "
+    "contact off: depth / h, pass |",
+    "|---|---|---|---|---|---|---|---|---|---|"]
+
+
+def micro_row(name, s, v, o):
+    """One scene of `stress --json`: `s` contact on, `v` verified, `o` contact off."""
+    b = next((e[K.BOUND] for e in s[K.SCENE_EXPECT] if e[K.NAME] == K.EXPECT_DEPTH), None)
+    return (f"| {name} | {s[K.SCENE_STEPS]} | {'yes' if s[K.SCENE_PASS] else 'NO'} | "
+            f"{g(s[K.SCENE_MOMENTUM_ERROR])} | {g(s[K.SCENE_BALANCE_ERROR])} | "
+            f"{g(s[K.SCENE_DEPTH_OVER_H])} ({g(b)}) | {s[K.SCENE_NODES_INSIDE]} | "
+            f"{s[K.SCENE_CROSSINGS]} | {v[K.SCENE_NODES_INSIDE]} / {v[K.SCENE_CROSSINGS]}, "
+            f"{'yes' if v[K.SCENE_PASS] else 'NO'} | {g(o[K.SCENE_DEPTH_OVER_H])}, "
+            f"{'yes' if o[K.SCENE_PASS] else 'no'} |")
+
+
+def micro(binary, work, opts):
+    res = {}
+    for label, extra in (("on", []), ("verify", ["--set", "contact.verify=true"]),
+                         ("off", ["--set", "contact.enabled=false"])):
+        r = subprocess.run([binary, "stress", "--count", "10", "--json"] + extra,
+                           capture_output=True, text=True)
+        if r.returncode not in (0, 1) or not r.stdout.strip():
+            sys.exit(f"stress --json {' '.join(extra)}: exit {r.returncode}: {r.stderr.strip()}")
+        res[label] = {s[K.NAME]: s for s in json.loads(r.stdout)[K.STRESS_SCENES]}
+    yield from MICRO_HEADER
+    for name, s in res["on"].items():
+        yield micro_row(name, s, res["verify"][name], res["off"][name])
+
+
+# profile -----------------------------------------------------------------------------------------
+PROFILE_HEADER = [
+    "| method | primitives | candidates/step | contacts/step | candidates/all pairs | build ms | "
+    "query ms | step ms | broadphase share | contact share |",
+    "|---|---|---|---|---|---|---|---|---|---|"]
+
+
+def profile_row(m):
+    """One broadphase method of `profile --json`."""
+    sec = m[K.PROFILE_SECONDS]
+    return (f"| {m[K.PROFILE_METHOD]} | {int(m[K.PROFILE_PRIMITIVES]):,} | "
+            f"{m[K.PROFILE_CANDIDATES]:.1f} | {m[K.PROFILE_CONTACTS]:.1f} | "
+            f"{g(m[K.PROFILE_PRUNING])} | {sec[K.PROFILE_BUILD] * 1e3:.3f} | "
+            f"{sec[K.PROFILE_QUERY] * 1e3:.3f} | {sec[K.PROFILE_STEP] * 1e3:.3f} | "
+            f"{100 * m[K.PROFILE_BROADPHASE_SHARE]:.1f} % | "
+            f"{100 * m[K.PROFILE_CONTACT_SHARE]:.1f} % |")
+
+
+def profile(binary, work, opts):
+    r = subprocess.run([binary, "profile", os.path.join(ROOT, "data/cases/bars-impact.yaml"),
+                        "--steps", "300", "--json"], capture_output=True, text=True)
+    if r.returncode != 0:
+        sys.exit(f"profile: exit {r.returncode}: {r.stderr.strip()}")
+    yield from PROFILE_HEADER
+    for m in json.loads(r.stdout):
+        yield profile_row(m)
+
+
+# threads -----------------------------------------------------------------------------------------
+THREAD_CASES = [  # each case run in full on 1 and 2 threads
+    ("bars", "data/cases/bars-impact.yaml", []),
+    ("cylinders, edge–edge on", "data/cases/cylinders.yaml", ["contact.edge_edge=true"]),
+    ("Hertz", "data/cases/hertz-spheres.yaml", []),
+    ("ball-plate", "data/cases/ball-plate.yaml", []),
+]
+THREADS_HEADER = [
+    "| case | tets | steps | wall, 1 thread | wall, 2 threads | speed-up | stage shares at 1 "
+    "thread | stage shares at 2 threads |",
+    "|---|---|---|---|---|---|---|---|"]
+
+
+def stage_shares(summary):
+    """The stages' shares of the wall time: 'elements 60 %, contact 30 %, ...'."""
+    t = get(summary, K.TIMINGS)
+    wall = get(summary, K.WALL_SECONDS)
+    groups = {"elements": [K.STAGE_ELEMENTS], "contact": K.CONTACT_STAGES,
+              "particles": K.PARTICLE_STAGES, "output": [K.STAGE_OUTPUT],
+              "balance": [K.STAGE_BALANCE]}
+    parts = []
+    for name, stages in groups.items():
+        sec = sum(t.get(s, 0.0) for s in stages)
+        if sec > 0:
+            parts.append(f"{name} {100 * sec / wall:.0f} %")
+    return ", ".join(parts)
+
+
+def threads_row(name, one, two):
+    """One case on 1 thread (`one`) and 2 (`two`)."""
+    w1, w2 = get(one, K.WALL_SECONDS), get(two, K.WALL_SECONDS)
+    return (f"| {name} | {get(one, K.MESH_TETS):,} | {get(one, K.STEPS):,} | {w1:.1f} s | "
+            f"{w2:.1f} s | {w1 / w2:.2f}× | {stage_shares(one)} | {stage_shares(two)} |")
+
+
+def threads(binary, work, opts):
+    yield from THREADS_HEADER
+    for name, case, keys in THREAD_CASES:
+        if opts.cases and not any(o in case for o in opts.cases):
+            continue
+        summaries = {}
+        for n in (1, 2):
+            s, code = run(binary, os.path.join(ROOT, case),
+                          os.path.join(work, f"{os.path.basename(case)}-{n}"),
+                          ["--threads", str(n)] + sets(keys))
+            if code != 0:
+                sys.exit(f"{case} on {n} threads: exit {code}")
+            summaries[n] = s
+        if get(summaries[1], K.STEPS) != get(summaries[2], K.STEPS):
+            sys.exit(f"{case}: different step counts on 1 and 2 threads")
+        yield threads_row(name, summaries[1], summaries[2])
+
+
+# mpi ---------------------------------------------------------------------------------------------
+MPI_CASES = [
+    ("Taylor rod on a wall (ANP)", "data/cases/taylor-copper.yaml", ["end_time=20.0e-6"]),
+    ("bars", "data/cases/bars-impact.yaml", []),
+    ("cylinders, edge–edge on, coarse", "data/cases/cylinders.yaml",
+     ["bodies.0.mesh.cylinder.cells_across=8", "bodies.0.mesh.cylinder.cells_axial=8",
+      "bodies.1.mesh.cylinder.cells_across=4", "bodies.1.mesh.cylinder.cells_axial=4"]),
+    ("cylinders, edge–edge and verification on, coarse", "data/cases/cylinders.yaml",
+     ["contact.verify=true",
+      "bodies.0.mesh.cylinder.cells_across=8", "bodies.0.mesh.cylinder.cells_axial=8",
+      "bodies.1.mesh.cylinder.cells_across=4", "bodies.1.mesh.cylinder.cells_axial=4"]),
+]
+MPIRUN = ["mpirun", "--allow-run-as-root", "--oversubscribe", "-np", "2"]
+MPI_HEADER = [
+    "| case (fastest of 3) | tets | steps | 1 process, 1 thread | 1 process, 2 threads | "
+    "2 ranks × 1 thread | elements: 1 thread / 2 ranks | verify: 1 thread / 2 ranks | "
+    "communication (2 ranks) | same result |",
+    "|---|---|---|---|---|---|---|---|---|---|"]
+WEAK_HEADER = [
+    "| weak scaling (fastest of 3) | tets | steps | wall | elements | communication | "
+    "efficiency |",
+    "|---|---|---|---|---|---|---|"]
+
+
+def mpi_row(name, a, b, c):
+    """One case: `a` one process on 1 thread, `b` on 2 threads, `c` 2 ranks of 1 thread."""
+    ta, tc = get(a, K.TIMINGS), get(c, K.TIMINGS)
+    same = all(a[k] == c[k] for k in K.RESULT_BLOCKS)
+    verify = (f"{ta[K.STAGE_VERIFY]:.1f} s / {tc[K.STAGE_VERIFY]:.1f} s"
+              if K.STAGE_VERIFY in ta else "–")
+    return (f"| {name} | {get(a, K.MESH_TETS):,} | {get(a, K.STEPS):,} | "
+            f"{get(a, K.WALL_SECONDS):.1f} s | {get(b, K.WALL_SECONDS):.1f} s | "
+            f"{get(c, K.WALL_SECONDS):.1f} s | "
+            f"{ta[K.STAGE_ELEMENTS]:.1f} s / {tc[K.STAGE_ELEMENTS]:.1f} s | {verify} | "
+            f"{get(c, K.COMMUNICATION_SECONDS):.2f} s | {'yes' if same else 'NO'} |")
+
+
+def weak_row(label, wall, rs, base, independent):
+    """One weak-scaling row: the fastest round's wall time and summaries (two for the pair of
+    independent processes), against the 1-rank run's `base` wall time."""
+    r = rs[0]
+    tets = f"{get(r, K.MESH_TETS):,}" if len(rs) == 1 else f"2 × {get(r, K.MESH_TETS):,}"
+    comm = "–" if independent else f"{get(r, K.COMMUNICATION_SECONDS):.2f} s"
+    elements = max(get(x, K.TIMINGS)[K.STAGE_ELEMENTS] for x in rs)
+    return (f"| {label} | {tets} | {get(r, K.STEPS):,} | {wall:.1f} s | {elements:.1f} s | "
+            f"{comm} | {base / wall * 100:.0f} % |")
+
+
+def mpi(binary, work, opts):
+    """Each case as one process on 1 and 2 threads and on 2 ranks of 1 thread (mpirun), the
+    fastest of 3 runs each (this machine's run to run spread is ±20 %)."""
+    yield from MPI_HEADER
+    for name, case, keys in MPI_CASES:
+        runs = {}
+        for label, launcher, n in (("1x1", [], 1), ("1x2", [], 2), ("2x1", MPIRUN, 1)):
+            out = os.path.join(work, f"{os.path.basename(case)}-{label}")
+            cmd = launcher + [binary, "run", os.path.join(ROOT, case), "--quiet", "--force",
+                              "--threads", str(n), "--out", out] + sets(keys)
+            for _ in range(3):
+                subprocess.run(cmd, check=True)
+                with open(os.path.join(out, "summary.json")) as f:
+                    r = json.load(f)
+                if label not in runs or get(r, K.WALL_SECONDS) < get(runs[label], K.WALL_SECONDS):
+                    runs[label] = r
+        yield mpi_row(name, runs["1x1"], runs["1x2"], runs["2x1"])
+    # Weak scaling: the Taylor rod on 1 rank, and twice as long (twice the tets, the same cells)
+    # on 2 ranks, 1 thread each; and the machine's own ceiling: the 1-rank run twice at once as
+    # two independent processes (no communication: what two busy cores give when they share the
+    # machine's caches and memory). Each the fastest of 3 rounds.
+    yield ""
+    yield from WEAK_HEADER
+    taylor = os.path.join(ROOT, "data/cases/taylor-copper.yaml")
+
+    def command(out, height="32.4e-3", cells=40, z="16.2e-3"):
+        return [binary, "run", taylor, "--quiet", "--force", "--threads", "1", "--out", out,
+                "--set", "end_time=20.0e-6", "--set", f"bodies.0.mesh.cylinder.height={height}",
+                "--set", f"bodies.0.mesh.cylinder.cells_axial={cells}",
+                "--set", f"bodies.0.transform.0.translate=[0,0,{z}]"]
+
+    def summary(out):
+        with open(os.path.join(out, "summary.json")) as f:
+            return json.load(f)
+
+    best = {}
+    for _ in range(3):
+        runs = {}
+        subprocess.run(command(os.path.join(work, "weak-1")), check=True)
+        runs["one"] = [summary(os.path.join(work, "weak-1"))]
+        subprocess.run(MPIRUN + command(os.path.join(work, "weak-2"), "64.8e-3", 80, "32.4e-3"),
+                       check=True)
+        runs["two"] = [summary(os.path.join(work, "weak-2"))]
+        outs = [os.path.join(work, f"weak-alone-{i}") for i in range(2)]
+        procs = [subprocess.Popen(command(out)) for out in outs]
+        if any(p.wait() != 0 for p in procs):
+            sys.exit("weak scaling: a run failed")
+        runs["pair"] = [summary(out) for out in outs]
+        for k, rs in runs.items():
+            wall = max(get(r, K.WALL_SECONDS) for r in rs)
+            if k not in best or wall < best[k][0]:
+                best[k] = (wall, rs)
+    base = best["one"][0]
+    for k, label in (("one", "Taylor rod, 1 rank"), ("two", "Taylor rod, 2 ranks"),
+                     ("pair", "the 1-rank run twice at once, independent (the machine's "
+                              "ceiling)")):
+        yield weak_row(label, best[k][0], best[k][1], base, k == "pair")
+
+
+# verify, verify-full -----------------------------------------------------------------------------
+VERIFY_ROWS = [  # (what, case, --set values)
+    ("cubes-edge, every step", "data/cases/cubes-edge.yaml",
+     ["contact.verify=true", "diagnostics.every_step=true"]),
+    ("cubes-edge, edge–edge off, every step", "data/cases/cubes-edge.yaml",
+     ["contact.verify=false", "contact.edge_edge=false", "diagnostics.every_step=true"]),
+    ("cubes-edge, edge–edge off, every step", "data/cases/cubes-edge.yaml",
+     ["contact.verify=true", "contact.edge_edge=false", "diagnostics.every_step=true"]),
+    ("micro coincident-faces, every step", "data/cases/micro/coincident-faces.yaml",
+     ["contact.verify=true", "diagnostics.every_step=true"]),
+    ("bars-impact", "data/cases/bars-impact.yaml", ["contact.verify=false"]),
+    ("bars-impact", "data/cases/bars-impact.yaml", ["contact.verify=true"]),
+    ("bars-impact, separation 0", "data/cases/bars-impact.yaml",
+     ["contact.verify=true", "contact.separation=0"]),
+    ("bars-impact, edge–edge on", "data/cases/bars-impact.yaml",
+     ["contact.verify=true", "contact.edge_edge=true"]),
+    ("staggered-patch, edge–edge on", "data/cases/staggered-patch.yaml",
+     ["contact.verify=true", "contact.edge_edge=true"]),
+    ("touching-gap0, edge–edge on", "data/cases/stability/touching-gap0.yaml",
+     ["contact.verify=true", "contact.edge_edge=true"]),
+] + [
+    (what, case, keys + [f"contact.verify={on}", "diagnostics.every_step=true"])
+    for what, case, keys in [
+        ("cylinders (edge–edge on), coarse (8 / 4 across), every step", "data/cases/cylinders.yaml",
+         ["bodies.0.mesh.cylinder.cells_across=8", "bodies.0.mesh.cylinder.cells_axial=8",
+          "bodies.1.mesh.cylinder.cells_across=4", "bodies.1.mesh.cylinder.cells_axial=4"]),
+        ("spall-plate, edge–edge on, every step", "data/cases/spall-plate.yaml",
+         ["contact.edge_edge=true"]),
+        ("taylor-symmetric, edge–edge on, coarse (6 across), to 10 µs, every step",
+         "data/cases/taylor-symmetric.yaml",
+         ["contact.edge_edge=true", "end_time=10.0e-6", "bodies.0.mesh.cylinder.cells_across=6",
+          "bodies.0.mesh.cylinder.cells_axial=30", "bodies.1.mesh.cylinder.cells_across=6",
+          "bodies.1.mesh.cylinder.cells_axial=30"]),
+    ]
+    for on in ("false", "true")
+]
+VERIFY_HEADER = [
+    "| case | verify | crossings / nodes inside | checks | failing pairs (steps) | "
+    "steps with zones: zones (translated / frozen) | verify stage / run |",
+    "|---|---|---|---|---|---|---|"]
+FULL_CASES = ["cubes-edge", "two-blocks-msh", "plate-impact-1d", "staggered-patch",
+              "bars-impact", "spall-plate", "taylor-copper", "cylinders", "ball-plate",
+              "taylor-symmetric", "hertz-spheres"]
+VERIFY_FULL_HEADER = [
+    "| case | crossings / nodes inside | checks | momentum | energy | failing pairs (steps) | "
+    "steps with zones: zones (translated / frozen) | verify stage / run |",
+    "|---|---|---|---|---|---|---|---|"]
+
+
+def zones(s):
+    """'steps: zones (translated / frozen)' of the verification."""
+    return (f"{get(s, K.VERIFY_STEPS_WITH_ZONES)}: {get(s, K.VERIFY_IMPACT_ZONES)} "
+            f"({get(s, K.VERIFY_TRANSLATED_ZONES)} / {get(s, K.VERIFY_FROZEN_ZONES)})")
+
+
+def failing(s):
+    """'pairs (steps of all)' the verification found failing after the passes."""
+    return (f"{get(s, K.VERIFY_FAILED_AFTER_PASSES):,} ({get(s, K.VERIFY_STEPS_FAILED)} of "
+            f"{get(s, K.STEPS)})")
+
+
+def verify_row(what, s):
+    """One row of the step verification's table; the verification off when the summary has
+    none."""
+    where = (f"at all {get(s, K.PENETRATION_SAMPLES)} steps"
+             if get(s, K.PENETRATION_MEASURED_AT) == "every step" else "at the frames")
+    pen = f"{get(s, K.MAX_CROSSINGS)} / {get(s, K.MAX_NODES_INSIDE)} {where}"
+    on = K.has(s, K.VERIFICATION)
+    wall = get(s, K.WALL_SECONDS)
+    cost = (f"{get(s, K.TIMINGS).get(K.STAGE_VERIFY, 0):.3g} s / {wall:.3g} s" if on
+            else f"— / {wall:.3g} s")
+    return (f"| {what} | {'on' if on else 'off'} | {pen} | {missed(s)} | "
+            f"{failing(s) if on else '—'} | {zones(s) if on else '—'} | {cost} |")
+
+
+def verify(binary, work, opts):
+    yield from VERIFY_HEADER
+    for k, (what, case, keys) in enumerate(VERIFY_ROWS):
+        s, _ = run(binary, os.path.join(ROOT, case), os.path.join(work, f"row{k}"),
+                   ["--check"] + sets(keys))
+        yield verify_row(what, s)
+
+
+def verify_full_row(name, s):
+    """One shipped case at full size, verified, measured after every step."""
+    return (f"| {name} | {get(s, K.MAX_CROSSINGS)} / {get(s, K.MAX_NODES_INSIDE)} at all "
+            f"{get(s, K.PENETRATION_SAMPLES)} steps | {missed(s)} | "
+            f"{g(get(s, K.MOMENTUM_ERROR))} | {g(get(s, K.ENERGY_BALANCE_ERROR_MAX))} | "
+            f"{failing(s)} | {zones(s)} | "
+            f"{get(s, K.TIMINGS).get(K.STAGE_VERIFY, 0):.3g} s / {get(s, K.WALL_SECONDS):.3g} s |")
+
+
+def verify_full(binary, work, opts):
+    """Every shipped case with contact, full size, edge–edge on, verification on, measured
+    after every step."""
+    yield from VERIFY_FULL_HEADER
+    for name in FULL_CASES:
+        s, _ = run(binary, os.path.join(ROOT, "data/cases", name + ".yaml"),
+                   os.path.join(work, name),
+                   ["--check"] + sets(["contact.edge_edge=true", "contact.verify=true",
+                                       "diagnostics.every_step=true"]))
+        yield verify_full_row(name, s)
+
+
+# strength ----------------------------------------------------------------------------------------
+LAWS = ["bilinear", "johnson_cook", "steinberg_guinan"]
+LAW_NAMES = {"bilinear": "bilinear (perfectly plastic at Y0)", "johnson_cook": "Johnson–Cook",
+             "steinberg_guinan": "Steinberg–Guinan"}
+HEL_MEASURED = 0.64e9     # Pa, the plate impact's measured precursor (± 0.07 GPa)
+ROD_LENGTH0 = 23.47e-3    # m, the aluminium Taylor rod's length and radius before impact
+ROD_RADIUS0 = 3.81e-3
+STRENGTH_HEADER = [
+    "| law | Taylor rod: steps | smallest step / first | step falls reported | L (mm), L/L0 | "
+    "footprint radius (mm), R/R0 | energy balance | wall time | HEL (GPa), vs 0.64 ± 0.07 "
+    "measured |",
+    "|---|---|---|---|---|---|---|---|---|"]
+
+
+def strength_row(law, rod, plate):
+    """One strength law: the Taylor rod's summary and the plate impact's."""
+    b = get(rod, K.BODIES)[0]
+    length = b[K.BBOX_MAX][2] - b[K.BBOX_MIN][2]
+    radius = 0.5 * (b[K.BBOX_MAX][0] - b[K.BBOX_MIN][0])
+    hel = measures(plate)[K.HEL]
+    err = hel / HEL_MEASURED - 1.0
+    return (f"| {LAW_NAMES.get(law, law)} | {get(rod, K.STEPS):,} | "
+            f"{get(rod, K.TIME_STEP_MIN) / get(rod, K.TIME_STEP_FIRST):.3f} | "
+            f"{len(get(rod, K.TIME_STEP_COLLAPSES))} | {length * 1e3:.2f}, "
+            f"{length / ROD_LENGTH0:.3f} | {radius * 1e3:.2f}, {radius / ROD_RADIUS0:.2f} | "
+            f"{g(get(rod, K.ENERGY_BALANCE_ERROR))} | {get(rod, K.WALL_SECONDS):.1f} s | "
+            f"{hel / 1e9:.3f} ({err * 100:+.1f} %) |")
+
+
+def strength(binary, work, opts):
+    """Each strength law on the aluminium Taylor rod and on the plate impact's precursor."""
+    yield from STRENGTH_HEADER
+    for law in LAWS:
+        extra = ["--set", f"materials.al.strength={law}", "--threads", "1"]
+        rod, _ = run(binary, os.path.join(ROOT, "data/cases/taylor-aluminium.yaml"),
+                     os.path.join(work, f"rod-{law}"), extra)
+        plate, _ = run(binary, os.path.join(ROOT, "data/cases/plate-impact-1d.yaml"),
+                       os.path.join(work, f"plate-{law}"), extra)
+        yield strength_row(law, rod, plate)
+
+
+# whipple, whipple-mesh, whipple-hole -------------------------------------------------------------
+WHIPPLE_COARSE = ["parameters.hb=1.0e-3", "parameters.hw=2.0e-3", "parameters.np=6",
+                  "parameters.tear=5.0e-6"]
+WHIPPLE_ROWS = [  # (what, --set values): the test's two shields
+    ("2 mm wall, 15 mm behind", ["parameters.S=15e-3", "parameters.tw=2e-3", "parameters.ww=30e-3"]),
+    ("8 mm wall, 30 mm behind", ["parameters.S=30e-3", "parameters.tw=8e-3"]),
+]
+WHIPPLE_HEADER = [
+    "| shield (4 mm sphere, 6.5 km/s, 1 mm bumper) | d / d_c (Christiansen) | steps, wall time | "
+    "hole | leading edge | cone half-angle | debris (particles) | largest fragment | wall "
+    "perforated: mass through | energy balance |",
+    "|---|---|---|---|---|---|---|---|---|---|"]
+
+
+def perforated(m):
+    return (f"{'yes' if m[K.WALL_PERFORATED] else 'no'}: "
+            f"{m[K.MASS_THROUGH_WALL] * 1e6:.1f} mg")
+
+
+def whipple_row(what, s):
+    """One shield: the run beside Christiansen's critical diameter for its parameters."""
+    p = get(s, K.PARAMETERS)  # whipple.yaml's parameters, by their names there
+    dc = christiansen.critical_diameter(p["v"], p["tb"], p["tw"], p["S"], theta_deg=p["theta"])
+    m = measures(s)
+    return (f"| {what} | {p['d'] / dc:.2f} ({p['d'] * 1e3:g} / {dc * 1e3:.2f} mm) | "
+            f"{get(s, K.STEPS):,}, {get(s, K.WALL_SECONDS):.0f} s | "
+            f"{m[K.HOLE_DIAMETER] * 1e3:.1f} mm | {m[K.DEBRIS_SPEED]:,.0f} m/s | "
+            f"{m[K.DEBRIS_CONE_ANGLE]:.0f}° | {m[K.DEBRIS_MASS] * 1e3:.3f} g "
+            f"({m[K.DEBRIS_PARTICLE_MASS] * 1e3:.3f} g) | {m[K.LARGEST_FRAGMENT] * 1e6:.2f} mg | "
+            f"{perforated(m)} | {g(get(s, K.ENERGY_BALANCE_ERROR))} |")
+
+
+def whipple(binary, work, opts):
+    """The Whipple shield's coarse runs against Christiansen's critical diameter."""
+    yield from WHIPPLE_HEADER
+    for k, (what, keys) in enumerate(WHIPPLE_ROWS):
+        s, _ = run(binary, os.path.join(ROOT, "data/cases/whipple.yaml"),
+                   os.path.join(work, f"whipple{k}"), sets(WHIPPLE_COARSE + keys))
+        yield whipple_row(what, s)
+
+
+WHIPPLE_MESHES = [  # (what, --set values): the shipped shield on three meshes, the same geometry
+    ("coarse: bumper 1 mm, wall 2 mm, sphere 6 across", ["parameters.hb=1.0e-3",
+                                                         "parameters.hw=2.0e-3", "parameters.np=6"]),
+    ("medium: 0.7 mm, 1.4 mm, 7 across", ["parameters.hb=0.7e-3", "parameters.hw=1.4e-3",
+                                          "parameters.np=7"]),
+    ("default: 0.5 mm, 1 mm, 8 across", []),
+]
+WHIPPLE_HOLE_MESHES = WHIPPLE_MESHES + [  # and a fourth: three cells through the bumper
+    ("fine: 0.33 mm (wall 1 mm), 12 across", ["parameters.hb=0.333e-3", "parameters.np=12"]),
+]
+WHIPPLE_MESH_HEADER = [
+    "| mesh | tets | steps, wall time (2 threads) | hole | leading edge | cone half-angle | "
+    "debris | wall perforated: mass through | cells failed (ductile) | energy balance |",
+    "|---|---|---|---|---|---|---|---|---|---|"]
+WHIPPLE_HOLE_HEADER = [
+    "| mesh | tets | steps, wall time (2 threads) | hole at 8 µs | leading edge | "
+    "cells failed (ductile) | energy balance |",
+    "|---|---|---|---|---|---|---|"]
+
+
+def whipple_mesh_row(what, s):
+    m = measures(s)
+    return (f"| {what} | {get(s, K.MESH_TETS):,} | {get(s, K.STEPS):,}, "
+            f"{get(s, K.WALL_SECONDS):.0f} s | {m[K.HOLE_DIAMETER] * 1e3:.1f} mm | "
+            f"{m[K.DEBRIS_SPEED]:,.0f} m/s | {m[K.DEBRIS_CONE_ANGLE]:.0f}° | "
+            f"{m[K.DEBRIS_MASS] * 1e3:.3f} g | {perforated(m)} | "
+            f"{get(s, K.FRACTURE_DUCTILE_FAILED):,} | {g(get(s, K.ENERGY_BALANCE_ERROR))} |")
+
+
+def whipple_hole_row(what, s):
+    m = measures(s)
+    return (f"| {what} | {get(s, K.MESH_TETS):,} | {get(s, K.STEPS):,}, "
+            f"{get(s, K.WALL_SECONDS):.0f} s | {m[K.HOLE_DIAMETER] * 1e3:.1f} mm | "
+            f"{m[K.DEBRIS_SPEED]:,.0f} m/s | {get(s, K.FRACTURE_DUCTILE_FAILED):,} | "
+            f"{g(get(s, K.ENERGY_BALANCE_ERROR))} |")
+
+
+def whipple_runs(binary, work, meshes, extra, prefix):
+    """The Whipple case once per mesh (2 threads, `extra` --set values): (label, summary)."""
+    for k, (what, keys) in enumerate(meshes):
+        s, _ = run(binary, os.path.join(ROOT, "data/cases/whipple.yaml"),
+                   os.path.join(work, f"{prefix}{k}"), ["--threads", "2"] + sets(extra + keys))
+        yield what, s
+
+
+def whipple_mesh(binary, work, opts):
+    """The shipped Whipple shield on three meshes: the measures and the run time of each."""
+    yield from WHIPPLE_MESH_HEADER
+    for what, s in whipple_runs(binary, work, WHIPPLE_MESHES, [], "mesh"):
+        yield whipple_mesh_row(what, s)
+
+
+def whipple_hole(binary, work, opts):
+    """The bumper's hole at 8 µs (the debris has just reached the wall) on four meshes."""
+    yield from WHIPPLE_HOLE_HEADER
+    for what, s in whipple_runs(binary, work, WHIPPLE_HOLE_MESHES, ["parameters.end=8.0e-6"],
+                                "hole"):
+        yield whipple_hole_row(what, s)
+
+
+TABLES = {"stability": stability, "micro": micro, "profile": profile, "verify": verify,
+          "verify-full": verify_full, "threads": threads, "mpi": mpi, "whipple": whipple,
+          "whipple-mesh": whipple_mesh, "whipple-hole": whipple_hole, "strength": strength}
+assert list(TABLES) == NAMES
+
+
+# The machine and the build -----------------------------------------------------------------------
+def cpu(cpuinfo="/proc/cpuinfo"):
+    """(CPU model, core count) from /proc/cpuinfo: its first model name, its processor
+    entries."""
+    model, cores = None, 0
+    with open(cpuinfo) as f:
+        for line in f:
+            key, _, value = line.partition(":")
+            key = key.strip()
+            if key == "processor":
+                cores += 1
+            elif key in ("model name", "Model", "Hardware") and model is None:
+                model = " ".join(value.split())
+    return model or "an unknown CPU", cores
+
+
+def cmake_build(build_dir):
+    """(compiler, build type) from a CMake build folder: CMakeCache.txt's CMAKE_BUILD_TYPE and
+    CMakeFiles/<version>/CMakeCXXCompiler.cmake's compiler id and version; 'unknown' for what is
+    not there."""
+    build_type, compiler = "unknown", "unknown compiler"
+    cache = os.path.join(build_dir, "CMakeCache.txt")
+    if os.path.isfile(cache):
+        m = re.search(r"^CMAKE_BUILD_TYPE:\w+=(.*)$", open(cache).read(), re.M)
+        if m and m.group(1).strip():
+            build_type = m.group(1).strip()
+    for path in sorted(glob.glob(os.path.join(build_dir, "CMakeFiles", "*", "CMakeCXXCompiler.cmake"))):
+        text = open(path).read()
+        cid = re.search(r'^set\(CMAKE_CXX_COMPILER_ID "([^"]*)"\)', text, re.M)
+        ver = re.search(r'^set\(CMAKE_CXX_COMPILER_VERSION "([^"]*)"\)', text, re.M)
+        if cid:
+            compiler = cid.group(1) + (" " + ver.group(1) if ver else "")
+    return compiler, build_type
+
+
+def git_commit(source):
+    """The source tree's commit (short), '+ local changes' when tracked files differ from it."""
+    try:
+        head = subprocess.run(["git", "-C", source, "rev-parse", "--short=10", "HEAD"],
+                              capture_output=True, text=True, check=True).stdout.strip()
+        dirty = subprocess.run(["git", "-C", source, "status", "--porcelain",
+                                "--untracked-files=no"], capture_output=True, text=True,
+                               check=True).stdout.strip()
+    except (OSError, subprocess.CalledProcessError):
+        return "unknown"
+    return head + (" + local changes" if dirty else "")
+
+
+def machine_line(name, binary, cpuinfo="/proc/cpuinfo", build_dir=None, source=ROOT):
+    """The line above a generated table: what measured it and how to make it again."""
+    model, cores = cpu(cpuinfo)
+    try:
+        version = subprocess.run([binary, "--version"], capture_output=True,
+                                 text=True).stdout.strip().splitlines()[0]
+    except (OSError, IndexError):
+        version = "tetcontact (no --version)"
+    compiler, build_type = cmake_build(build_dir or os.path.dirname(os.path.abspath(binary)))
+    return (f"Measured on {model} ({cores} cores) with {version} ({compiler}, {build_type} "
+            f"build, commit {git_commit(source)}); made by `tools/docs/tables.py {name} BINARY "
+            f"--write`.")
+
+
+# The generated blocks ----------------------------------------------------------------------------
+class MarkerError(Exception):
+    """A table's markers missing or twice; the message names the file."""
+
+
+def markers(name):
+    return f"<!-- BEGIN generated: {name} -->", f"<!-- END generated: {name} -->"
+
+
+def doc_files(root):
+    """README.md and every docs/**/*.md under `root`."""
+    files = [os.path.join(root, "README.md")]
+    files += sorted(glob.glob(os.path.join(root, "docs", "**", "*.md"), recursive=True))
+    return [f for f in files if os.path.isfile(f)]
+
+
+def locate(name, root):
+    """The one file holding the table's BEGIN and END markers, each once, BEGIN first;
+    MarkerError otherwise."""
+    begin, end = markers(name)
+    holders = []
+    for path in doc_files(root):
+        text = open(path, encoding="utf-8").read()
+        nb, ne = text.count(begin), text.count(end)
+        if nb or ne:
+            holders.append(path)
+            if nb > 1 or ne > 1:
+                raise MarkerError(f"{path}: {begin if nb > 1 else end} appears "
+                                  f"{max(nb, ne)} times")
+            if nb == 0:
+                raise MarkerError(f"{path}: {end} without {begin}")
+            if ne == 0:
+                raise MarkerError(f"{path}: {begin} without {end}")
+            if text.index(end) < text.index(begin):
+                raise MarkerError(f"{path}: {end} comes before {begin}")
+    if not holders:
+        raise MarkerError(f"{os.path.join(root, 'README.md')} and {os.path.join(root, 'docs')}"
+                          f"/**/*.md: no {begin}")
+    if len(holders) > 1:
+        raise MarkerError(f"{' and '.join(holders)}: {begin} appears in {len(holders)} files")
+    return holders[0]
+
+
+def replace_block(text, name, body):
+    """The text with the lines between the table's markers replaced by `body` (the markers'
+    lines kept). The markers must be there once each (locate checks)."""
+    begin, end = markers(name)
+    i = text.index(begin) + len(begin)
+    j = text.index(end)
+    line_start = text.rfind("\n", 0, j) + 1  # whatever precedes END on its line stays
+    return text[:i] + "\n" + body.rstrip("\n") + "\n\n" + text[line_start:]
+
+
+def write_block(name, body, root):
+    """Rewrites the table's block in the one file holding it (through a temporary file);
+    returns that file."""
+    path = locate(name, root)
+    text = open(path, encoding="utf-8").read()
+    new = replace_block(text, name, body)
+    tmp = path + ".tmp"
+    with open(tmp, "w", encoding="utf-8") as f:
+        f.write(new)
+    os.replace(tmp, path)
+    return path
+
+
+def block(name, binary, lines, **machine):
+    """The block's contents: the machine line, a blank line, the table."""
+    return machine_line(name, binary, **machine) + "\n\n" + "\n".join(lines)
+
+
+def make(name, binary, work, opts):
+    """Runs one table, printing each line as it comes; returns its lines."""
+    lines = []
+    print(f"## {name}", flush=True)
+    for line in TABLES[name](binary, os.path.join(work, name), opts):
+        print(line, flush=True)
+        lines.append(line)
+    return lines
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawTextHelpFormatter)
+    ap.add_argument("table", choices=NAMES + ["all"])
+    ap.add_argument("binary")
+    ap.add_argument("--work", help="keep the runs here (default: a temporary folder)")
+    ap.add_argument("--write", action="store_true",
+                    help="rewrite the table's generated block in README.md or docs/")
+    ap.add_argument("--docs-root", default=ROOT,
+                    help="the folder holding README.md and docs/ (default: the repository)")
+    ap.add_argument("--cases", nargs="*", help="threads: only the cases whose file names "
+                    "contain one of these")
+    a = ap.parse_args(argv)
+    names = NAMES if a.table == "all" else [a.table]
+    if a.write:  # every marker checked before the first run
+        try:
+            for name in names:
+                locate(name, a.docs_root)
+        except MarkerError as e:
+            print(f"tables.py: error: {e}", file=sys.stderr)
+            return 2
+    binary = os.path.abspath(a.binary)
+    if not (os.path.isfile(binary) and os.access(binary, os.X_OK)):
+        print(f"tables.py: error: {a.binary}: no such program", file=sys.stderr)
+        return 2
+    work = a.work or tempfile.mkdtemp(prefix="tables-")
+    for name in names:
+        lines = make(name, binary, work, a)
+        if a.write:
+            path = write_block(name, block(name, binary, lines), a.docs_root)
+            print(f"written: {name} in {path}", flush=True)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
