@@ -51,7 +51,7 @@ void BM_Detect(benchmark::State& state) {
   for (int k = 0; k < 5; ++k) sim.step();  // in contact
   State st = sim.state();
   predict(st, {});
-  NodeFaceContact contact(sim.model().mesh, st.surfaces, *sim.model().contact);
+  ContactDetection contact(sim.model().mesh, st.surfaces, *sim.model().contact);
   ContactStepStats stats;
   for (auto _ : state) benchmark::DoNotOptimize(contact.detect(st, stats));
   state.SetLabel(method);

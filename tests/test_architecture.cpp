@@ -82,6 +82,22 @@ TEST(Architecture, ModelIsTheDataLayer) {
   EXPECT_EQ(order.back(), "app");
 }
 
+// Detection lives in broadphase/ and narrowphase/; response/ only responds to the contact points
+// it is given (the impulse kernel, walls, islands, impact zones): it includes neither.
+TEST(Architecture, ResponseOnlyResponds) {
+  const std::regex include("#include \"tetcontact/(broadphase|narrowphase)/");
+  long files = 0;
+  for (const fs::path& dir : {fs::path(tc::test::source_path("src/response")),
+                              fs::path(tc::test::source_path("include/tetcontact/response"))})
+    for (const auto& e : fs::directory_iterator(dir)) {
+      ++files;
+      std::ifstream in(e.path());
+      for (std::string line; std::getline(in, line);)
+        EXPECT_FALSE(std::regex_search(line, include)) << e.path().string() << ": " << line;
+    }
+  EXPECT_GE(files, 8);  // the scan saw the folder
+}
+
 // The project speaks of itself alone: no tracker numbers, no work-log words and no shorthand
 // for the two papers in the manual, the sources, the tests, the tools or the case files (a
 // paper is named by its authors). The words are spelled in pieces here so that this file does

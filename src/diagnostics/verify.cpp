@@ -44,13 +44,7 @@ void StepVerifier::build(const std::vector<Surface>& surfaces, Index first_parti
   in.node_box.resize(in.node_id.size());
   in.face_box.resize(in.face_nodes.size());
   in.edge_box.resize(in.edge_nodes.size());
-  // The lists' reach: 0.2 of the smallest mean tet edge (the contact-boundary notes' binding
-  // lists).
-  reach_ = 0.0;
-  for (const Surface& s : surfaces)
-    if (s.mean_edge_length > 0.0)
-      reach_ = reach_ > 0.0 ? std::min(reach_, 0.2 * s.mean_edge_length) : 0.2 * s.mean_edge_length;
-  have_lists_ = false;
+  lists_ = BindingLists(binding_reach(surfaces));
 }
 
 Verification StepVerifier::verify(const std::vector<Surface>& surfaces, const std::vector<Vec3>& x0,
@@ -96,23 +90,15 @@ Verification StepVerifier::run(const std::vector<Surface>& surfaces, const std::
     // vertex stays within the reach of where they were built (then a face's or an edge's box
     // now lies within its box then, enlarged by the reach). Each call keeps the listed pairs
     // whose boxes overlap now: the pairs a fresh search gives.
-    bool valid = have_lists_;
-    const double r2 = reach_ * reach_;
-    for (std::size_t i = 0; i < in.node_id.size() && valid; ++i)
-      valid = (x0[in.node_id[i]] - anchor_[i]).squaredNorm() <= r2 &&
-              (x1[in.node_id[i]] - anchor_[i]).squaredNorm() <= r2;
-    if (!valid) {
+    if (!lists_.hold(in.node_id, x0, x1)) {
       BroadphaseInput enlarged = in;
       for (auto* boxes : {&enlarged.node_box, &enlarged.face_box, &enlarged.edge_box})
-        for (Box& b : *boxes) b.lo.array() -= reach_, b.hi.array() += reach_;
-      lists_ = broadphase_->find(enlarged);
-      anchor_.resize(in.node_id.size());
-      for (std::size_t i = 0; i < in.node_id.size(); ++i) anchor_[i] = x0[in.node_id[i]];
-      have_lists_ = true;
+        for (Box& b : *boxes) b.lo.array() -= lists_.reach(), b.hi.array() += lists_.reach();
+      lists_.set(broadphase_->find(enlarged), in.node_id, x0);
     }
-    for (const auto& p : lists_.node_face)
+    for (const auto& p : lists_.lists().node_face)
       if (boxes_overlap(in.node_box[p.first], in.face_box[p.second])) pairs.node_face.push_back(p);
-    for (const auto& p : lists_.edge_edge)
+    for (const auto& p : lists_.lists().edge_edge)
       if (boxes_overlap(in.edge_box[p.first], in.edge_box[p.second])) pairs.edge_edge.push_back(p);
   } else {
     // Again: a primitive is dirty when a node its pairs' tests read has moved (a face: its
@@ -150,16 +136,13 @@ Verification StepVerifier::run(const std::vector<Surface>& surfaces, const std::
     // The binding lists still hold every pair whose boxes overlap when the moved nodes stay
     // within the reach (x⁰ was checked by the first call of the step); else a broadphase on
     // the dirty primitives and those whose boxes reach theirs.
-    bool valid = have_lists_;
-    const double r2 = reach_ * reach_;
-    for (std::size_t i = 0; i < in.node_id.size() && valid; ++i)
-      valid = !dirty_node[i] || (x1[in.node_id[i]] - anchor_[i]).squaredNorm() <= r2;
+    const bool valid = lists_.holds(in.node_id, x1, &dirty_node);
     if (have && valid) {
-      for (const auto& p : lists_.node_face)
+      for (const auto& p : lists_.lists().node_face)
         if ((dirty_node[p.first] || dirty_face[p.second]) &&
             boxes_overlap(in.node_box[p.first], in.face_box[p.second]))
           pairs.node_face.push_back(p);
-      for (const auto& p : lists_.edge_edge)
+      for (const auto& p : lists_.lists().edge_edge)
         if ((dirty_edge[p.first] || dirty_edge[p.second]) &&
             boxes_overlap(in.edge_box[p.first], in.edge_box[p.second]))
           pairs.edge_edge.push_back(p);

@@ -143,21 +143,11 @@ Box face_box(const Face& k, const State& st, double margin) {
 // where it was at the build: then the boxes of this step lie inside those of the build, and
 // a pair whose boxes overlap now is in the lists.
 bool ParticleContact::lists_valid(const std::vector<Surface>& surfaces, const State& st) const {
-  if (!have_lists_ || particle_anchor_.size() != static_cast<std::size_t>(st.particle_count()))
-    return false;
+  if (!binding_lists_ || particles_listed_ != st.particle_count()) return false;
   std::size_t n = 0;
   for (const Surface& s : surfaces) n += s.nodes.size();
-  if (n != anchor_nodes_.size()) return false;
-  const double r2 = reach_ * reach_;
-  const auto near = [&](Index node, const Vec3& anchor) {
-    return (st.x[node] - anchor).squaredNorm() <= r2 &&
-           (st.x_star[node] - anchor).squaredNorm() <= r2;
-  };
-  for (std::size_t i = 0; i < particle_anchor_.size(); ++i)
-    if (!near(st.first_particle + static_cast<Index>(i), particle_anchor_[i])) return false;
-  for (std::size_t k = 0; k < anchor_nodes_.size(); ++k)
-    if (!near(anchor_nodes_[k], node_anchor_[k])) return false;
-  return true;
+  if (static_cast<std::size_t>(particles_listed_) + n != anchored_.size()) return false;
+  return lists_.hold(anchored_, st.x, st.x_star);
 }
 
 // Particles are the broadphase's points (against faces) and its degenerate edges (against
@@ -165,15 +155,12 @@ bool ParticleContact::lists_valid(const std::vector<Surface>& surfaces, const St
 // the box of all particles' boxes cannot pair with any: they stay out of the broadphase.
 void ParticleContact::build_lists(const std::vector<Surface>& surfaces, const State& st) {
   const Index count = st.particle_count();
-  reach_ = 0.0;
-  if (binding_lists_) {
-    for (Index i = 0; i < count; ++i) reach_ += st.particle_radius[i];
-    reach_ /= static_cast<double>(count);
-  }
+  lists_ = BindingLists(binding_lists_ ? binding_reach(surfaces) : 0.0);
+  const double reach = lists_.reach();
   BroadphaseInput in;
   in.self_pairs = true;
   for (Index i = 0; i < count; ++i) {
-    const Box b = particle_box(st, i, reach_);
+    const Box b = particle_box(st, i, reach);
     in.node_box.push_back(b);
     in.node_id.push_back(st.first_particle + i);
     in.node_body.push_back(-1);
@@ -188,7 +175,7 @@ void ParticleContact::build_lists(const std::vector<Surface>& surfaces, const St
   for (Index si = 0; si < static_cast<Index>(surfaces.size()); ++si) {
     const Surface& s = surfaces[si];
     for (Index f = 0; f < static_cast<Index>(s.faces.size()); ++f) {
-      const Box box = face_box(s.faces[f], st, reach_);
+      const Box box = face_box(s.faces[f], st, reach);
       face_at_.push_back({si, f});
       if (!boxes_overlap(box, all)) continue;
       in.face_box.push_back(box);
@@ -200,18 +187,14 @@ void ParticleContact::build_lists(const std::vector<Surface>& surfaces, const St
   Candidates c = broadphase_->find(in);
   ++runs_;
   // Sorted by (particle, broadphase face), hence by (particle, face number).
-  particle_face_ = std::move(c.node_face);
-  for (auto& [i, f] : particle_face_) f = number[f];
-  listed_faces_ = listed_faces(particle_face_);
-  particle_pairs_ = std::move(c.edge_edge);
-  particle_anchor_.resize(count);
-  for (Index i = 0; i < count; ++i) particle_anchor_[i] = st.x[st.first_particle + i];
-  anchor_nodes_.clear();
+  for (auto& [i, f] : c.node_face) f = number[f];
+  listed_faces_ = listed_faces(c.node_face);
+  particles_listed_ = count;
+  anchored_.clear();
+  for (Index i = 0; i < count; ++i) anchored_.push_back(st.first_particle + i);
   for (const Surface& s : surfaces)
-    anchor_nodes_.insert(anchor_nodes_.end(), s.nodes.begin(), s.nodes.end());
-  node_anchor_.resize(anchor_nodes_.size());
-  for (std::size_t k = 0; k < anchor_nodes_.size(); ++k) node_anchor_[k] = st.x[anchor_nodes_[k]];
-  have_lists_ = binding_lists_;
+    anchored_.insert(anchored_.end(), s.nodes.begin(), s.nodes.end());
+  lists_.set(std::move(c), anchored_, st.x);
 }
 
 std::vector<ContactPoint> ParticleContact::detect(const std::vector<Surface>& surfaces,
@@ -241,11 +224,11 @@ std::vector<ContactPoint> ParticleContact::detect(const std::vector<Surface>& su
     ContactPoint cp;
     double behind = 0.0;
   };
-  std::vector<std::vector<Found>> found(parallel::block_count(particle_face_.size()));
+  std::vector<std::vector<Found>> found(parallel::block_count(lists_.lists().node_face.size()));
   parallel::for_blocks(
-      particle_face_.size(), [&](std::size_t blk, std::size_t begin, std::size_t end) {
+      lists_.lists().node_face.size(), [&](std::size_t blk, std::size_t begin, std::size_t end) {
         for (std::size_t pair = begin; pair < end; ++pair) {
-          const auto& [i, fi] = particle_face_[pair];
+          const auto& [i, fi] = lists_.lists().node_face[pair];
           const Index p = first + i;
           const Surface& s = surfaces[face_at_[fi].first];
           const Index f = face_at_[fi].second;
@@ -301,7 +284,7 @@ std::vector<ContactPoint> ParticleContact::detect(const std::vector<Surface>& su
     }
   for (Index i = 0; i < count; ++i)
     if (deepest[i] > 0.0) moves_.emplace_back(first + i, move[i]);
-  for (const auto& [i, j] : particle_pairs_) {
+  for (const auto& [i, j] : lists_.lists().edge_edge) {
     if (!boxes_overlap(pbox[i], pbox[j])) continue;
     const Index p = first + i, o = first + j;
     const Vec3 d = st.x[p] - st.x[o];

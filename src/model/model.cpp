@@ -5,7 +5,8 @@
 
 namespace tc {
 
-double& StepProfile::operator[](const std::string& name) {
+double& StepProfile::operator[](Stage stage) {
+  const std::string name(name_of(k_stage_names, stage));
   for (auto& [n, s] : stages)
     if (n == name) return s;
   stages.emplace_back(name, 0.0);

@@ -43,13 +43,6 @@ Vec3 relative_velocity(const ContactPoint& c, const State& st) {
 
 }  // namespace
 
-double rounding_margin(std::initializer_list<const Vec3*> points) {
-  double size = 0.0;
-  for (const Vec3* p : points) size = std::max(size, p->cwiseAbs().maxCoeff());
-  if (size == 0.0) return 0.0;
-  return 16.0 * std::ldexp(std::numeric_limits<double>::epsilon(), std::ilogb(size));
-}
-
 double apply_contact(ContactPoint& c, State& st, double tau, std::vector<Vec3>& ledger) {
   double inv_mass = 0.0;  // Σ w²/m over both sides
   for (int i = 0; i < c.a_count; ++i) inv_mass += c.a_w[i] * c.a_w[i] / st.m[c.a_nodes[i]];

@@ -114,7 +114,7 @@ Simulation::Simulation(Model model, SolverSettings settings)
     wall_force_max_.assign(model_.walls.size(), 0.0);
   }
   if (model_.contact) {
-    contact_ = std::make_unique<NodeFaceContact>(model_.mesh, state_.surfaces, *model_.contact);
+    contact_ = std::make_unique<ContactDetection>(model_.mesh, state_.surfaces, *model_.contact);
     modules_.push_back("broadphase:" + model_.contact->broadphase);
     modules_.push_back("narrowphase:node_face");
     modules_.push_back("response:node_face");
@@ -126,15 +126,14 @@ Simulation::Simulation(Model model, SolverSettings settings)
   }
   modules_.push_back("diagnostics:balance");
 
-  for (const char* stage : {"predict", "broadphase", "narrowphase", "particles", "response",
-                            "verify", "balance", "output", "commit", "fracture", "elements"}) {
-    const std::string s = stage;
-    const bool contact_stage = s == "broadphase" || s == "narrowphase";
-    if (s == "verify" && !verifier_) continue;
-    if (contact_stage && !contact_) continue;
-    if (s == "response" && !contact_ && model_.walls.empty() && !fragmentation_) continue;
-    if ((s == "fracture" || s == "particles") && !fragmentation_) continue;
-    profile_[stage] = 0.0;
+  // The profile lists the stages this case runs, in pipeline order.
+  for (const Named<Stage>& stage : k_stage_names) {
+    const Stage s = stage.value;
+    if (s == Stage::verify && !verifier_) continue;
+    if ((s == Stage::broadphase || s == Stage::narrowphase) && !contact_) continue;
+    if (s == Stage::response && !corrects()) continue;
+    if ((s == Stage::fracture || s == Stage::particles) && !fragmentation_) continue;
+    profile_[s] = 0.0;
   }
   if (mpi::ranks() > 1) {
     // Distributed: every process holds the nodes' whole state
@@ -167,8 +166,15 @@ bool Simulation::done() const {
   return state_.t >= settings_.end_time;
 }
 
-// The step, in the paper's order (Dobritsa et al.): predict, corrections (walls; contact later),
-// commit.
+template <class Body>
+void Simulation::timed(Stage stage, Body&& body) {
+  StageTimer t(profile_[stage]);
+  body();
+}
+
+// The step, in the order of Dobritsa et al. (2019): the predicted motion (their eqs. 2, 3),
+// the corrections of U* by walls and contact before any position moves, then the committed
+// update (eq. 1) and the elements' forces for the next step.
 void Simulation::step() {
   if (state_.step >= settings_.max_steps) {
     std::ostringstream os;
@@ -176,67 +182,47 @@ void Simulation::step() {
        << " s before end_time " << settings_.end_time << " s";
     throw RunFailure(os.str());
   }
-  {
-    StageTimer t(profile_["predict"]);
-    predict_stage();
-  }               // U*, x* (eqs. 2, 3)
-  corrections();  // walls and contact
-  {
-    StageTimer t(profile_["balance"]);
-    sample_stage();
-  }  // energy, momentum at t^n
-  {
-    StageTimer t(profile_["output"]);
-    output_stage();
-  }  // observers see t^n
-  {
-    StageTimer t(profile_["commit"]);
-    commit_stage();
-  }  // U^{n+1}, x^{n+1} (eq. 1)
-  if (fragmentation_) {
-    StageTimer t(profile_["fracture"]);
-    fracture_stage();
-  }  // destroyed boundary cells → particles
-  {
-    StageTimer t(profile_["elements"]);
-    elements_stage();
-  }  // σ^{n+1}, F^{n+1}, next τ
+  timed(Stage::predict, [&] { predict_stage(); });  // U*, x* (eqs. 2, 3)
+  detect_stage();   // contact points: walls, bodies (broadphase, narrowphase), particles
+  respond_stage();  // the sequential passes over them, island by island
+  if (verifier_) timed(Stage::verify, [&] { resolve_stage(); });  // the verified step
+  timed(Stage::balance, [&] { sample_stage(); });                 // energy, momentum at tⁿ
+  timed(Stage::output, [&] { output_stage(); });                  // observers see tⁿ
+  timed(Stage::commit, [&] { commit_stage(); });                  // Uⁿ⁺¹, xⁿ⁺¹ (eq. 1)
+  if (fragmentation_) timed(Stage::fracture, [&] { fracture_stage(); });  // cells → particles
+  timed(Stage::elements, [&] { elements_stage(); });  // σⁿ⁺¹, Fⁿ⁺¹, next τ
 }
 
+// The final time level sampled: nothing is committed after it, so nothing to verify.
 void Simulation::finish() {
-  {
-    StageTimer t(profile_["predict"]);
-    predict_stage();
-  }
-  corrections(false);  // nothing is committed after the last sample: nothing to verify
-  {
-    StageTimer t(profile_["balance"]);
-    sample_stage();
-  }
-  {
-    StageTimer t(profile_["output"]);
-    output_stage();
-  }
+  timed(Stage::predict, [&] { predict_stage(); });
+  detect_stage();
+  respond_stage();
+  timed(Stage::balance, [&] { sample_stage(); });
+  timed(Stage::output, [&] { output_stage(); });
 }
 
-// The corrections of U* (Dobritsa et al.: after the prediction, before positions are committed):
-// walls and node–face contacts, each correction seeing the velocities the ones before it
-// left, repeated in `passes` sequential passes.
-void Simulation::corrections(bool verify) {
-  if (model_.walls.empty() && !contact_ && !fragmentation_) return;
+bool Simulation::corrects() const {
+  return !model_.walls.empty() || contact_ || fragmentation_;
+}
+
+// The contact points of the step, from xⁿ and x*: walls, contact between bodies (timed as
+// broadphase and narrowphase), particles (a particle centre found inside a body is moved back
+// onto the face it is deepest behind).
+void Simulation::detect_stage() {
+  if (!corrects()) return;
   State& st = state_;
-  std::vector<std::vector<ContactPoint>> walls =
-      wall_contact_lists(model_.walls, surface_nodes_, st);
-  contacts_.clear();
+  points_.walls = wall_contact_lists(model_.walls, surface_nodes_, st);
+  points_.bodies.clear();
   if (contact_) {
-    contacts_ = contact_->detect(st, contact_stats_);
-    profile_["broadphase"] += contact_stats_.broadphase_seconds;
-    profile_["narrowphase"] += contact_stats_.narrowphase_seconds;
+    points_.bodies = contact_->detect(st, contact_stats_);
+    profile_[Stage::broadphase] += contact_stats_.broadphase_seconds;
+    profile_[Stage::narrowphase] += contact_stats_.narrowphase_seconds;
   }
-  particle_contacts_.clear();
+  points_.particles.clear();
   if (fragmentation_ && st.particle_count() > 0) {
-    StageTimer t(profile_["particles"]);
-    particle_contacts_ = particle_contact_->detect(state_.surfaces, model_.mesh, st);
+    StageTimer t(profile_[Stage::particles]);
+    points_.particles = particle_contact_->detect(state_.surfaces, model_.mesh, st);
     for (const auto& [p, d] : particle_contact_->moves()) {
       st.x[p] += d;
       st.x_star[p] += d;
@@ -244,29 +230,32 @@ void Simulation::corrections(bool verify) {
       contact_totals_.particle_move_max = std::max(contact_totals_.particle_move_max, d.norm());
     }
   }
-  std::optional<StageTimer> timer(std::in_place, profile_["response"]);
+}
+
+// The corrections of U* (Dobritsa et al.: after the prediction, before positions are
+// committed): walls, contacts and particle contacts, each correction seeing the velocities the
+// ones before it left, repeated in `passes` sequential passes, island by island
+// (response/islands.hpp: the same result as one thread going through the lists).
+void Simulation::respond_stage() {
+  if (!corrects()) return;
+  StageTimer timer(profile_[Stage::response]);
+  State& st = state_;
   for (Vec3& j : st.wall_impulse) j.setZero();
   for (Vec3& j : st.contact_impulse) j.setZero();
-  // The sequential passes over walls, contacts and particle contacts, in that order, island
-  // by island (response/islands.hpp: the same result as one thread going through the lists).
   const int passes = contact_ ? model_.contact->passes : 1;
-  std::vector<ContactList> lists;
-  for (auto& list : walls) lists.push_back({&list, &st.wall_impulse});
-  lists.push_back({&contacts_, &st.contact_impulse});
-  lists.push_back({&particle_contacts_, &st.contact_impulse});
-  const Islands islands = contact_islands(lists, st.x.size(), island_slot_);
+  std::vector<ContactList>& lists = points_.lists;
+  lists.clear();
+  for (auto& list : points_.walls) lists.push_back({&list, &st.wall_impulse});
+  lists.push_back({&points_.bodies, &st.contact_impulse});
+  lists.push_back({&points_.particles, &st.contact_impulse});
+  const Islands islands = contact_islands(lists, st.x.size(), points_.island_slot);
   correct_in_islands(lists, islands, passes, st);
   contact_totals_.islands += static_cast<long>(islands.count());
   contact_totals_.island_points += static_cast<long>(islands.refs.size());
   contact_totals_.largest_island_points += static_cast<long>(islands.largest());
-  for (const ContactPoint& c : particle_contacts_)
+  for (const ContactPoint& c : points_.particles)
     contact_totals_.particle_contacts += c.lambda > 0.0;
-  wall_results_ = wall_results(walls);
-  timer.reset();
-  if (verifier_ && verify) {
-    StageTimer t(profile_["verify"]);
-    verify_stage(lists, passes);
-  }
+  wall_results_ = wall_results(points_.walls);
 }
 
 // The step's motion verified (diagnostics/verify.hpp): xⁿ⁺¹ = xⁿ + τ U*, the same doubles the
@@ -276,27 +265,31 @@ void Simulation::corrections(bool verify) {
 // goes into rigid impact zones (response/impact_zones.hpp), verified again until none fails: a
 // failure across zones merges them, one inside a zone escalates it (rigid → exact translation →
 // frozen).
-void Simulation::verify_stage(const std::vector<ContactList>& lists, int passes) {
+void Simulation::resolve_stage() {
   State& st = state_;
-  ContactTotals& ct = contact_totals_;
+  const std::vector<ContactList>& lists = points_.lists;
+  const int passes = contact_ ? model_.contact->passes : 1;
+  ContactLedger& ct = contact_totals_;
   const std::size_t n = st.x.size();
-  x_end_.resize(n);
-  fixed_x_.clear();
+  resolve_.x_end.resize(n);
+  resolve_.fixed_x.clear();
   const auto end_positions = [&] {
     parallel::for_each(
-        n, [&](std::size_t i) { x_end_[i] = st.x[i] + st.dt * st.v_star[i]; },
+        n, [&](std::size_t i) { resolve_.x_end[i] = st.x[i] + st.dt * st.v_star[i]; },
         parallel::k_light_block);
-    for (const auto& [node, x] : fixed_x_) x_end_[node] = x;
+    for (const auto& [node, x] : resolve_.fixed_x) resolve_.x_end[node] = x;
   };
   end_positions();
-  Verification v = verifier_->verify(st.surfaces, st.x, x_end_, st.first_particle);
+  Verification v = verifier_->verify(st.surfaces, st.x, resolve_.x_end, st.first_particle);
   // Again after a round: only the pairs that read a node whose end position changed.
   const auto verify_again = [&] {
     end_positions();
-    changed_.assign(n, 0);
+    resolve_.changed.assign(n, 0);
     for (std::size_t i = 0; i < n; ++i)
-      if (x_end_[i] != x_tested_[i]) changed_[i] = 1, x_tested_[i] = x_end_[i];
-    v = verifier_->verify_again(st.surfaces, st.x, x_end_, st.first_particle, changed_);
+      if (resolve_.x_end[i] != resolve_.x_tested[i])
+        resolve_.changed[i] = 1, resolve_.x_tested[i] = resolve_.x_end[i];
+    v = verifier_->verify_again(st.surfaces, st.x, resolve_.x_end, st.first_particle,
+                                resolve_.changed);
   };
   ct.verified_pairs += v.pairs_checked;
   if (v.failed.empty()) return;
@@ -306,28 +299,29 @@ void Simulation::verify_stage(const std::vector<ContactList>& lists, int passes)
     ct.failed_edge_edge += p.edge_edge;
   }
   ++ct.steps_failed;
-  x_tested_ = x_end_;
+  resolve_.x_tested = resolve_.x_end;
   // Further passes where the failures are: a failing pair becomes a contact point of its own
-  // (once a step: restoring, aimed beyond touching, NodeFaceContact::vertex_face_point and
+  // (once a step: restoring, aimed beyond touching, ContactDetection::vertex_face_point and
   // edge_edge_point), and the islands of the points that move a failing pair's nodes get
   // more passes: `passes` in the first round, doubling each round (the passes converge
   // slowly on large coupled islands; only the failing islands pay).
-  marked_.assign(n, 0);
+  resolve_.marked.assign(n, 0);
   std::set<std::array<Index, 5>> rescued;  // (edge–edge, the pair's four nodes)
   int stalled = 0;
   for (int extra = 0; extra < k_extra_rounds && !v.failed.empty(); ++extra) {
     for (const FailedPair& p : v.failed) {
-      for (int k = 0; k < p.count; ++k) marked_[p.nodes[k]] = 1;
+      for (int k = 0; k < p.count; ++k) resolve_.marked[p.nodes[k]] = 1;
       const auto& k = p.nodes;
       if (!rescued.insert({p.edge_edge, k[0], k[1], k[2], k[3]}).second) continue;
       const std::optional<ContactPoint> c =
-          p.edge_edge ? contact_->edge_edge_point(st, x_end_, {k[0], k[1]}, {k[2], k[3]}, p.body_a,
-                                                  p.body_b, p.outward_a, p.outward_b)
-                      : contact_->vertex_face_point(st, x_end_, k[0], {k[1], k[2], k[3]}, p.body_a,
-                                                    p.body_b);
-      if (c) contacts_.push_back(*c), ++ct.rescue_points;
+          p.edge_edge ? contact_->edge_edge_point(st, resolve_.x_end, {k[0], k[1]}, {k[2], k[3]},
+                                                  p.body_a, p.body_b, p.outward_a, p.outward_b)
+                      : contact_->vertex_face_point(st, resolve_.x_end, k[0], {k[1], k[2], k[3]},
+                                                    p.body_a, p.body_b);
+      if (c) points_.bodies.push_back(*c), ++ct.rescue_points;
     }
-    const Islands failing = islands_with(lists, contact_islands(lists, n, island_slot_), marked_);
+    const Islands failing =
+        islands_with(lists, contact_islands(lists, n, points_.island_slot), resolve_.marked);
     if (failing.count() == 0) break;  // no contact point moves them: only zones can
     correct_in_islands(lists, failing, passes << extra, st);
     ++ct.extra_rounds;
@@ -342,51 +336,51 @@ void Simulation::verify_stage(const std::vector<ContactList>& lists, int passes)
   if (v.failed.empty()) return;
   ct.failed_after_extra += static_cast<long>(v.failed.size());
   ++ct.steps_with_zones;
-  zones_.reset(n);
-  u_passes_ = st.v_star;
+  resolve_.zones.reset(n);
+  resolve_.u_passes = st.v_star;
   int round = 0;
   for (; round < k_zone_rounds && !v.failed.empty(); ++round) {
     // A failure inside one zone: rounding; the zone moves by an exact translation, or, if
     // that too fails, is frozen.
     std::vector<Index> escalate;
     for (const FailedPair& p : v.failed)
-      if (zones_.same_zone(p.nodes.data(), p.count)) escalate.push_back(p.nodes[0]);
-    for (const FailedPair& p : v.failed) zones_.merge(p.nodes.data(), p.count);
+      if (resolve_.zones.same_zone(p.nodes.data(), p.count)) escalate.push_back(p.nodes[0]);
+    for (const FailedPair& p : v.failed) resolve_.zones.merge(p.nodes.data(), p.count);
     std::vector<Index> escalated;  // one node per zone: each zone escalates once a round
     for (const Index node : escalate) {
       bool seen = false;
       for (const Index e : escalated) {
         const std::array<Index, 2> pair{e, node};
-        seen = seen || zones_.same_zone(pair.data(), 2);
+        seen = seen || resolve_.zones.same_zone(pair.data(), 2);
       }
-      if (!seen) escalated.push_back(node), zones_.escalate(node);
+      if (!seen) escalated.push_back(node), resolve_.zones.escalate(node);
     }
-    zones_.apply(u_passes_, st, st.contact_impulse);
+    resolve_.zones.apply(resolve_.u_passes, st, st.contact_impulse);
     // Rounding a rigid motion to doubles can leave a pair that touches inside a zone an ulp
     // through: the contact points inside the rigid zones get `passes` again from zero impulse
     // (they only push; equal and opposite at one place: both momenta kept), which puts such a
     // pair a rounding margin apart and leaves the others as the rigid field moves them.
-    in_rigid_.assign(n, 0);
-    for (const ImpactZones::Zone& z : zones_.zones())
+    resolve_.in_rigid.assign(n, 0);
+    for (const ImpactZones::Zone& z : resolve_.zones.zones())
       if (z.motion == ImpactZones::Motion::rigid)
-        for (const Index node : z.nodes) in_rigid_[node] = 1;
-    inside_.clear();
-    for (const std::vector<ContactPoint>* list : {&contacts_, &particle_contacts_})
+        for (const Index node : z.nodes) resolve_.in_rigid[node] = 1;
+    resolve_.inside.clear();
+    for (const std::vector<ContactPoint>* list : {&points_.bodies, &points_.particles})
       for (const ContactPoint& c : *list) {
         bool inside = true;
-        for (int k = 0; k < c.a_count; ++k) inside = inside && in_rigid_[c.a_nodes[k]];
-        for (int k = 0; k < c.b_count; ++k) inside = inside && in_rigid_[c.b_nodes[k]];
+        for (int k = 0; k < c.a_count; ++k) inside = inside && resolve_.in_rigid[c.a_nodes[k]];
+        for (int k = 0; k < c.b_count; ++k) inside = inside && resolve_.in_rigid[c.b_nodes[k]];
         if (!inside) continue;
-        inside_.push_back(c);
-        inside_.back().lambda = 0.0;
-        inside_.back().tangential.setZero();
+        resolve_.inside.push_back(c);
+        resolve_.inside.back().lambda = 0.0;
+        resolve_.inside.back().tangential.setZero();
       }
-    if (!inside_.empty()) {
-      const std::vector<ContactList> inner{{&inside_, &st.contact_impulse}};
-      correct_in_islands(inner, contact_islands(inner, n, island_slot_), passes, st);
+    if (!resolve_.inside.empty()) {
+      const std::vector<ContactList> inner{{&resolve_.inside, &st.contact_impulse}};
+      correct_in_islands(inner, contact_islands(inner, n, points_.island_slot), passes, st);
     }
-    fixed_x_.clear();
-    for (const ImpactZones::Zone& z : zones_.zones()) {
+    resolve_.fixed_x.clear();
+    for (const ImpactZones::Zone& z : resolve_.zones.zones()) {
       if (z.motion == ImpactZones::Motion::rigid) continue;
       Vec3 d = Vec3::Zero();
       if (z.motion == ImpactZones::Motion::translated) {
@@ -395,13 +389,13 @@ void Simulation::verify_stage(const std::vector<ContactList>& lists, int passes)
         for (const Index node : z.nodes) mass += st.m[node], p += st.m[node] * st.v_star[node];
         if (mass > 0.0) d = exact_translation(st.x, z.nodes, st.dt * p / mass);
       }
-      for (const Index node : z.nodes) fixed_x_.push_back({node, Vec3(st.x[node] + d)});
+      for (const Index node : z.nodes) resolve_.fixed_x.push_back({node, Vec3(st.x[node] + d)});
     }
     verify_again();
   }
   ct.zone_rounds += round;
   ct.unresolved_steps += !v.failed.empty();
-  for (const ImpactZones::Zone& z : zones_.zones()) {
+  for (const ImpactZones::Zone& z : resolve_.zones.zones()) {
     ++ct.impact_zones;
     ct.translated_zones += z.motion == ImpactZones::Motion::translated;
     ct.frozen_zones += z.motion == ImpactZones::Motion::frozen;
@@ -447,10 +441,10 @@ void Simulation::sample_stage() {
   }
   if (contact_) {
     double lambda = 0.0;
-    for (const ContactPoint& c : contacts_) lambda += c.lambda;
+    for (const ContactPoint& c : points_.bodies) lambda += c.lambda;
     s.contact_force = lambda / state_.dt;
     s.contacts = contact_stats_.contacts;
-    ContactTotals& ct = contact_totals_;
+    ContactLedger& ct = contact_totals_;
     ct.node_face += contact_stats_.contacts;
     ct.edge_edge += contact_stats_.edge_contacts;
     ct.edge_candidates += contact_stats_.edge_candidates;
@@ -505,7 +499,7 @@ void Simulation::commit_stage() {
   commit(state_);
   // Translated and frozen impact zones take the positions the zones set (their velocities
   // are the zone's rigid ones).
-  for (const auto& [node, x] : fixed_x_) state_.x[node] = x;
+  for (const auto& [node, x] : resolve_.fixed_x) state_.x[node] = x;
 }
 
 // Destroyed boundary cells of the last element pass become particles before this one, which

@@ -21,6 +21,7 @@
 #include <memory>
 #include <vector>
 
+#include "tetcontact/broadphase/binding_lists.hpp"
 #include "tetcontact/broadphase/broadphase.hpp"
 #include "tetcontact/mesh/surface.hpp"
 
@@ -75,12 +76,7 @@ class StepVerifier {
   std::vector<Index> face_tet_;
   std::vector<std::array<Index, 2>> edge_faces_;  // the two surface faces at each edge
   bool stale_ = true;                             // the primitives are rebuilt at the next call
-  // Binding lists of candidate pairs (boxes enlarged by reach_) and the vertices' positions
-  // they were built from.
-  Candidates lists_;
-  std::vector<Vec3> anchor_;
-  double reach_ = 0.0;
-  bool have_lists_ = false;
+  BindingLists lists_;  // candidate pairs of boxes enlarged by the reach, kept while they hold
   std::size_t built_nodes_ = 0;
   Index built_first_particle_ = 0;
   // The last call's failing pairs, (node primitive, face) and (edge, edge), sorted.

@@ -11,11 +11,12 @@
 #include <string>
 #include <vector>
 
+#include "tetcontact/broadphase/binding_lists.hpp"
 #include "tetcontact/broadphase/broadphase.hpp"
 #include "tetcontact/material/material.hpp"
 #include "tetcontact/mesh/surface.hpp"
+#include "tetcontact/model/contact_point.hpp"
 #include "tetcontact/model/state.hpp"
-#include "tetcontact/response/impulse.hpp"
 
 namespace tc {
 
@@ -77,11 +78,12 @@ class Fragmentation {
 /// with its gap: the kernel lets the particle close at most the gap within the step, so no particle
 /// passes through a face whatever its speed (speculative contact).
 ///
-/// Binding lists (as for node–face contact): the broadphase runs with every box enlarged by a
-/// reach r (the particles' mean radius) and its pairs are kept until a particle or a surface
-/// node has moved r from where it was then, or reset() is called (particles added, surfaces
-/// rebuilt). Each step a kept pair goes on only when its boxes of the step overlap: the
-/// contacts, and their order, are those of a fresh broadphase every step (tested).
+/// Binding lists (broadphase/binding_lists.hpp, as for contact between bodies): the broadphase
+/// runs with every box enlarged by the reach (binding_reach of the surfaces) and its pairs are
+/// kept until a particle or a surface node has moved that far from where it was then, or
+/// reset() is called (particles added, surfaces rebuilt). Each step a kept pair goes on only when
+/// its boxes of the step overlap: the contacts, and their order, are those of a fresh broadphase
+/// every step (tested).
 class ParticleContact {
  public:
   explicit ParticleContact(const std::string& broadphase, bool binding_lists = true);
@@ -91,7 +93,7 @@ class ParticleContact {
   /// that puts each centre on the plane of the face it is deepest behind.
   const std::vector<std::pair<Index, Vec3>>& moves() const { return moves_; }
   /// The particles or the surfaces changed: the next detect() builds new lists.
-  void reset() { have_lists_ = false; }
+  void reset() { lists_.reset(); }
   /// Broadphase runs so far (each a rebuild of the lists).
   long broadphase_runs() const { return runs_; }
 
@@ -101,15 +103,14 @@ class ParticleContact {
   std::unique_ptr<Broadphase> broadphase_;
   bool binding_lists_ = true;
   std::vector<std::pair<Index, Vec3>> moves_;
-  // The lists: (particle, face) with faces numbered over all surfaces in order, and particle
-  // pairs; the reach and the positions they were built from.
-  bool have_lists_ = false;
+  // The lists: (particle, face) with faces numbered over all surfaces in order (node_face),
+  // and particle pairs (edge_edge); the points they hold for: every particle, then every
+  // surface node.
+  BindingLists lists_;
   long runs_ = 0;
-  double reach_ = 0.0;
-  std::vector<std::pair<Index, Index>> particle_face_, particle_pairs_;
+  Index particles_listed_ = 0;
+  std::vector<Index> anchored_;
   std::vector<std::pair<Index, Index>> face_at_;  // (surface, face) of each face number
-  std::vector<Vec3> particle_anchor_, node_anchor_;
-  std::vector<Index> anchor_nodes_;  // every surface node
   // This step's boxes of the faces the lists name.
   std::vector<Index> listed_faces_;
   std::vector<Box> step_face_box_;

@@ -51,10 +51,10 @@ struct ContactSettings {
   FrictionMode mode = FrictionMode::slip;  // for body pairs not listed in `pairs`
   double coefficient = 0.0;
   std::vector<PairFriction> pairs;
-  /// The contact-boundary notes' binding lists: candidates from boxes enlarged by a reach r =
-  /// 0.2·dx (half of the 0.4·dx the contact-boundary notes leave between Rs and 0.75·Rmax; dx the
-  /// mean tet edge), reused until a surface node has moved r from where the lists were built. Off:
-  /// the exact swept boxes of every step.
+  /// The contact-boundary notes' binding lists (broadphase/binding_lists.hpp): candidates from
+  /// boxes enlarged by a reach r = 0.2·dx (half of the 0.4·dx the notes leave between Rs and
+  /// 0.75·Rmax; dx the smallest mean tet edge of the bodies), reused until a surface node has
+  /// moved r from where the lists were built. Off: the exact swept boxes of every step.
   bool binding_lists = true;
   /// Dobritsa et al.'s edge–edge contact on top of node–face: surface edges of different bodies
   /// that cross during the step (exact CCD) get the reaction of eqs. (11)–(12). Off by default

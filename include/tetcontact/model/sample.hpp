@@ -7,6 +7,7 @@
 #include <utility>
 #include <vector>
 
+#include "tetcontact/model/names.hpp"
 #include "tetcontact/model/state.hpp"
 
 namespace tc {
@@ -52,10 +53,38 @@ struct Sample {
   Vec3 external_impulse() const { return boundary.impulse + walls.impulse; }
 };
 
-/// Seconds spent in each stage over the run, in pipeline order.
+/// The stages of a step, in pipeline order (Simulation::step), each timed into the profile.
+enum class Stage {
+  predict,      // U*, x*
+  broadphase,   // detect: candidate pairs (binding lists)
+  narrowphase,  // detect: node–face and edge–edge contact points
+  particles,    // detect: particle contact points
+  response,     // respond: the sequential passes over walls and contacts, by islands
+  verify,       // resolve: the step verified, rescue points, impact zones (contact.verify)
+  balance,      // sample: energy and momentum at tⁿ
+  output,       // observers see tⁿ
+  commit,       // Uⁿ⁺¹, xⁿ⁺¹
+  fracture,     // destroyed boundary cells → particles
+  elements,     // σⁿ⁺¹, Fⁿ⁺¹, the next step
+};
+inline constexpr NameTable<Stage, 11> k_stage_names{{{Stage::predict, "predict"},
+                                                     {Stage::broadphase, "broadphase"},
+                                                     {Stage::narrowphase, "narrowphase"},
+                                                     {Stage::particles, "particles"},
+                                                     {Stage::response, "response"},
+                                                     {Stage::verify, "verify"},
+                                                     {Stage::balance, "balance"},
+                                                     {Stage::output, "output"},
+                                                     {Stage::commit, "commit"},
+                                                     {Stage::fracture, "fracture"},
+                                                     {Stage::elements, "elements"}}};
+
+/// Seconds spent in each stage over the run, in pipeline order: the stages the case uses
+/// (history.csv's seconds_* columns and summary.timings, by their names).
 struct StepProfile {
   std::vector<std::pair<std::string, double>> stages;
-  double& operator[](const std::string& name);
+  /// The stage's seconds (listed, after those listed before, on first use).
+  double& operator[](Stage stage);
   double total() const;
 };
 

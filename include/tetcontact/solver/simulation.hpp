@@ -13,10 +13,11 @@
 #include "tetcontact/element/element.hpp"
 #include "tetcontact/fracture/particles.hpp"
 #include "tetcontact/mesh/partition.hpp"
+#include "tetcontact/model/ledger.hpp"
 #include "tetcontact/model/model.hpp"
 #include "tetcontact/model/sample.hpp"
 #include "tetcontact/model/state.hpp"
-#include "tetcontact/response/contact.hpp"
+#include "tetcontact/narrowphase/contact.hpp"
 #include "tetcontact/response/impact_zones.hpp"
 #include "tetcontact/response/islands.hpp"
 #include "tetcontact/response/wall.hpp"
@@ -42,6 +43,29 @@ struct StepCollapse {
 /// The state at t = 0: reference positions, initial velocities, lumped masses (a quarter of
 /// each tet's mass on each of its nodes), zero stress, sound speeds.
 State initial_state(const Model& model);
+
+/// The contact points of one step, from detection through the passes to the verification
+/// (plain data between the stages).
+struct StepContacts {
+  std::vector<std::vector<ContactPoint>> walls;  // per wall
+  std::vector<ContactPoint> bodies;     // between bodies; the verification adds rescue points
+  std::vector<ContactPoint> particles;  // particle–face and particle–particle
+  std::vector<ContactList> lists;       // the passes' lists over the above, in that order
+  std::vector<Index> island_slot;       // contact_islands' scratch
+};
+
+/// The verification's working arrays (resolve_stage), kept between steps to save allocations.
+struct ResolveScratch {
+  std::vector<Vec3> x_end;  // xⁿ⁺¹ as the commit will write it
+  ImpactZones zones;
+  std::vector<Vec3> u_passes;        // U* as the passes left it (zone steps)
+  std::vector<char> marked;          // nodes of failing pairs
+  std::vector<char> in_rigid;        // nodes in rigid zones
+  std::vector<ContactPoint> inside;  // the contact points inside rigid zones, from Λ = 0
+  std::vector<char> changed;         // nodes whose end position changed since the last verification
+  std::vector<Vec3> x_tested;        // the end positions last verified
+  std::vector<std::pair<Index, Vec3>> fixed_x;  // nodes of translated and frozen zones, xⁿ⁺¹
+};
 
 class Simulation {
  public:
@@ -80,37 +104,10 @@ class Simulation {
   double balance_error(const Sample& s) const;
   /// Largest normal reaction force seen on each wall, N.
   const std::vector<double>& wall_force_max() const { return wall_force_max_; }
-  /// Contact between bodies over the run (zeros when no contact stage exists).
-  struct ContactTotals {
-    long node_face = 0, candidates = 0, max_per_step = 0, steps_in_contact = 0;
-    long edge_edge = 0, edge_candidates = 0;
-    double first_time = -1.0, last_time = -1.0, max_force = 0.0;
-    double normal_impulse = 0.0;                            // Σ λ over the run, N s
-    double broadphase_build = 0.0, broadphase_query = 0.0;  // seconds over the run
-    long rebuilds = 0;               // times the broadphase ran (binding lists rebuilt)
-    long particle_contacts = 0;      // particle–face and particle–particle contacts that pushed
-    long particles_moved_out = 0;    // particle centres found inside a body and moved out
-    double particle_move_max = 0.0;  // the largest such move, m
-    // Islands of the correction passes (response/islands.hpp), summed over the steps.
-    long islands = 0, island_points = 0, largest_island_points = 0;
-    // The verification of each step's motion (diagnostics/verify.hpp), summed over the steps:
-    // pairs checked, pairs failing after the passes (from apart, from touching), steps with any.
-    long verified_pairs = 0, failed_pairs = 0, failed_touching = 0, steps_failed = 0;
-    long failed_edge_edge = 0;    // of failed_pairs, edge–edge pairs
-    long extra_rounds = 0;        // rounds of further passes
-    long rescue_points = 0;       // contact points made for failing pairs
-    long failed_after_extra = 0;  // pairs still failing after them: the zones' work
-    // The rigid impact zones that removed them (response/impact_zones.hpp): zones made, the
-    // largest (nodes), steps that needed zones, zones frozen (and translated), rounds of
-    // verification after the first, and steps whose failures outlasted k_zone_rounds (0 unless the
-    // start state overlapped).
-    long impact_zones = 0, largest_zone_nodes = 0, steps_with_zones = 0, frozen_zones = 0;
-    long translated_zones = 0;
-    long zone_rounds = 0, unresolved_steps = 0;
-  };
+
   /// The figures of the run that references measure (diagnostics/reference).
   RunFigures run_figures() const;
-  const ContactTotals& contact_totals() const { return contact_totals_; }
+  const ContactLedger& contact_totals() const { return contact_totals_; }
   /// The separation contacts aim at beyond rounding (m; 0 without contact).
   double contact_separation() const;
   bool has_contact() const { return contact_ != nullptr; }
@@ -147,8 +144,12 @@ class Simulation {
   void commit_stage();
   void elements_stage();
   void fracture_stage();
-  void corrections(bool verify = true);  // verify: the step's motion (contact.verify)
-  void verify_stage(const std::vector<ContactList>& lists, int passes);
+  bool corrects() const;  // walls, contact or particles: the step corrects U*
+  void detect_stage();
+  void respond_stage();
+  void resolve_stage();
+  template <class Body>
+  void timed(Stage stage, Body&& body);
   [[noreturn]] void rethrow_with_body(const InvertedElement& e) const;
   void watch_step();  // step_collapses_
 
@@ -159,25 +160,14 @@ class Simulation {
   ElementScratch scratch_;
   std::vector<Index> surface_nodes_;
   std::vector<WallResult> wall_results_;
-  std::unique_ptr<NodeFaceContact> contact_;
-  std::vector<ContactPoint> contacts_;
+  std::unique_ptr<ContactDetection> contact_;
   std::unique_ptr<Fragmentation> fragmentation_;
   std::unique_ptr<ParticleContact> particle_contact_;
-  std::vector<ContactPoint> particle_contacts_;
-  std::vector<Index> island_slot_;  // contact_islands' scratch
   std::unique_ptr<StepVerifier> verifier_;
-  std::vector<Vec3> x_end_;  // xⁿ⁺¹ as the commit will write it, for the verification
-  ImpactZones zones_;
-  std::vector<Vec3> u_passes_;        // U* as the passes left it (zone steps)
-  std::vector<char> marked_;          // nodes of failing pairs (verify_stage)
-  std::vector<char> in_rigid_;        // nodes in rigid zones (verify_stage)
-  std::vector<ContactPoint> inside_;  // the contact points inside rigid zones, from Λ = 0
-  std::vector<char> changed_;   // nodes whose end position changed since the last verification
-  std::vector<Vec3> x_tested_;  // the end positions last verified
-  std::vector<std::pair<Index, Vec3>>
-      fixed_x_;  // nodes of translated and frozen zones and their xⁿ⁺¹
+  StepContacts points_;     // this step's contact points
+  ResolveScratch resolve_;  // the verification's working arrays
   ContactStepStats contact_stats_;
-  ContactTotals contact_totals_;
+  ContactLedger contact_totals_;
   std::vector<double> wall_force_max_;
   Sample first_, last_;
   bool have_sample_ = false;

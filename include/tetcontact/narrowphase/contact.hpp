@@ -1,18 +1,21 @@
-// Node–face contact between bodies (the contact-boundary notes §3–4): detection from the
-// broadphase's candidates, and the contact points the impulse kernel corrects in sequential passes.
+// Contact detection between bodies: node–face (the contact-boundary notes §3) and edge–edge
+// (Dobritsa et al. 2019) — the broadphase's candidates (binding lists) tested by the
+// narrowphase's predicates and exact CCD. The contact points go to the impulse kernel
+// (response/), which corrects them in sequential passes.
 #pragma once
 
 #include <array>
-
 #include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "tetcontact/broadphase/binding_lists.hpp"
 #include "tetcontact/broadphase/broadphase.hpp"
 #include "tetcontact/mesh/surface.hpp"
+#include "tetcontact/model/contact_point.hpp"
 #include "tetcontact/model/model.hpp"
-#include "tetcontact/response/impulse.hpp"
+#include "tetcontact/model/state.hpp"
 
 namespace tc {
 
@@ -27,12 +30,12 @@ struct ContactStepStats {
   double build_seconds = 0.0, query_seconds = 0.0;  // the broadphase's own split
 };
 
-class NodeFaceContact {
+class ContactDetection {
  public:
   /// `surfaces` are the live surfaces of the run (owned by the caller, read at every step):
   /// after they change, call surfaces_changed().
-  NodeFaceContact(const Mesh& mesh, const std::vector<Surface>& surfaces,
-                  const ContactSettings& settings);
+  ContactDetection(const Mesh& mesh, const std::vector<Surface>& surfaces,
+                   const ContactSettings& settings);
 
   /// The surfaces changed (cells turned into particles exposed new faces): the primitives are
   /// rebuilt; the edge pairs in contact are kept (by their nodes); the binding lists are
@@ -58,13 +61,13 @@ class NodeFaceContact {
   /// of body `face_body` (nodes in the surface's outward order), or the edge `a` of body
   /// `body_a` against the edge `b`. Apart at xⁿ: where they first meet during the motion (the
   /// exact time of impact t*), the normal the face's or the edges' common perpendicular at t*,
-  /// signed to point from B to A at xⁿ, the gap the distance along it at xⁿ (response/contact.cpp
-  /// says why). Touching at xⁿ: at their closest points at xⁿ, the face's outward normal, or for
-  /// edges their common perpendicular oriented against the outward normals of the faces at them
-  /// (gap 0). Friction as for a detected contact of the pair; `restore`, aiming as a detected
-  /// contact does (the rounding margin and the stand-off). nullopt when no normal can be found
-  /// (degenerate primitives touching). `outward_a`, `outward_b`: the sums of the outward
-  /// normals of the faces at each edge.
+  /// signed to point from B to A at xⁿ, the gap the distance along it at xⁿ
+  /// (narrowphase/contact.cpp says why). Touching at xⁿ: at their closest points at xⁿ, the face's
+  /// outward normal, or for edges their common perpendicular oriented against the outward normals
+  /// of the faces at them (gap 0). Friction as for a detected contact of the pair; `restore`,
+  /// aiming as a detected contact does (the rounding margin and the stand-off). nullopt when no
+  /// normal can be found (degenerate primitives touching). `outward_a`, `outward_b`: the sums of
+  /// the outward normals of the faces at each edge.
   std::optional<ContactPoint> vertex_face_point(const State& st, const std::vector<Vec3>& x1,
                                                 Index node, const Face& face, Index node_body,
                                                 Index face_body) const;
@@ -98,12 +101,8 @@ class NodeFaceContact {
   // round-off would otherwise never be found crossing again.
   std::vector<std::pair<std::pair<Index, Index>, Vec3>> active_edges_;
   BroadphaseInput input_;
-  // Binding lists: the candidates, the node positions they were built from, their reach.
-  Candidates candidates_;
-  std::vector<Vec3> anchor_;
-  double reach_ = 0.0;
+  BindingLists lists_;       // the candidates, kept while the surface nodes stay within reach
   double separation_ = 0.0;  // aimed at beyond the rounding margin (ContactSettings::separation)
-  bool have_lists_ = false;
   // This step's layer boxes of the faces the lists name (binding lists).
   std::vector<Index> listed_faces_;
   std::vector<Box> step_face_box_;

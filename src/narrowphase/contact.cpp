@@ -1,4 +1,4 @@
-#include "tetcontact/response/contact.hpp"
+#include "tetcontact/narrowphase/contact.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -21,18 +21,16 @@ double since(Clock::time_point t0) {
 }
 }  // namespace
 
-NodeFaceContact::NodeFaceContact(const Mesh& mesh, const std::vector<Surface>& surfaces,
-                                 const ContactSettings& settings)
+ContactDetection::ContactDetection(const Mesh& mesh, const std::vector<Surface>& surfaces,
+                                   const ContactSettings& settings)
     : mesh_(mesh),
       surfaces_(surfaces),
       settings_(settings),
       broadphase_(make_broadphase(settings.broadphase)) {
   build_primitives();
-  // Reach of the binding lists: 0.2 of the mean tet edge over all bodies, from the surfaces
-  // of the start (the reach decides only how long lists last, never which contacts are found).
-  double dx = 0.0;
-  for (const Surface& s : surfaces) dx += s.mean_edge_length;
-  reach_ = surfaces.empty() ? 0.0 : 0.2 * dx / static_cast<double>(surfaces.size());
+  // The binding lists' reach, from the surfaces of the start (binding_reach: it decides only
+  // how long lists last, never which contacts are found).
+  lists_ = BindingLists(binding_reach(surfaces));
   // The separation aimed at: the case's, or a millionth of the smallest mean tet edge.
   separation_ = settings.separation;
   if (separation_ < 0.0) {
@@ -44,7 +42,7 @@ NodeFaceContact::NodeFaceContact(const Mesh& mesh, const std::vector<Surface>& s
   }
 }
 
-void NodeFaceContact::build_primitives() {
+void ContactDetection::build_primitives() {
   nodes_.clear(), node_body_.clear(), node_surface_.clear(), node_slot_.clear();
   faces_.clear(), face_body_.clear(), face_tet_.clear();
   edges_.clear(), edge_body_.clear(), edge_faces_.clear();
@@ -97,7 +95,7 @@ void NodeFaceContact::build_primitives() {
 // The surfaces changed: primitives rebuilt from them. The edge pairs in contact are kept,
 // renamed by their nodes (an edge that left the surface leaves its pairs); the binding lists
 // are rebuilt at the next step, since the faces a conversion exposed are in no list yet.
-void NodeFaceContact::surfaces_changed() {
+void ContactDetection::surfaces_changed() {
   std::vector<std::pair<std::array<Edge, 2>, Vec3>> kept;
   for (const auto& [pair, n] : active_edges_)
     kept.push_back({{edges_[pair.first], edges_[pair.second]}, n});
@@ -111,15 +109,14 @@ void NodeFaceContact::surfaces_changed() {
     if (a != edge_index.end() && b != edge_index.end())
       active_edges_.push_back({{a->second, b->second}, n});
   }
-  have_lists_ = false;
-  candidates_ = Candidates{};
+  lists_.reset();
 }
 
 // The box of the region where detect() accepts a node for face f, at xⁿ and x*: the prism
 // from the face down to the altitude of its tet (behind_face's layer), widened by the rim
 // tolerance. Boxes that hold all of it make the contacts found independent of how much the
 // broadphase boxes are enlarged.
-Box NodeFaceContact::layer_box(Index f, const State& st, double margin) const {
+Box ContactDetection::layer_box(Index f, const State& st, double margin) const {
   const Face& k = faces_[f];
   const Tet& tet = mesh_.tets[face_tet_[f]];
   Box box;
@@ -148,17 +145,14 @@ Box NodeFaceContact::layer_box(Index f, const State& st, double margin) const {
 // Binding lists stay valid while every surface node's path this step stays within the reach
 // of where they were built: then a node and a face that meet now had boxes (enlarged by
 // the reach) that overlapped then. Rebuilt from the swept boxes otherwise.
-void NodeFaceContact::refresh_lists(const State& st, ContactStepStats& stats) {
+void ContactDetection::refresh_lists(const State& st, ContactStepStats& stats) {
   const std::vector<Vec3>& x0 = st.x;
   const std::vector<Vec3>& x1 = st.x_star;
-  bool rebuild = !settings_.binding_lists || !have_lists_;
-  for (std::size_t i = 0; i < nodes_.size() && !rebuild; ++i)
-    rebuild = (x1[nodes_[i]] - anchor_[i]).squaredNorm() > reach_ * reach_ ||
-              (x0[nodes_[i]] - anchor_[i]).squaredNorm() > reach_ * reach_;
+  const bool rebuild = !settings_.binding_lists || !lists_.hold(nodes_, x0, x1);
   stats.rebuilt = rebuild;
   stats.build_seconds = stats.query_seconds = 0.0;
   if (rebuild) {
-    const double margin = settings_.margin + (settings_.binding_lists ? reach_ : 0.0);
+    const double margin = settings_.margin + (settings_.binding_lists ? lists_.reach() : 0.0);
     for (std::size_t i = 0; i < nodes_.size(); ++i)
       input_.node_box[i] = swept_box({&x0[nodes_[i]], &x1[nodes_[i]]}, margin);
     for (std::size_t f = 0; f < faces_.size(); ++f) input_.face_box[f] = layer_box(f, st, margin);
@@ -166,11 +160,8 @@ void NodeFaceContact::refresh_lists(const State& st, ContactStepStats& stats) {
       const Edge& k = edges_[e];
       input_.edge_box[e] = swept_box({&x0[k[0]], &x0[k[1]], &x1[k[0]], &x1[k[1]]}, margin);
     }
-    candidates_ = broadphase_->find(input_);
-    listed_faces_ = listed_faces(candidates_.node_face);
-    anchor_.resize(nodes_.size());
-    for (std::size_t i = 0; i < nodes_.size(); ++i) anchor_[i] = x0[nodes_[i]];
-    have_lists_ = true;
+    lists_.set(broadphase_->find(input_), nodes_, x0);
+    listed_faces_ = listed_faces(lists_.lists().node_face);
     stats.build_seconds = broadphase_->build_seconds;
     stats.query_seconds = broadphase_->query_seconds;
   }
@@ -179,10 +170,10 @@ void NodeFaceContact::refresh_lists(const State& st, ContactStepStats& stats) {
 // Node–face contacts of the listed pairs (the contact-boundary notes §3), in the lists' order (the
 // pairs are tested on the threads and the ranks; their points made block by block, joined in
 // order).
-void NodeFaceContact::node_face_contacts(const State& st, std::vector<ContactPoint>& contacts) {
+void ContactDetection::node_face_contacts(const State& st, std::vector<ContactPoint>& contacts) {
   const std::vector<Vec3>& x0 = st.x;
   const std::vector<Vec3>& x1 = st.x_star;
-  const Candidates& cand = candidates_;
+  const Candidates& cand = lists_.lists();
   // Node normals (the contact-boundary notes' contact normal), only when asked for.
   std::vector<std::vector<Vec3>> normals;
   if (settings_.normal == ContactSettings::Normal::node)
@@ -262,11 +253,11 @@ void NodeFaceContact::node_face_contacts(const State& st, std::vector<ContactPoi
 
 // Edge–edge contacts (Dobritsa et al.): the pairs in contact last step that are still close, then
 // the listed pairs that cross during the step (exact CCD); remembers this step's pairs.
-void NodeFaceContact::edge_edge_contacts(const State& st, ContactStepStats& stats,
-                                         std::vector<ContactPoint>& contacts) {
+void ContactDetection::edge_edge_contacts(const State& st, ContactStepStats& stats,
+                                          std::vector<ContactPoint>& contacts) {
   const std::vector<Vec3>& x0 = st.x;
   const std::vector<Vec3>& x1 = st.x_star;
-  const Candidates& cand = candidates_;
+  const Candidates& cand = lists_.lists();
   // Dobritsa et al.: surface edges of different bodies that cross during the step, and the pairs in
   // contact last step that are still close (kept with their normal's orientation).
   stats.edge_candidates = static_cast<long>(cand.edge_edge.size());
@@ -363,7 +354,7 @@ void NodeFaceContact::edge_edge_contacts(const State& st, ContactStepStats& stat
   for (const auto& [pair, n] : previous) {
     const SegmentPoints cp = closest_at_start(pair.first, pair.second);
     if (cp.alpha > 0.0 && cp.alpha < 1.0 && cp.beta > 0.0 && cp.beta < 1.0 &&
-        (cp.on_a - cp.on_b).dot(n) < reach_) {
+        (cp.on_a - cp.on_b).dot(n) < lists_.reach()) {
       add_edge_contact(pair.first, pair.second, cp, &n);
       kept_pairs.push_back(pair);
     }
@@ -389,7 +380,7 @@ void NodeFaceContact::edge_edge_contacts(const State& st, ContactStepStats& stat
 }
 
 // Friction of the body pair: its own entry, or the contact's setting.
-void NodeFaceContact::set_friction(ContactPoint& c, Index body_a, Index body_b) const {
+void ContactDetection::set_friction(ContactPoint& c, Index body_a, Index body_b) const {
   c.mode = settings_.mode;
   c.friction = settings_.coefficient;
   for (const PairFriction& p : settings_.pairs)
@@ -416,11 +407,11 @@ Vec3 at(const std::vector<Vec3>& x0, const std::vector<Vec3>& x1, Index node, do
 // step's end is then, to first order in the motion, the pair not crossing: the closest points
 // at xⁿ (often an end of an edge, or a corner of a face) say nothing about where the pair
 // crosses. Touching at xⁿ, or no time found: at the closest points at xⁿ, as below.
-std::optional<ContactPoint> NodeFaceContact::vertex_face_point(const State& st,
-                                                               const std::vector<Vec3>& x1,
-                                                               Index node, const Face& f,
-                                                               Index node_body,
-                                                               Index face_body) const {
+std::optional<ContactPoint> ContactDetection::vertex_face_point(const State& st,
+                                                                const std::vector<Vec3>& x1,
+                                                                Index node, const Face& f,
+                                                                Index node_body,
+                                                                Index face_body) const {
   const std::vector<Vec3>& x0 = st.x;
   ContactPoint c;
   const std::optional<double> toi = exact_vertex_face_toi(
@@ -466,7 +457,7 @@ std::optional<ContactPoint> NodeFaceContact::vertex_face_point(const State& st,
   return c;
 }
 
-std::optional<ContactPoint> NodeFaceContact::edge_edge_point(
+std::optional<ContactPoint> ContactDetection::edge_edge_point(
     const State& st, const std::vector<Vec3>& x1, const Edge& a, const Edge& b, Index body_a,
     Index body_b, const Vec3& outward_a, const Vec3& outward_b) const {
   const std::vector<Vec3>& x0 = st.x;
@@ -522,11 +513,11 @@ std::optional<ContactPoint> NodeFaceContact::edge_edge_point(
   return c;
 }
 
-std::vector<ContactPoint> NodeFaceContact::detect(const State& st, ContactStepStats& stats) {
+std::vector<ContactPoint> ContactDetection::detect(const State& st, ContactStepStats& stats) {
   auto t0 = Clock::now();
   refresh_lists(st, stats);
   stats.broadphase_seconds = since(t0);
-  stats.candidates = static_cast<long>(candidates_.node_face.size());
+  stats.candidates = static_cast<long>(lists_.lists().node_face.size());
   t0 = Clock::now();
   std::vector<ContactPoint> contacts;
   node_face_contacts(st, contacts);

@@ -1,0 +1,32 @@
+#include "tetcontact/broadphase/binding_lists.hpp"
+
+#include <algorithm>
+
+namespace tc {
+
+double binding_reach(const std::vector<Surface>& surfaces) {
+  double h = 0.0;
+  for (const Surface& s : surfaces)
+    if (s.mean_edge_length > 0.0)
+      h = h > 0.0 ? std::min(h, s.mean_edge_length) : s.mean_edge_length;
+  return 0.2 * h;
+}
+
+bool BindingLists::holds(const std::vector<Index>& ids, const std::vector<Vec3>& x,
+                         const std::vector<char>* only) const {
+  if (!have_ || anchor_.size() != ids.size()) return false;
+  const double r2 = reach_ * reach_;
+  for (std::size_t i = 0; i < ids.size(); ++i)
+    if ((!only || (*only)[i]) && (x[ids[i]] - anchor_[i]).squaredNorm() > r2) return false;
+  return true;
+}
+
+void BindingLists::set(Candidates lists, const std::vector<Index>& ids,
+                       const std::vector<Vec3>& x0) {
+  lists_ = std::move(lists);
+  anchor_.resize(ids.size());
+  for (std::size_t i = 0; i < ids.size(); ++i) anchor_[i] = x0[ids[i]];
+  have_ = true;
+}
+
+}  // namespace tc
