@@ -16,6 +16,7 @@
 #include "tetcontact/io/ply.hpp"
 #include "tetcontact/narrowphase/exact_ccd.hpp"
 #include "tetcontact/parallel/parallel.hpp"
+#include "tetcontact/solver/run_loop.hpp"
 #include "tetcontact/solver/simulation.hpp"
 
 namespace tc {
@@ -82,7 +83,11 @@ int profile_case(const ProfileOptions& o) {
     if (record) set_ccd_observer(record_query);
     const auto t0 = Clock::now();
     long steps = 0;
-    while (!sim.done() && steps < o.steps) sim.step(), ++steps;
+    RunHooks hooks;
+    hooks.each_step = [&](const Simulation&) { ++steps; };
+    hooks.max_steps = o.steps;
+    if (const std::string status = run_to_end(sim, hooks); status.rfind("failed: ", 0) == 0)
+      throw RunFailure(c.file + ": " + status.substr(8));
     const double wall = std::chrono::duration<double>(Clock::now() - t0).count();
     if (record) {
       set_ccd_observer(nullptr);

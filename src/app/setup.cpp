@@ -176,17 +176,6 @@ Model build_model(const Case& c, std::vector<std::string>* notes) {
   model.element.anp_stabilization = c.anp_stabilization;
   model.particles = c.fracture && c.particles;
   model.erosion_step_ratio = model.particles ? c.erosion_step_ratio : 0.0;
-  // Erosion by strain turns cells into particles: it needs them.
-  for (const Material& m : c.materials)
-    if (m.erosion_plastic_strain > 0.0 && !model.particles)
-      throw SetupError(c.file + ": key 'materials." + m.name +
-                       ".erosion_plastic_strain': erosion turns cells into particles; it needs "
-                       "fracture: {enabled: true} with particles");
-  for (const Material& m : c.materials)
-    if (m.ductile_failure && !model.particles)
-      throw SetupError(c.file + ": key 'materials." + m.name +
-                       ".ductile_failure': a failed cell is eroded into a particle; it needs "
-                       "fracture: {enabled: true} with particles");
   for (const Material& m : model.materials)
     model.element.average_nodal_pressure.push_back(
         c.average_nodal_pressure == AnpMode::on ||

@@ -20,6 +20,7 @@
 #include "tetcontact/io/files.hpp"
 #include "tetcontact/io/json.hpp"
 #include "tetcontact/narrowphase/exact_ccd.hpp"
+#include "tetcontact/solver/run_loop.hpp"
 #include "tetcontact/solver/simulation.hpp"
 
 namespace tc {
@@ -241,18 +242,20 @@ SceneResult run_scene(const std::string& name, const std::string& file,
   try {
     Simulation sim(build_model(c), solver_settings(c));
     PenetrationProbe probe(sim.model());
-    while (!sim.done()) {
-      sim.step();
+    RunHooks hooks;
+    hooks.each_step = [&](const Simulation& s) {
       ++r.steps;
-      keep_largest(r.penetration, probe.measure(sim.state().x));
+      keep_largest(r.penetration, probe.measure(s.state().x));
+    };
+    r.status = run_to_end(sim, hooks);  // "failed: ..." when the scene could not go on
+    if (r.status == "ok") {
+      r.momentum_error = momentum_error(sim.first_sample(), sim.last_sample());
+      r.balance_error = sim.balance_error_max();
+      r.impact_zones = sim.contact_totals().impact_zones;
+      if (!std::isfinite(r.momentum_error) || !std::isfinite(r.balance_error))
+        r.status = "non-finite balance";
     }
-    sim.finish();
-    r.momentum_error = momentum_error(sim.first_sample(), sim.last_sample());
-    r.balance_error = sim.balance_error_max();
-    r.impact_zones = sim.contact_totals().impact_zones;
-    if (!std::isfinite(r.momentum_error) || !std::isfinite(r.balance_error))
-      r.status = "non-finite balance";
-  } catch (const std::exception& e) {  // RunFailure, InvertedElement: the scene failed
+  } catch (const std::exception& e) {  // the setup refused the scene's model
     r.status = std::string("failed: ") + e.what();
   }
   ExpectFigures figures;

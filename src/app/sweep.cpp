@@ -15,6 +15,7 @@
 #include "tetcontact/io/case.hpp"
 #include "tetcontact/io/files.hpp"
 #include "tetcontact/io/json.hpp"
+#include "tetcontact/solver/run_loop.hpp"
 #include "tetcontact/solver/simulation.hpp"
 
 namespace tc {
@@ -175,20 +176,16 @@ Row sweep_run(const Case& c, const std::vector<std::string>& values) {
       row.crossings = std::max(row.crossings, p.crossings);
     };
     ReferenceRecorder references(c.references);
-    try {
-      while (!sim.done()) {
-        sim.step();
-        references.measure_due(sim.state().t, sim.model(), sim.state(), sim.run_figures());
-        if (probe && sim.state().t >= next) {
-          measure();
-          next += c.end_time / 20.0;
-        }
+    RunHooks hooks;
+    hooks.references = &references;
+    hooks.each_step = [&](const Simulation& s) {
+      if (probe && s.state().t >= next) {
+        measure();
+        next += c.end_time / 20.0;
       }
-      sim.finish();
-      if (probe) measure();
-    } catch (const RunFailure& e) {
-      row.status = std::string("failed: ") + e.what();
-    }
+    };
+    row.status = run_to_end(sim, hooks);
+    if (probe && row.status == "ok") measure();
     row.wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     row.steps = sim.state().step;
     row.momentum = momentum_error(sim.first_sample(), sim.last_sample());

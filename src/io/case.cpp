@@ -66,6 +66,24 @@ std::vector<std::pair<std::string, double>> substitute_parameters(const Reader& 
   return out;
 }
 
+// Erosion by strain and ductile failure turn cells into particles: they need fracture with
+// particles. Said at the material's key, or at the material when its library entry sets it.
+void check_particles_needed(const Reader& r, const YAML::Node& root, const Case& c) {
+  const bool particles = c.fracture && c.particles;
+  const YAML::Node mats = root["materials"];
+  for (const Material& m : c.materials)
+    for (const char* key : {"erosion_plastic_strain", "ductile_failure"}) {
+      const bool used = key[0] == 'e' ? m.erosion_plastic_strain > 0.0 : m.ductile_failure;
+      if (!used || particles) continue;
+      const YAML::Node entry = mats[m.name];
+      r.fail(entry[key] ? entry[key] : entry, "materials." + m.name + "." + key,
+             key[0] == 'e' ? "erosion turns cells into particles; it needs fracture: {enabled: "
+                             "true} with particles"
+                           : "a failed cell is eroded into a particle; it needs fracture: "
+                             "{enabled: true} with particles");
+    }
+}
+
 }  // namespace case_file
 
 using namespace case_file;
@@ -105,6 +123,7 @@ Case load_case(const std::string& path, const std::vector<std::string>& override
       c.output.penetration_every_step = r.boolean(d["every_step"], "diagnostics.every_step");
   }
   read_fracture(r, root, c);
+  check_particles_needed(r, root, c);
   read_expect(r, root, c);
   if (c.fracture &&
       std::find(c.output.fields.begin(), c.output.fields.end(), "damage") == c.output.fields.end())

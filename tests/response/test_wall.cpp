@@ -3,6 +3,7 @@
 
 #include "../solver/solver_fixture.hpp"
 #include "tetcontact/response/wall.hpp"
+#include "tetcontact/solver/run_loop.hpp"
 #include "tetcontact/solver/simulation.hpp"
 
 using namespace tc;
@@ -92,8 +93,7 @@ TEST(Wall, ElasticBarOnWallMatchesOneDimensionalTheory) {
   Simulation sim(std::move(model), settings);
   WallForce probe;
   sim.add_observer(&probe, "probe");
-  while (!sim.done()) sim.step();
-  sim.finish();
+  ASSERT_EQ(run_to_end(sim), "ok");
 
   double first = -1, last = -1, impulse = 0;
   for (std::size_t k = 0; k < probe.t.size(); ++k)

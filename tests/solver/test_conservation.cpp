@@ -5,6 +5,7 @@
 #include "solver_fixture.hpp"
 #include "tetcontact/app/setup.hpp"
 #include "tetcontact/io/case.hpp"
+#include "tetcontact/solver/run_loop.hpp"
 #include "tetcontact/solver/simulation.hpp"
 
 using namespace tc;
@@ -37,8 +38,7 @@ TEST(Conservation, MomentumInFreeFlightToRoundOff) {
 TEST(Conservation, ElasticVibrationEnergyBalance) {
   const Case c = load_case(test::source_path("data/cases/elastic-vibration.yaml"));
   Simulation sim(build_model(c), solver_settings(c));
-  while (!sim.done()) sim.step();
-  sim.finish();
+  ASSERT_EQ(run_to_end(sim), "ok");
   EXPECT_GE(sim.state().step, 2000);
   const Sample& first = sim.first_sample();
   // Initial kinetic energy ½ m v² with the middle plane of nodes at rest: 0.0135 J less
@@ -66,8 +66,7 @@ TEST(Conservation, BoundaryWorkClosesDrivenBar) {
   SolverSettings settings;
   settings.end_time = 1.5e-5;  // the wave travels 0.09 m: not yet reflected
   Simulation sim(std::move(model), settings);
-  while (!sim.done()) sim.step();
-  sim.finish();
+  ASSERT_EQ(run_to_end(sim), "ok");
   const Sample& s = sim.last_sample();
   EXPECT_GT(s.boundary.work, 0.0);
   EXPECT_LT(sim.balance_error_max(), 5e-6);  // 5.0e-7 measured

@@ -11,6 +11,7 @@
 #include "tetcontact/diagnostics/penetration.hpp"
 #include "tetcontact/diagnostics/reference.hpp"
 #include "tetcontact/io/case.hpp"
+#include "tetcontact/solver/run_loop.hpp"
 #include "tetcontact/solver/simulation.hpp"
 
 using namespace tc;
@@ -21,8 +22,7 @@ TEST(Validation, BallPerforatesPlateAndConversionsConserve) {
       load_case(test::source_path("data/cases/ball-plate.yaml"),
                 {"bodies.0.mesh.sphere.cells_across=8", "bodies.1.mesh.box.cells=[24,24,2]"});
   Simulation sim(build_model(c), solver_settings(c));
-  while (!sim.done()) sim.step();  // throws on an inverted element or a NaN
-  sim.finish();
+  ASSERT_EQ(run_to_end(sim), "ok");
   const Model& model = sim.model();
   const State& st = sim.state();
 
@@ -80,8 +80,7 @@ TEST(Validation, BallPlateReferenceFailsWithoutContact) {
                 {"bodies.0.mesh.sphere.cells_across=8", "bodies.1.mesh.box.cells=[24,24,2]",
                  "contact.enabled=false", "end_time=2.0e-6"});
   Simulation sim(build_model(c), solver_settings(c));
-  while (!sim.done()) sim.step();
-  sim.finish();
+  ASSERT_EQ(run_to_end(sim), "ok");
   const std::vector<ReferenceResult> refs =
       evaluate_references(c.references, sim.model(), sim.state(), sim.run_figures());
   ASSERT_EQ(refs.size(), 2u);
