@@ -40,7 +40,7 @@ void with_type(const char* type, Fn&& fn) {
 // four UInt64 — blocks, block size, last block size, compressed size).
 class Piece {
  public:
-  Piece(VtuFormat format, std::size_t n, std::size_t m) : format_(format) {
+  Piece(VtuFormat format, std::size_t n, std::size_t m, const Model& model) : format_(format) {
     out_.reserve(format == VtuFormat::ascii ? 200 * (n + m + 1) : 4096);
     out_ +=
         "<?xml version=\"1.0\"?>\n"
@@ -48,6 +48,15 @@ class Piece {
         "header_type=\"UInt64\"";
     if (format == VtuFormat::compressed) out_ += " compressor=\"vtkZLibDataCompressor\"";
     out_ += ">\n  <UnstructuredGrid>\n";
+    // The bodies' names, so that a `body` number reads as a name (ParaView: the Information
+    // panel's field data): a VTK string array in text, each name's bytes then a 0.
+    out_ += "    <FieldData>\n      <Array type=\"String\" Name=\"body_names\" NumberOfTuples=\"" +
+            std::to_string(model.mesh.bodies.size()) + "\" format=\"ascii\">\n        ";
+    for (const BodyRange& b : model.mesh.bodies) {
+      for (const char ch : b.name) out_ += std::to_string(static_cast<unsigned char>(ch)) + ' ';
+      out_ += "0 ";
+    }
+    out_ += "\n      </Array>\n    </FieldData>\n";
     out_ += "    <Piece NumberOfPoints=\"" + std::to_string(n) + "\" NumberOfCells=\"" +
             std::to_string(m) + "\">\n";
   }
@@ -190,24 +199,24 @@ Piece frame_piece(const Model& model, const State& st, const std::vector<std::st
     for (Index t = 0; t < mesh.tet_count(); ++t)
       if (still_cell(t)) cells.push_back(t);
   }
-  // The nodes: all the mesh's (particles are a series of their own), or a piece's own.
+  // The nodes of the cells still cells (particles are a series of their own): a node left by
+  // cells turned into particles is not written as a loose point. Numbered ascending in the
+  // mesh's order; while every node is used (no cell converted) the numbers are the mesh's.
+  std::vector<char> used(mesh.x.size(), 0);
+  for (const Index t : cells)
+    for (const Index k : mesh.tets[t]) used[k] = 1;
   std::vector<Index> nodes;
-  std::vector<Index> local;  // a piece: mesh node → its number in the piece
-  if (tets) {
-    // The nodes of all its tets, cells still or not: a node left by cells turned into
-    // particles stays in the frame, as in one process's.
-    for (const Index t : *tets)
-      for (const Index k : mesh.tets[t]) nodes.push_back(k);
-    std::sort(nodes.begin(), nodes.end());
-    nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
-    local.assign(mesh.x.size(), -1);
-    for (std::size_t i = 0; i < nodes.size(); ++i) local[nodes[i]] = static_cast<Index>(i);
-  }
-  const std::size_t n = tets ? nodes.size() : mesh.x.size();
-  const auto node = [&](std::size_t i) { return tets ? nodes[i] : static_cast<Index>(i); };
-  const auto corner = [&](Index k) { return tets ? local[k] : k; };
+  std::vector<Index> local(mesh.x.size(), -1);  // mesh node → its number in the frame
+  for (std::size_t a = 0; a < mesh.x.size(); ++a)
+    if (used[a])
+      local[a] = static_cast<Index>(nodes.size()), nodes.push_back(static_cast<Index>(a));
+  // A piece of a distributed run, or a frame that left nodes out, names each node's mesh number.
+  const bool global_numbers = tets || nodes.size() != mesh.x.size();
+  const std::size_t n = nodes.size();
+  const auto node = [&](std::size_t i) { return nodes[i]; };
+  const auto corner = [&](Index k) { return local[k]; };
   const std::size_t m = cells.size();
-  Piece out(format, n, m);
+  Piece out(format, n, m, model);
 
   out.section("PointData", [&] {
     if (wants(fields, "displacement"))
@@ -222,7 +231,7 @@ Piece frame_piece(const Model& model, const State& st, const std::vector<std::st
     if (wants(fields, "body"))
       out.array("Int32", "body", 1, n,
                 [&](std::size_t i, int) { return static_cast<double>(mesh.node_body[node(i)]); });
-    if (tets)
+    if (global_numbers)
       out.array("Int64", "global_node", 1, n,
                 [&](std::size_t i, int) { return static_cast<double>(node(i)); });
   });
@@ -308,7 +317,7 @@ std::string pvtu_frame(const std::string& pvtu_arrays, const std::vector<std::st
 std::string vtu_particles(const Model& model, const State& st, VtuFormat format) {
   const std::size_t n = static_cast<std::size_t>(st.particle_count());
   const auto node = [&](std::size_t i) { return st.first_particle + static_cast<Index>(i); };
-  Piece out(format, n, n);
+  Piece out(format, n, n, model);
   out.section("PointData", [&] {
     out.array("Float64", "radius", 1, n, [&](std::size_t i, int) { return st.particle_radius[i]; });
     out.array("Float64", "mass", 1, n, [&](std::size_t i, int) { return st.m[node(i)]; });

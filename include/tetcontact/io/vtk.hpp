@@ -20,18 +20,20 @@ inline constexpr NameTable<VtuFormat, 3> k_vtu_format_names{
      {VtuFormat::binary, "binary"},
      {VtuFormat::compressed, "compressed"}}};
 
-/// The .vtu text of the state at t^n (the mesh's nodes, and its cells not turned into
-/// particles). Point data: displacement, velocity (time-centred),
-/// body; cell data: stress (6 components xx, yy, zz, xy, yz, xz, viscosity included),
-/// pressure (EOS), von_mises, plastic_strain, internal_energy (J/m³ of reference volume),
-/// viscosity (q), temperature (K), body — each only when listed in `fields`.
+/// The .vtu text of the state at t^n: the cells not turned into particles and their nodes
+/// (a node left by converted cells is not written; while none is, the nodes are the mesh's, in
+/// its order; once some are, point data `global_node` gives each node's mesh number). Field
+/// data: `body_names`, the bodies' names in order. Point data: displacement, velocity
+/// (time-centred), body; cell data: stress (6 components xx, yy, zz, xy, yz, xz: s − p I, the
+/// viscous q apart), pressure (EOS), von_mises, plastic_strain, internal_energy (J/m³ of
+/// reference volume), viscosity (q), temperature (K), body — each only when listed in `fields`.
 /// `penetration_depth`, when not empty, is written as point data of that name.
 std::string vtu_frame(const Model& model, const State& st, const std::vector<std::string>& fields,
                       const std::vector<double>& penetration_depth = {},
                       VtuFormat format = VtuFormat::binary);
 
 /// One rank's piece of a frame in a distributed run: the cells among `tets` (not turned into
-/// particles) and the nodes of `tets`, numbered ascending in the mesh's order; the arrays of
+/// particles) and their nodes, numbered ascending in the mesh's order; the arrays of
 /// vtu_frame plus point data `global_node` and cell data `global_tet` (the mesh's numbers, so
 /// that the pieces can be joined and compared with one process's frame). `pvtu_arrays`, when
 /// given, gets the declarations of its arrays for pvtu_frame.
