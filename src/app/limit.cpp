@@ -138,6 +138,92 @@ struct Bracket {
   std::string status = "ok";
 };
 
+// One bracket: the value of `o.find` where the criterion flips, at the second key's value `w`
+// ("" without --vary), by rounds of `jobs` runs at once between the ends, each run kept under
+// DIR/runs/ and read back, not run again, when its summary is there.
+Bracket search_bracket(const LimitOptions& o, const std::string& w, const std::string& dir,
+                       const std::string& exe, int jobs, const std::string& measure_name) {
+  Bracket br;
+  br.vary_value = w;
+  const auto started = std::chrono::steady_clock::now();
+  const std::string group =
+      dir + "/runs/" + (o.vary.empty() ? "all" : o.vary.front().first + "=" + w);
+  std::map<std::string, Run> known;  // by the value's text
+  const auto run_at = [&](const std::vector<double>& xs) {
+    std::vector<Run*> todo;
+    for (const double x : xs) {
+      const std::string key = fmt(x);
+      if (known.count(key)) continue;
+      Run& r = known[key];
+      r.x = x;
+      r.dir = group + "/" + o.find + "=" + key;
+      // Not quiet: run.log keeps the run's table, notes and warnings (no progress bar: the
+      // log is not a terminal).
+      r.args = {"run", o.case_path, "--out",           r.dir, "--force", "--threads",
+                "1",   "--set",     o.find + "=" + key};
+      if (!o.vary.empty()) r.args.insert(r.args.end(), {"--set", o.vary.front().first + "=" + w});
+      for (const std::string& s : o.overrides) r.args.insert(r.args.end(), {"--set", s});
+      if (read_run(r, measure_name)) {
+        r.reused = true;
+        ++br.reused;
+      } else {
+        todo.push_back(&r);
+      }
+      ++br.runs;
+    }
+    run_all(todo, jobs, exe, measure_name);
+  };
+  const auto value = [&](double x) -> Run& { return known[fmt(x)]; };
+  const auto failed = [&](const std::vector<double>& xs) {
+    for (const double x : xs)
+      if (value(x).value < 0) {
+        br.status = "run at " + o.find + "=" + fmt(x) + ": " + value(x).error;
+        return true;
+      }
+    return false;
+  };
+  double a = o.lo, b = o.hi;
+  run_at({a, b});
+  if (!failed({a, b})) {
+    if (value(a).value == value(b).value) {
+      br.status = std::string("no bracket: the criterion is ") +
+                  (value(a).value ? "met" : "not met") + " at both ends";
+    } else {
+      while (b - a > o.tolerance * std::max(std::abs(a), std::abs(b))) {
+        std::vector<double> xs;
+        for (int i = 1; i <= jobs; ++i) xs.push_back(a + (b - a) * i / (jobs + 1));
+        run_at(xs);
+        if (failed(xs)) break;
+        const int at_a = value(a).value;
+        double na = xs.back(), nb = b;  // no flip inside: the last part
+        for (std::size_t i = 0; i < xs.size(); ++i)
+          if (value(xs[i]).value != at_a) {
+            na = i == 0 ? a : xs[i - 1];
+            nb = xs[i];
+            break;
+          }
+        a = na;
+        b = nb;
+        if (!o.quiet)
+          std::cerr << "limit: " << (w.empty() ? "" : o.vary.front().first + "=" + w + ": ")
+                    << o.find << " in [" << fmt(a) << ", " << fmt(b) << "] after " << known.size()
+                    << " runs\n";
+      }
+    }
+  }
+  br.a = a;
+  br.b = b;
+  br.value_a = value(a).value;
+  br.value_b = value(b).value;
+  for (const auto& [key, r] : known) br.run_sum += r.reused ? 0.0 : r.wall;
+  br.wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  if (!o.quiet)
+    std::cerr << "limit: " << (w.empty() ? "" : o.vary.front().first + "=" + w + ": ") << o.find
+              << " in [" << fmt(br.a) << ", " << fmt(br.b) << "]: " << br.status << " (" << br.runs
+              << " runs, " << br.reused << " reused)\n";
+  return br;
+}
+
 }  // namespace
 
 int limit_command(const LimitOptions& o) {
@@ -199,86 +285,8 @@ int limit_command(const LimitOptions& o) {
   std::vector<Bracket> brackets;
   int code = 0;
   for (const std::string& w : values) {
-    Bracket br;
-    br.vary_value = w;
-    const auto started = std::chrono::steady_clock::now();
-    const std::string group =
-        dir + "/runs/" + (o.vary.empty() ? "all" : o.vary.front().first + "=" + w);
-    std::map<std::string, Run> known;  // by the value's text
-    const auto run_at = [&](const std::vector<double>& xs) {
-      std::vector<Run*> todo;
-      for (const double x : xs) {
-        const std::string key = fmt(x);
-        if (known.count(key)) continue;
-        Run& r = known[key];
-        r.x = x;
-        r.dir = group + "/" + o.find + "=" + key;
-        // Not quiet: run.log keeps the run's table, notes and warnings (no progress bar: the
-        // log is not a terminal).
-        r.args = {"run", o.case_path, "--out",           r.dir, "--force", "--threads",
-                  "1",   "--set",     o.find + "=" + key};
-        if (!o.vary.empty()) r.args.insert(r.args.end(), {"--set", o.vary.front().first + "=" + w});
-        for (const std::string& s : o.overrides) r.args.insert(r.args.end(), {"--set", s});
-        if (read_run(r, measure_name)) {
-          r.reused = true;
-          ++br.reused;
-        } else {
-          todo.push_back(&r);
-        }
-        ++br.runs;
-      }
-      run_all(todo, jobs, exe, measure_name);
-    };
-    const auto value = [&](double x) -> Run& { return known[fmt(x)]; };
-    const auto failed = [&](const std::vector<double>& xs) {
-      for (const double x : xs)
-        if (value(x).value < 0) {
-          br.status = "run at " + o.find + "=" + fmt(x) + ": " + value(x).error;
-          return true;
-        }
-      return false;
-    };
-    double a = o.lo, b = o.hi;
-    run_at({a, b});
-    if (!failed({a, b})) {
-      if (value(a).value == value(b).value) {
-        br.status = std::string("no bracket: the criterion is ") +
-                    (value(a).value ? "met" : "not met") + " at both ends";
-      } else {
-        while (b - a > o.tolerance * std::max(std::abs(a), std::abs(b))) {
-          std::vector<double> xs;
-          for (int i = 1; i <= jobs; ++i) xs.push_back(a + (b - a) * i / (jobs + 1));
-          run_at(xs);
-          if (failed(xs)) break;
-          const int at_a = value(a).value;
-          double na = xs.back(), nb = b;  // no flip inside: the last part
-          for (std::size_t i = 0; i < xs.size(); ++i)
-            if (value(xs[i]).value != at_a) {
-              na = i == 0 ? a : xs[i - 1];
-              nb = xs[i];
-              break;
-            }
-          a = na;
-          b = nb;
-          if (!o.quiet)
-            std::cerr << "limit: " << (w.empty() ? "" : o.vary.front().first + "=" + w + ": ")
-                      << o.find << " in [" << fmt(a) << ", " << fmt(b) << "] after " << known.size()
-                      << " runs\n";
-        }
-      }
-    }
-    br.a = a;
-    br.b = b;
-    br.value_a = value(a).value;
-    br.value_b = value(b).value;
-    for (const auto& [key, r] : known) br.run_sum += r.reused ? 0.0 : r.wall;
-    br.wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
-    if (br.status != "ok") code = 1;
-    if (!o.quiet)
-      std::cerr << "limit: " << (w.empty() ? "" : o.vary.front().first + "=" + w + ": ") << o.find
-                << " in [" << fmt(br.a) << ", " << fmt(br.b) << "]: " << br.status << " ("
-                << br.runs << " runs, " << br.reused << " reused)\n";
-    brackets.push_back(br);
+    brackets.push_back(search_bracket(o, w, dir, exe, jobs, measure_name));
+    if (brackets.back().status != "ok") code = 1;
   }
 
   std::ostringstream csv;

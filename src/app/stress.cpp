@@ -393,14 +393,12 @@ std::vector<SceneResult> run_micro_scenes(const std::string& dir,
   return out;
 }
 
-int stress_command(const StressOptions& o) {
-  const std::string scenes_dir = !o.scenes              ? std::string()
-                                 : o.scenes_dir.empty() ? default_scenes_dir()
-                                                        : o.scenes_dir;
-  if (!scenes_dir.empty() && !std::filesystem::is_directory(scenes_dir))
-    throw std::runtime_error(scenes_dir + ": micro-scene directory not found");
+namespace {
+
+// The degenerate CCD families against their constructed answers (j["families"]): the number of
+// disagreements of the exact CCD.
+long stress_families_report(const StressOptions& o, Json& j) {
   long total = 0;
-  Json j = Json::object();
   Json& arr = j["families"] = Json::array();
   if (!o.json)
     std::printf("%-28s %4s %8s %6s %14s %18s %10s\n", "family", "type", "queries", "true",
@@ -449,8 +447,13 @@ int stress_command(const StressOptions& o) {
         "%ld disagreements with the constructed answers (exact CCD); float disagreements: the\n"
         "floating-point swept vertex-face test of app/float_ccd.hpp, for comparison\n",
         total);
+  return total;
+}
+
+// The micro-scenes of `scenes_dir` through the solver (j["scenes"]): the number that failed.
+long micro_scenes_report(const StressOptions& o, const std::string& scenes_dir, Json& j) {
   long failed = 0;
-  if (!scenes_dir.empty()) {
+  {
     const std::vector<SceneResult> scenes = run_micro_scenes(scenes_dir, o.overrides);
     Json& js = j["scenes"] = Json::array();
     if (!o.json)
@@ -495,9 +498,14 @@ int stress_command(const StressOptions& o) {
           "1e-12, the scene's expect: bounds held at every step)\n",
           failed, scenes.size());
   }
-  j["scenes_failed"] = failed;
+  return failed;
+}
+
+// The generated whole-solver scenes (j["solver_scenes"]): the number with a crossing or a
+// node inside after some step.
+long solver_scenes_report(const StressOptions& o, Json& j) {
   long crossed = 0;
-  if (o.solver_scenes > 0) {
+  {
     const std::vector<SceneResult> scenes = run_solver_scenes(o.seed, o.solver_scenes, o.overrides);
     long runs_failed = 0, zones = 0, with_zones = 0, max_crossings = 0, max_inside = 0;
     Json& js = j["solver_scenes"] = Json::object();
@@ -540,6 +548,22 @@ int stress_command(const StressOptions& o) {
           "failed, %ld needed impact zones (%ld zones)\n",
           scenes.size(), crossed, runs_failed, with_zones, zones);
   }
+  return crossed;
+}
+
+}  // namespace
+
+int stress_command(const StressOptions& o) {
+  const std::string scenes_dir = !o.scenes              ? std::string()
+                                 : o.scenes_dir.empty() ? default_scenes_dir()
+                                                        : o.scenes_dir;
+  if (!scenes_dir.empty() && !std::filesystem::is_directory(scenes_dir))
+    throw std::runtime_error(scenes_dir + ": micro-scene directory not found");
+  Json j = Json::object();
+  const long total = stress_families_report(o, j);
+  const long failed = scenes_dir.empty() ? 0 : micro_scenes_report(o, scenes_dir, j);
+  j["scenes_failed"] = failed;
+  const long crossed = o.solver_scenes > 0 ? solver_scenes_report(o, j) : 0;
   if (o.json) std::cout << j.dump(2) << "\n";
   return total == 0 && failed == 0 && crossed == 0 ? 0 : 1;
 }

@@ -28,28 +28,11 @@ Penetration PenetrationProbe::measure(const std::vector<Vec3>& x) {
   return measure(x, model_.surfaces, {}, static_cast<Index>(x.size()));
 }
 
-Penetration PenetrationProbe::measure(const std::vector<Vec3>& x,
-                                      const std::vector<Surface>& surfaces,
-                                      const std::vector<Damage>& damage, Index first_particle) {
-  // The surfaces as they are now (fracture changes them).
-  nodes_.clear(), node_body_.clear(), edges_.clear(), edge_body_.clear();
-  faces_.clear(), face_body_.clear(), body_h_.clear();
-  for (const Surface& s : surfaces) {
-    for (Index n : s.nodes) nodes_.push_back(n), node_body_.push_back(s.body);
-    for (const Edge& e : s.edges) edges_.push_back(e), edge_body_.push_back(s.body);
-    for (const Face& f : s.faces) faces_.push_back(f), face_body_.push_back(s.body);
-    body_h_.push_back(s.mean_edge_length);
-  }
-  // Particles are points of no body: inside any body counts.
-  for (Index p = first_particle; p < static_cast<Index>(x.size()); ++p)
-    nodes_.push_back(p), node_body_.push_back(-1);
-
-  Penetration r;
-  r.node_depth.assign(x.size(), 0.0);
+// The body each boundary node (and particle) is inside, −1 for none: the broadphase's "faces"
+// are the tets of the bodies here (cells turned into particles are no longer cells).
+std::vector<Index> PenetrationProbe::bodies_holding(const std::vector<Vec3>& x,
+                                                    const std::vector<Damage>& damage) {
   const Mesh& mesh = model_.mesh;
-  if (mesh.bodies.size() < 2 && static_cast<Index>(x.size()) == first_particle) return r;
-
-  // Boundary nodes against the tets of other bodies: the broadphase's "faces" are tets here.
   BroadphaseInput in;
   std::vector<Index> in_tet;  // the tet of each of its "faces"
   for (std::size_t i = 0; i < nodes_.size(); ++i) {
@@ -81,7 +64,15 @@ Penetration PenetrationProbe::measure(const std::vector<Vec3>& x,
       inside_body[node] = mesh.tet_body[in_tet[inside.node_face[k].second]];
   }
 
-  // Depth: distance to the nearest boundary face of the body the node is in, within 2h.
+  return inside_body;
+}
+
+// The depth of each node inside a body: the distance to the nearest boundary face of the body
+// it is in, within 2h (h that body's mean tet edge); the counts and maxima of nodes and
+// particles inside.
+void PenetrationProbe::measure_depths(const std::vector<Vec3>& x,
+                                      const std::vector<Index>& inside_body, Index first_particle,
+                                      Penetration& r) {
   BroadphaseInput near;
   std::vector<std::size_t> near_index;  // into nodes_
   for (std::size_t i = 0; i < nodes_.size(); ++i) {
@@ -133,8 +124,10 @@ Penetration PenetrationProbe::measure(const std::vector<Vec3>& x,
           std::max(r.max_depth_over_h, r.node_depth[node] / body_h_[inside_body[node]]);
     }
   }
+}
 
-  // Boundary edges of one body crossing boundary faces of another.
+// Boundary edges of one body crossing boundary faces of another, and the deepest crossing.
+void PenetrationProbe::measure_crossings(const std::vector<Vec3>& x, Penetration& r) {
   BroadphaseInput cross;
   for (std::size_t e = 0; e < edges_.size(); ++e) {
     cross.node_box.push_back(swept_box({&x[edges_[e][0]], &x[edges_[e][1]]}, 0.0));
@@ -181,6 +174,32 @@ Penetration PenetrationProbe::measure(const std::vector<Vec3>& x,
       }
       r.max_crossing_depth = std::max(r.max_crossing_depth, crossing[pair]);
     }
+}
+
+Penetration PenetrationProbe::measure(const std::vector<Vec3>& x,
+                                      const std::vector<Surface>& surfaces,
+                                      const std::vector<Damage>& damage, Index first_particle) {
+  // The surfaces as they are now (fracture changes them).
+  nodes_.clear(), node_body_.clear(), edges_.clear(), edge_body_.clear();
+  faces_.clear(), face_body_.clear(), body_h_.clear();
+  for (const Surface& s : surfaces) {
+    for (Index n : s.nodes) nodes_.push_back(n), node_body_.push_back(s.body);
+    for (const Edge& e : s.edges) edges_.push_back(e), edge_body_.push_back(s.body);
+    for (const Face& f : s.faces) faces_.push_back(f), face_body_.push_back(s.body);
+    body_h_.push_back(s.mean_edge_length);
+  }
+  // Particles are points of no body: inside any body counts.
+  for (Index p = first_particle; p < static_cast<Index>(x.size()); ++p)
+    nodes_.push_back(p), node_body_.push_back(-1);
+
+  Penetration r;
+  r.node_depth.assign(x.size(), 0.0);
+  const Mesh& mesh = model_.mesh;
+  if (mesh.bodies.size() < 2 && static_cast<Index>(x.size()) == first_particle) return r;
+
+  const std::vector<Index> inside_body = bodies_holding(x, damage);
+  measure_depths(x, inside_body, first_particle, r);
+  measure_crossings(x, r);
   return r;
 }
 

@@ -58,16 +58,11 @@ Verification StepVerifier::verify_again(const std::vector<Surface>& surfaces,
   return run(surfaces, x0, x1, first_particle, &changed);
 }
 
-Verification StepVerifier::run(const std::vector<Surface>& surfaces, const std::vector<Vec3>& x0,
-                               const std::vector<Vec3>& x1, Index first_particle,
-                               const std::vector<char>* changed) {
-  if (stale_ || x0.size() != built_nodes_ || first_particle != built_first_particle_) {
-    build(surfaces, first_particle, x0.size());
-    stale_ = false;
-    built_nodes_ = x0.size();
-    built_first_particle_ = first_particle;
-    changed = nullptr;  // nothing to reuse
-  }
+// The pairs to test: the listed pairs whose boxes of the motion overlap (a fresh search's);
+// again (`changed`), only the pairs with a side that reads a changed node, with the last
+// call's failing pairs.
+Candidates StepVerifier::candidate_pairs(const std::vector<Vec3>& x0, const std::vector<Vec3>& x1,
+                                         const std::vector<char>* changed) {
   BroadphaseInput& in = input_;
   const auto node_box = [&](std::size_t i) {
     in.node_box[i] = swept_box({&x0[in.node_id[i]], &x1[in.node_id[i]]}, 0.0);
@@ -185,9 +180,13 @@ Verification StepVerifier::run(const std::vector<Surface>& surfaces, const std::
     std::sort(pairs.node_face.begin(), pairs.node_face.end());
     std::sort(pairs.edge_edge.begin(), pairs.edge_edge.end());
   }
-  Verification r;
-  r.pairs_checked = static_cast<long>(pairs.node_face.size() + pairs.edge_edge.size());
+  return pairs;
+}
 
+// Each pair's verdict: 0 passes, 1 fails from apart, 2 fails from touching.
+std::vector<char> StepVerifier::verdicts(const Candidates& pairs, const std::vector<Vec3>& x0,
+                                         const std::vector<Vec3>& x1) const {
+  const BroadphaseInput& in = input_;
   // Each pair on the threads: 0 passes, 1 fails from apart, 2 fails from touching. In a
   // distributed run each rank tests its slice of the pairs and the verdicts are gathered in
   // order: every rank holds the same positions, so they are one process's verdicts.
@@ -230,6 +229,26 @@ Verification StepVerifier::run(const std::vector<Surface>& surfaces, const std::
     };
     verdict[k] = 2 * (through(a, eb) || through(b, ea));
   });
+  return verdict;
+}
+
+Verification StepVerifier::run(const std::vector<Surface>& surfaces, const std::vector<Vec3>& x0,
+                               const std::vector<Vec3>& x1, Index first_particle,
+                               const std::vector<char>* changed) {
+  if (stale_ || x0.size() != built_nodes_ || first_particle != built_first_particle_) {
+    build(surfaces, first_particle, x0.size());
+    stale_ = false;
+    built_nodes_ = x0.size();
+    built_first_particle_ = first_particle;
+    changed = nullptr;  // nothing to reuse
+  }
+  const Candidates pairs = candidate_pairs(x0, x1, changed);
+  Verification r;
+  r.pairs_checked = static_cast<long>(pairs.node_face.size() + pairs.edge_edge.size());
+  const std::vector<char> verdict = verdicts(pairs, x0, x1);
+  // The failing pairs, each with every node its test read (to mark for further passes).
+  const BroadphaseInput& in = input_;
+  const std::size_t nvf = pairs.node_face.size();
   failed_vf_.clear();
   failed_ee_.clear();
   for (std::size_t k = 0; k < verdict.size(); ++k) {

@@ -62,6 +62,10 @@ class PenetrationProbe {
  private:
   Penetration measure(const std::vector<Vec3>& x, const std::vector<Surface>& surfaces,
                       const std::vector<Damage>& damage, Index first_particle);
+  std::vector<Index> bodies_holding(const std::vector<Vec3>& x, const std::vector<Damage>& damage);
+  void measure_depths(const std::vector<Vec3>& x, const std::vector<Index>& inside_body,
+                      Index first_particle, Penetration& r);
+  void measure_crossings(const std::vector<Vec3>& x, Penetration& r);
   const Model& model_;
   std::unique_ptr<Broadphase> broadphase_;
   std::vector<Index> nodes_, node_body_;

@@ -70,6 +70,10 @@ class StepVerifier {
   Verification run(const std::vector<Surface>& surfaces, const std::vector<Vec3>& x0,
                    const std::vector<Vec3>& x1, Index first_particle,
                    const std::vector<char>* changed);
+  Candidates candidate_pairs(const std::vector<Vec3>& x0, const std::vector<Vec3>& x1,
+                             const std::vector<char>* changed);
+  std::vector<char> verdicts(const Candidates& pairs, const std::vector<Vec3>& x0,
+                             const std::vector<Vec3>& x1) const;
   const Mesh& mesh_;
   std::unique_ptr<Broadphase> broadphase_;
   BroadphaseInput input_;
