@@ -71,16 +71,15 @@ Tally tally(const std::vector<Query*>& qs, const std::vector<bool>& answers) {
   return t;
 }
 
-}  // namespace
-
-int ccd_command(const CcdOptions& o) {
-  std::ifstream in(o.file);
+// The queries of `file`, one a line: ee|vf, then [truth,] 24 coordinates. False, with the
+// message said (file:line), on a malformed line.
+bool read_queries(const std::string& file, std::vector<Query>& queries, bool& have_truth) {
+  std::ifstream in(file);
   if (!in) {
-    std::cerr << "tetcontact: error: " << o.file << ": cannot open query file\n";
-    return 2;
+    std::cerr << "tetcontact: error: " << file << ": cannot open query file\n";
+    return false;
   }
-  std::vector<Query> queries;
-  bool have_truth = false;
+  have_truth = false;
   std::string line;
   long lineno = 0;
   while (std::getline(in, line)) {
@@ -89,25 +88,25 @@ int ccd_command(const CcdOptions& o) {
     std::string type;
     if (!(ss >> type)) continue;
     if (type != "ee" && type != "vf") {
-      std::cerr << "tetcontact: error: " << o.file << ":" << lineno
+      std::cerr << "tetcontact: error: " << file << ":" << lineno
                 << ": query type must be ee or vf, got '" << type << "'\n";
-      return 2;
+      return false;
     }
     std::vector<double> v;
     for (std::string tok; ss >> tok;) {
       char* end = nullptr;
       const double d = std::strtod(tok.c_str(), &end);
       if (*end) {
-        std::cerr << "tetcontact: error: " << o.file << ":" << lineno << ": not a number: '" << tok
+        std::cerr << "tetcontact: error: " << file << ":" << lineno << ": not a number: '" << tok
                   << "'\n";
-        return 2;
+        return false;
       }
       v.push_back(d);
     }
     if (v.size() != 24 && v.size() != 25) {
-      std::cerr << "tetcontact: error: " << o.file << ":" << lineno
+      std::cerr << "tetcontact: error: " << file << ":" << lineno
                 << ": expected 24 coordinates (25 with ground truth), got " << v.size() << "\n";
-      return 2;
+      return false;
     }
     Query q;
     q.ee = type == "ee";
@@ -118,6 +117,77 @@ int ccd_command(const CcdOptions& o) {
       q.q[k] = Vec3(v[off + 3 * k], v[off + 3 * k + 1], v[off + 3 * k + 2]);
     queries.push_back(q);
   }
+
+  return true;
+}
+
+// Every answer of the fast path against the CGAL oracle, where it decides: x["cgal"] and a
+// line of the table.
+void confirm_with_cgal(const std::vector<Query*>& qs, const std::vector<bool>& ours, bool ee,
+                       Json& x, std::string& table) {
+  const char* name = ee ? "ee" : "vf";
+  char buf[256];
+  long agree = 0, disagree = 0, undecided = 0;
+  const auto t0 = std::chrono::steady_clock::now();
+  for (std::size_t i = 0; i < qs.size(); ++i) {
+    const std::optional<bool> c =
+        ee ? cgal_edge_edge_ccd(qs[i]->q) : cgal_vertex_face_ccd(qs[i]->q);
+    if (!c)
+      ++undecided;
+    else if (*c == ours[i])
+      ++agree;
+    else
+      ++disagree;
+  }
+  const double cns = 1e9 *
+                     std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() /
+                     static_cast<double>(qs.size());
+  Json& y = x["cgal"];
+  y["agreements"] = agree;
+  y["disagreements"] = disagree;
+  y["undecided"] = undecided;
+  y["mean_ns"] = cns;
+  std::snprintf(buf, sizeof buf,
+                "%s (CGAL oracle): %ld agree, %ld disagree, %ld undecided (coplanar all step, "
+                "degenerate at the root), mean %.0f ns\n",
+                name, agree, disagree, undecided, cns);
+  table += buf;
+}
+
+// FCL's cubic CCD on the same queries: x["fcl"] and a line of the table.
+void compare_with_fcl(std::vector<Query*>& qs, bool ee, bool have_truth, Json& x,
+                      std::string& table) {
+  const char* name = ee ? "ee" : "vf";
+  char buf[256];
+  double fns = 0.0;
+  const std::vector<bool> fcl = answer_all(
+      qs, [&](Query& q) { return ee ? fcl_edge_edge_ccd(q.q) : fcl_vertex_face_ccd(q.q); }, fns);
+  Tally f = tally(qs, fcl);
+  f.mean_ns = fns;
+  Json& y = x["fcl"];
+  y["collisions"] = f.collisions;
+  if (have_truth) {
+    y["false_positives"] = f.fp;
+    y["false_negatives"] = f.fn;
+  }
+  y["mean_ns"] = f.mean_ns;
+  if (have_truth)
+    std::snprintf(buf, sizeof buf,
+                  "%s (FCL 0.7 cubic): %ld reported, %ld false positives, %ld false "
+                  "negatives, mean %.0f ns\n",
+                  name, f.collisions, f.fp, f.fn, f.mean_ns);
+  else  // no ground truth: no error counts to claim
+    std::snprintf(buf, sizeof buf, "%s (FCL 0.7 cubic): %ld reported, mean %.0f ns\n", name,
+                  f.collisions, f.mean_ns);
+  table += buf;
+}
+
+}  // namespace
+
+int ccd_command(const CcdOptions& o) {
+  std::vector<Query> queries;
+  bool have_truth = false;
+  if (!read_queries(o.file, queries, have_truth)) return 2;
 
   // The answers (exact), timed per type, and FCL's beside them when asked.
   Json j = Json::object();
@@ -158,58 +228,8 @@ int ccd_command(const CcdOptions& o) {
       std::snprintf(buf, sizeof buf, "%s: %ld queries, %ld reported, mean %.0f ns\n", name,
                     t.queries, t.collisions, t.mean_ns);
     table += buf;
-    if (o.confirm == "cgal" && !qs.empty()) {
-      // Every answer of the fast path against the CGAL oracle, where it decides.
-      long agree = 0, disagree = 0, undecided = 0;
-      const auto t0 = std::chrono::steady_clock::now();
-      for (std::size_t i = 0; i < qs.size(); ++i) {
-        const std::optional<bool> c =
-            ee ? cgal_edge_edge_ccd(qs[i]->q) : cgal_vertex_face_ccd(qs[i]->q);
-        if (!c)
-          ++undecided;
-        else if (*c == ours[i])
-          ++agree;
-        else
-          ++disagree;
-      }
-      const double cns =
-          1e9 * std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() /
-          static_cast<double>(qs.size());
-      Json& y = x["cgal"];
-      y["agreements"] = agree;
-      y["disagreements"] = disagree;
-      y["undecided"] = undecided;
-      y["mean_ns"] = cns;
-      std::snprintf(buf, sizeof buf,
-                    "%s (CGAL oracle): %ld agree, %ld disagree, %ld undecided (coplanar all step, "
-                    "degenerate at the root), mean %.0f ns\n",
-                    name, agree, disagree, undecided, cns);
-      table += buf;
-    }
-    if (o.fcl && !qs.empty()) {
-      double fns = 0.0;
-      const std::vector<bool> fcl = answer_all(
-          qs, [&](Query& q) { return ee ? fcl_edge_edge_ccd(q.q) : fcl_vertex_face_ccd(q.q); },
-          fns);
-      Tally f = tally(qs, fcl);
-      f.mean_ns = fns;
-      Json& y = x["fcl"];
-      y["collisions"] = f.collisions;
-      if (have_truth) {
-        y["false_positives"] = f.fp;
-        y["false_negatives"] = f.fn;
-      }
-      y["mean_ns"] = f.mean_ns;
-      if (have_truth)
-        std::snprintf(buf, sizeof buf,
-                      "%s (FCL 0.7 cubic): %ld reported, %ld false positives, %ld false "
-                      "negatives, mean %.0f ns\n",
-                      name, f.collisions, f.fp, f.fn, f.mean_ns);
-      else  // no ground truth: no error counts to claim
-        std::snprintf(buf, sizeof buf, "%s (FCL 0.7 cubic): %ld reported, mean %.0f ns\n", name,
-                      f.collisions, f.mean_ns);
-      table += buf;
-    }
+    if (o.confirm == "cgal" && !qs.empty()) confirm_with_cgal(qs, ours, ee, x, table);
+    if (o.fcl && !qs.empty()) compare_with_fcl(qs, ee, have_truth, x, table);
   }
   if (o.json) {
     std::cout << j.dump(2) << "\n";
