@@ -18,6 +18,7 @@
 #include "tetcontact/model/sample.hpp"
 #include "tetcontact/model/state.hpp"
 #include "tetcontact/narrowphase/contact.hpp"
+#include "tetcontact/narrowphase/particle_contact.hpp"
 #include "tetcontact/response/impact_zones.hpp"
 #include "tetcontact/response/islands.hpp"
 #include "tetcontact/response/wall.hpp"
