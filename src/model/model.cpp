@@ -6,10 +6,10 @@
 namespace tc {
 
 double& StepProfile::operator[](Stage stage) {
-  const std::string name(name_of(k_stage_names, stage));
+  const std::string_view name = name_of(k_stage_names, stage);  // no string made per lookup
   for (auto& [n, s] : stages)
     if (n == name) return s;
-  stages.emplace_back(name, 0.0);
+  stages.emplace_back(std::string(name), 0.0);
   return stages.back().second;
 }
 
