@@ -21,16 +21,21 @@ double since(Clock::time_point t0) {
 }
 }  // namespace
 
+CandidateSettings candidate_settings(const ContactSettings& contact, bool particles) {
+  CandidateSettings c;
+  c.broadphase = contact.broadphase;
+  c.binding_lists = contact.binding_lists;
+  c.bodies = true;
+  c.edges = contact.edge_edge;
+  c.particles = particles;
+  c.margin = contact.margin;
+  c.rim = k_rim_tolerance;
+  return c;
+}
+
 ContactDetection::ContactDetection(const Mesh& mesh, const std::vector<Surface>& surfaces,
                                    const ContactSettings& settings)
-    : mesh_(mesh),
-      surfaces_(surfaces),
-      settings_(settings),
-      broadphase_(make_broadphase(settings.broadphase)) {
-  build_primitives();
-  // The binding lists' reach, from the surfaces of the start (binding_reach: it decides only
-  // how long lists last, never which contacts are found).
-  lists_ = BindingLists(binding_reach(surfaces));
+    : mesh_(mesh), settings_(settings), reach_(binding_reach(surfaces)) {
   // The separation aimed at: the case's, or a millionth of the smallest mean tet edge.
   separation_ = settings.separation;
   if (separation_ < 0.0) {
@@ -42,153 +47,44 @@ ContactDetection::ContactDetection(const Mesh& mesh, const std::vector<Surface>&
   }
 }
 
-void ContactDetection::build_primitives() {
-  nodes_.clear(), node_body_.clear(), node_surface_.clear(), node_slot_.clear();
-  faces_.clear(), face_body_.clear(), face_tet_.clear();
-  edges_.clear(), edge_body_.clear(), edge_faces_.clear();
-  input_ = BroadphaseInput{};
-  for (std::size_t s = 0; s < surfaces_.size(); ++s) {
-    const Surface& surf = surfaces_[s];
-    for (std::size_t i = 0; i < surf.nodes.size(); ++i) {
-      nodes_.push_back(surf.nodes[i]);
-      node_body_.push_back(surf.body);
-      node_surface_.push_back(static_cast<Index>(s));
-      node_slot_.push_back(static_cast<Index>(i));
-    }
-    for (std::size_t f = 0; f < surf.faces.size(); ++f) {
-      faces_.push_back(surf.faces[f]);
-      face_body_.push_back(surf.body);
-      face_tet_.push_back(surf.face_tet[f]);
-    }
+// The edge pairs in contact are kept under their edges' new indices (an edge that left the
+// surface leaves its pairs).
+void ContactDetection::edges_renamed(const std::vector<Index>& renamed) {
+  std::vector<std::pair<std::pair<Index, Index>, Vec3>> kept;
+  for (const auto& [pair, n] : active_edges_) {
+    const Index a = renamed[pair.first], b = renamed[pair.second];
+    if (a >= 0 && b >= 0) kept.push_back({{a, b}, n});
   }
-  input_.node_id = nodes_;
-  input_.node_body = node_body_;
-  input_.face_body = face_body_;
-  for (const Face& f : faces_) input_.face_nodes.push_back(f);
-  if (settings_.edge_edge) {
-    Index face_base = 0;
-    for (const Surface& surf : surfaces_) {
-      // The two faces at each edge (the surface is closed: every edge has two).
-      std::map<Edge, std::array<Index, 2>> at_edge;
-      for (std::size_t f = 0; f < surf.faces.size(); ++f)
-        for (int k = 0; k < 3; ++k) {
-          Edge e{surf.faces[f][k], surf.faces[f][(k + 1) % 3]};
-          if (e[0] > e[1]) std::swap(e[0], e[1]);
-          auto [it, fresh] = at_edge.try_emplace(e, std::array<Index, 2>{-1, -1});
-          it->second[fresh ? 0 : 1] = face_base + static_cast<Index>(f);
-        }
-      for (const Edge& e : surf.edges) {
-        edges_.push_back(e);
-        edge_body_.push_back(surf.body);
-        edge_faces_.push_back(at_edge.at(e));
-        input_.edge_nodes.push_back(e);
-        input_.edge_body.push_back(surf.body);
-      }
-      face_base += static_cast<Index>(surf.faces.size());
-    }
-  }
-  input_.node_box.resize(nodes_.size());
-  input_.face_box.resize(faces_.size());
-  input_.edge_box.resize(edges_.size());
-}
-
-// The surfaces changed: primitives rebuilt from them. The edge pairs in contact are kept,
-// renamed by their nodes (an edge that left the surface leaves its pairs); the binding lists
-// are rebuilt at the next step, since the faces a conversion exposed are in no list yet.
-void ContactDetection::surfaces_changed() {
-  std::vector<std::pair<std::array<Edge, 2>, Vec3>> kept;
-  for (const auto& [pair, n] : active_edges_)
-    kept.push_back({{edges_[pair.first], edges_[pair.second]}, n});
-  build_primitives();
-  std::map<Edge, Index> edge_index;
-  for (std::size_t e = 0; e < edges_.size(); ++e)
-    edge_index.emplace(edges_[e], static_cast<Index>(e));
-  active_edges_.clear();
-  for (const auto& [pair, n] : kept) {
-    const auto a = edge_index.find(pair[0]), b = edge_index.find(pair[1]);
-    if (a != edge_index.end() && b != edge_index.end())
-      active_edges_.push_back({{a->second, b->second}, n});
-  }
-  lists_.reset();
-}
-
-// The box of the region where detect() accepts a node for face f, at xⁿ and x*: the prism
-// from the face down to the altitude of its tet (behind_face's layer), widened by the rim
-// tolerance. Boxes that hold all of it make the contacts found independent of how much the
-// broadphase boxes are enlarged.
-Box ContactDetection::layer_box(Index f, const State& st, double margin) const {
-  const Face& k = faces_[f];
-  const Tet& tet = mesh_.tets[face_tet_[f]];
-  Box box;
-  bool first = true;
-  double widen = 0.0;
-  for (const std::vector<Vec3>* x : {&st.x, &st.x_star}) {
-    const Vec3 &a = (*x)[k[0]], &b = (*x)[k[1]], &c = (*x)[k[2]];
-    const Vec3 n2 = (b - a).cross(c - a);  // 2A n
-    const double vol = tet_signed_volume((*x)[tet[0]], (*x)[tet[1]], (*x)[tet[2]], (*x)[tet[3]]);
-    const double nn = n2.squaredNorm();
-    const Vec3 down = nn > 0.0 ? Vec3(-6.0 * vol / nn * n2) : Vec3::Zero();  // −h n, h = 3V/A
-    for (const Vec3& p : {a, b, c, Vec3(a + down), Vec3(b + down), Vec3(c + down)}) {
-      if (first) box.lo = box.hi = p, first = false;
-      box.lo = box.lo.cwiseMin(p);
-      box.hi = box.hi.cwiseMax(p);
-    }
-    widen = std::max(
-        widen, k_rim_tolerance * std::sqrt(std::max({(b - a).squaredNorm(), (c - b).squaredNorm(),
-                                                     (a - c).squaredNorm()})));
-  }
-  box.lo.array() -= margin + widen;
-  box.hi.array() += margin + widen;
-  return box;
-}
-
-// Binding lists stay valid while every surface node's path this step stays within the reach
-// of where they were built: then a node and a face that meet now had boxes (enlarged by
-// the reach) that overlapped then. Rebuilt from the swept boxes otherwise.
-void ContactDetection::refresh_lists(const State& st, ContactStepStats& stats) {
-  const std::vector<Vec3>& x0 = st.x;
-  const std::vector<Vec3>& x1 = st.x_star;
-  const bool rebuild = !settings_.binding_lists || !lists_.hold(nodes_, x0, x1);
-  stats.rebuilt = rebuild;
-  stats.build_seconds = stats.query_seconds = 0.0;
-  if (rebuild) {
-    const double margin = settings_.margin + (settings_.binding_lists ? lists_.reach() : 0.0);
-    for (std::size_t i = 0; i < nodes_.size(); ++i)
-      input_.node_box[i] = swept_box({&x0[nodes_[i]], &x1[nodes_[i]]}, margin);
-    for (std::size_t f = 0; f < faces_.size(); ++f) input_.face_box[f] = layer_box(f, st, margin);
-    for (std::size_t e = 0; e < edges_.size(); ++e) {
-      const Edge& k = edges_[e];
-      input_.edge_box[e] = swept_box({&x0[k[0]], &x0[k[1]], &x1[k[0]], &x1[k[1]]}, margin);
-    }
-    lists_.set(broadphase_->find(input_), nodes_, x0);
-    listed_faces_ = listed_faces(lists_.lists().node_face);
-    stats.build_seconds = broadphase_->build_seconds;
-    stats.query_seconds = broadphase_->query_seconds;
-  }
+  active_edges_ = std::move(kept);
 }
 
 // Node–face contacts of the listed pairs (the contact-boundary notes §3), in the lists' order (the
 // pairs are tested on the threads and the ranks; their points made block by block, joined in
 // order).
-void ContactDetection::node_face_contacts(const State& st, std::vector<ContactPoint>& contacts) {
+void ContactDetection::node_face_contacts(const State& st, const ContactCandidates& candidates,
+                                          std::vector<ContactPoint>& contacts) {
   const std::vector<Vec3>& x0 = st.x;
   const std::vector<Vec3>& x1 = st.x_star;
-  const Candidates& cand = lists_.lists();
+  const SurfacePrimitives& p = candidates.primitives();
+  const CandidateLists& cand = candidates.bodies();
+  const bool binding_lists = candidates.settings().binding_lists;
   // Node normals (the contact-boundary notes' contact normal), only when asked for.
   std::vector<std::vector<Vec3>> normals;
   if (settings_.normal == ContactSettings::Normal::node)
-    for (const Surface& s : surfaces_) normals.push_back(node_normals(s, x0));
+    for (const Surface& s : st.surfaces) normals.push_back(node_normals(s, x0));
 
   // Binding lists keep a pair for many steps. A pair whose boxes of this step (the node's path,
   // the face's layer) do not overlap cannot be a contact now, since the layer box holds all
   // that the tests below accept: it is skipped before them. The contacts are those of fresh
   // lists; the Hertz spheres' narrowphase takes a third of the time.
-  if (settings_.binding_lists) {
-    step_face_box_.resize(faces_.size());
+  if (binding_lists) {
+    step_face_box_.resize(p.faces.size());
     parallel::for_each(
-        listed_faces_.size(),
+        cand.faces.size(),
         [&](std::size_t k) {
-          step_face_box_[listed_faces_[k]] = layer_box(listed_faces_[k], st, settings_.margin);
+          const Index f = cand.faces[k];
+          step_face_box_[f] = layer_box(p.faces[f], mesh_.tets[p.face_tet[f]], x0, x1,
+                                        k_rim_tolerance, settings_.margin);
         },
         parallel::k_light_block);
   }
@@ -199,13 +95,13 @@ void ContactDetection::node_face_contacts(const State& st, std::vector<ContactPo
   std::vector<char> touches(pairs, 0);
   mpi::for_each_sliced(touches, [&](std::size_t k) {
     const auto& [ni, fi] = cand.node_face[k];
-    const Index node = nodes_[ni];
-    const Face& f = faces_[fi];
-    if (settings_.binding_lists &&
+    const Index node = p.nodes[ni];
+    const Face& f = p.faces[fi];
+    if (binding_lists &&
         !boxes_overlap(swept_box({&x0[node], &x1[node]}, settings_.margin), step_face_box_[fi]))
       return;
     // The layer a node may enter: the face's tet, its altitude over the face at x*.
-    const Tet& tet = mesh_.tets[face_tet_[fi]];
+    const Tet& tet = mesh_.tets[p.face_tet[fi]];
     const double vol = tet_signed_volume(x1[tet[0]], x1[tet[1]], x1[tet[2]], x1[tet[3]]);
     const double area = 0.5 * (x1[f[1]] - x1[f[0]]).cross(x1[f[2]] - x1[f[0]]).norm();
     const double depth = area > 0.0 ? 3.0 * vol / area : 0.0;
@@ -221,8 +117,8 @@ void ContactDetection::node_face_contacts(const State& st, std::vector<ContactPo
     for (std::size_t k = begin; k < end; ++k) {
       if (!touches[k]) continue;
       const auto& [ni, fi] = cand.node_face[k];
-      const Index node = nodes_[ni];
-      const Face& f = faces_[fi];
+      const Index node = p.nodes[ni];
+      const Face& f = p.faces[fi];
       ContactPoint c;
       c.a_nodes[0] = node;
       c.a_w[0] = 1.0;
@@ -235,7 +131,7 @@ void ContactDetection::node_face_contacts(const State& st, std::vector<ContactPo
       c.b_count = 3;
       const Vec3 face_n = face_normal(f, x0);  // outward of the face's body: from B to A
       if (settings_.normal == ContactSettings::Normal::node) {
-        const Vec3 nn = -normals[node_surface_[ni]][node_slot_[ni]];
+        const Vec3 nn = -normals[p.node_surface[ni]][p.node_slot[ni]];
         c.normal = nn.squaredNorm() > 0 ? nn : face_n;
       } else {
         c.normal = face_n;
@@ -243,7 +139,7 @@ void ContactDetection::node_face_contacts(const State& st, std::vector<ContactPo
       c.gap = (x0[node] - x0[f[0]]).dot(face_n);
       c.separation = rounding_margin({&x1[node], &x1[f[0]], &x1[f[1]], &x1[f[2]]});
       c.standoff = separation_;
-      set_friction(c, node_body_[ni], face_body_[fi]);
+      set_friction(c, p.node_body[ni], p.face_body[fi]);
       found[blk].push_back(c);
     }
   });
@@ -253,11 +149,14 @@ void ContactDetection::node_face_contacts(const State& st, std::vector<ContactPo
 
 // Edge–edge contacts (Dobritsa et al.): the pairs in contact last step that are still close, then
 // the listed pairs that cross during the step (exact CCD); remembers this step's pairs.
-void ContactDetection::edge_edge_contacts(const State& st, ContactStepStats& stats,
+void ContactDetection::edge_edge_contacts(const State& st, const ContactCandidates& candidates,
+                                          ContactStepStats& stats,
                                           std::vector<ContactPoint>& contacts) {
   const std::vector<Vec3>& x0 = st.x;
   const std::vector<Vec3>& x1 = st.x_star;
-  const Candidates& cand = lists_.lists();
+  const SurfacePrimitives& p = candidates.primitives();
+  const std::vector<Edge>& edges = p.edges;
+  const Candidates& cand = candidates.bodies();
   // Dobritsa et al.: surface edges of different bodies that cross during the step, and the pairs in
   // contact last step that are still close (kept with their normal's orientation).
   stats.edge_candidates = static_cast<long>(cand.edge_edge.size());
@@ -265,13 +164,13 @@ void ContactDetection::edge_edge_contacts(const State& st, ContactStepStats& sta
   std::vector<std::pair<std::pair<Index, Index>, Vec3>> active;
   const std::vector<std::pair<std::pair<Index, Index>, Vec3>> previous = std::move(active_edges_);
   const auto closest_at_start = [&](Index ea, Index eb) {
-    const Edge &e1 = edges_[ea], &e2 = edges_[eb];
+    const Edge &e1 = edges[ea], &e2 = edges[eb];
     return closest_points_on_segments(x0[e1[0]], x0[e1[1]], x0[e2[0]], x0[e2[1]]);
   };
   // `cp`: the edges' closest points at the start of the step.
   const auto add_edge_contact = [&](Index ea, Index eb, const SegmentPoints& cp, const Vec3* kept) {
-    const Edge& e1 = edges_[ea];
-    const Edge& e2 = edges_[eb];
+    const Edge& e1 = edges[ea];
+    const Edge& e2 = edges[eb];
     const Vec3 u = x0[e1[1]] - x0[e1[0]], v = x0[e2[1]] - x0[e2[0]];
     const Vec3 apart = cp.on_a - cp.on_b;
     const auto relative_velocity = [&](double alpha, double beta) {  // A's point less B's
@@ -299,8 +198,8 @@ void ContactDetection::edge_edge_contacts(const State& st, ContactStepStats& sta
     // lying in the patch, whose pushes held two Hertz spheres together.
     const auto outward = [&](Index e) {
       Vec3 sum = Vec3::Zero();
-      for (const Index f : edge_faces_[e])
-        if (f >= 0) sum += face_normal(faces_[f], x0);
+      for (const Index f : p.edge_faces[e])
+        if (f >= 0) sum += face_normal(p.faces[f], x0);
       return sum;
     };
     if (n.dot(outward(ea)) >= 0.0 && n.dot(outward(eb)) <= 0.0) return;
@@ -354,7 +253,7 @@ void ContactDetection::edge_edge_contacts(const State& st, ContactStepStats& sta
   for (const auto& [pair, n] : previous) {
     const SegmentPoints cp = closest_at_start(pair.first, pair.second);
     if (cp.alpha > 0.0 && cp.alpha < 1.0 && cp.beta > 0.0 && cp.beta < 1.0 &&
-        (cp.on_a - cp.on_b).dot(n) < lists_.reach()) {
+        (cp.on_a - cp.on_b).dot(n) < reach_) {
       add_edge_contact(pair.first, pair.second, cp, &n);
       kept_pairs.push_back(pair);
     }
@@ -366,8 +265,8 @@ void ContactDetection::edge_edge_contacts(const State& st, ContactStepStats& sta
   mpi::for_each_sliced(crosses, [&](std::size_t k) {
     const auto& [ea, eb] = cand.edge_edge[k];
     if (std::binary_search(kept_pairs.begin(), kept_pairs.end(), std::make_pair(ea, eb))) return;
-    const Edge& e1 = edges_[ea];
-    const Edge& e2 = edges_[eb];
+    const Edge& e1 = edges[ea];
+    const Edge& e2 = edges[eb];
     crosses[k] = exact_edge_edge_ccd(
         {x0[e1[0]], x0[e1[1]], x0[e2[0]], x0[e2[1]], x1[e1[0]], x1[e1[1]], x1[e2[0]], x1[e2[1]]});
   });
@@ -513,15 +412,14 @@ std::optional<ContactPoint> ContactDetection::edge_edge_point(
   return c;
 }
 
-std::vector<ContactPoint> ContactDetection::detect(const State& st, ContactStepStats& stats) {
-  auto t0 = Clock::now();
-  refresh_lists(st, stats);
-  stats.broadphase_seconds = since(t0);
-  stats.candidates = static_cast<long>(lists_.lists().node_face.size());
-  t0 = Clock::now();
+std::vector<ContactPoint> ContactDetection::detect(const State& st,
+                                                   const ContactCandidates& candidates,
+                                                   ContactStepStats& stats) {
+  const auto t0 = Clock::now();
+  stats.candidates = static_cast<long>(candidates.bodies().node_face.size());
   std::vector<ContactPoint> contacts;
-  node_face_contacts(st, contacts);
-  edge_edge_contacts(st, stats, contacts);
+  node_face_contacts(st, candidates, contacts);
+  edge_edge_contacts(st, candidates, stats, contacts);
   if (settings_.order == ContactSettings::Order::lighter_first)
     std::stable_sort(contacts.begin(), contacts.end(),
                      [&](const ContactPoint& a, const ContactPoint& b) {

@@ -101,9 +101,7 @@ Simulation::Simulation(Model model, SolverSettings settings)
   if (model_.element.fracture) modules_.push_back("elements:fracture");
   if (model_.element.fracture && model_.particles) {
     fragmentation_ = std::make_unique<Fragmentation>(model_.mesh);
-    particle_contact_ =
-        std::make_unique<ParticleContact>(model_.contact ? model_.contact->broadphase : "sweep",
-                                          model_.contact ? model_.contact->binding_lists : true);
+    particle_contact_ = std::make_unique<ParticleContact>();
     modules_.push_back("fracture:particles");
     modules_.push_back("response:particles");
   }
@@ -113,6 +111,15 @@ Simulation::Simulation(Model model, SolverSettings settings)
     surface_nodes_ = all_surface_nodes(state_.surfaces);
     wall_force_max_.assign(model_.walls.size(), 0.0);
   }
+  // One broadphase for the detection: between bodies with contact, for particles with them.
+  if (model_.contact)
+    candidates_ = std::make_unique<ContactCandidates>(
+        model_.mesh, state_.surfaces,
+        candidate_settings(*model_.contact, fragmentation_ != nullptr));
+  else if (fragmentation_)
+    candidates_ = std::make_unique<ContactCandidates>(
+        model_.mesh, state_.surfaces,
+        CandidateSettings{.broadphase = "sweep", .bodies = false, .particles = true});
   if (model_.contact) {
     contact_ = std::make_unique<ContactDetection>(model_.mesh, state_.surfaces, *model_.contact);
     modules_.push_back("broadphase:" + model_.contact->broadphase);
@@ -130,7 +137,8 @@ Simulation::Simulation(Model model, SolverSettings settings)
   for (const Named<Stage>& stage : k_stage_names) {
     const Stage s = stage.value;
     if (s == Stage::verify && !verifier_) continue;
-    if ((s == Stage::broadphase || s == Stage::narrowphase) && !contact_) continue;
+    if (s == Stage::broadphase && !candidates_) continue;
+    if (s == Stage::narrowphase && !contact_) continue;
     if (s == Stage::response && !corrects()) continue;
     if ((s == Stage::fracture || s == Stage::particles) && !fragmentation_) continue;
     profile_[s] = 0.0;
@@ -206,23 +214,29 @@ bool Simulation::corrects() const {
   return !model_.walls.empty() || contact_ || fragmentation_;
 }
 
-// The contact points of the step, from xⁿ and x*: walls, contact between bodies (timed as
-// broadphase and narrowphase), particles (a particle centre found inside a body is moved back
-// onto the face it is deepest behind).
+// The contact points of the step, from xⁿ and x*: walls; one broadphase update (bodies'
+// surfaces and particles); the narrow phases between bodies (node–face, edge–edge) and of the
+// particles (a particle centre found inside a body is moved back onto the face it is deepest
+// behind).
 void Simulation::detect_stage() {
   if (!corrects()) return;
   State& st = state_;
   points_.walls = wall_contact_lists(model_.walls, surface_nodes_, st);
   points_.bodies.clear();
-  if (contact_) {
-    points_.bodies = contact_->detect(st, contact_stats_);
-    profile_[Stage::broadphase] += contact_stats_.broadphase_seconds;
-    profile_[Stage::narrowphase] += contact_stats_.narrowphase_seconds;
-  }
   points_.particles.clear();
-  if (fragmentation_ && st.particle_count() > 0) {
+  points_.broadphase = CandidateStats{};
+  const bool particles = fragmentation_ && st.particle_count() > 0;
+  if (candidates_ && (contact_ || particles)) {
+    points_.broadphase = candidates_->update(st);
+    profile_[Stage::broadphase] += points_.broadphase.seconds;
+  }
+  if (contact_) {
+    points_.bodies = contact_->detect(st, *candidates_, points_.narrowphase);
+    profile_[Stage::narrowphase] += points_.narrowphase.narrowphase_seconds;
+  }
+  if (particles) {
     StageTimer t(profile_[Stage::particles]);
-    points_.particles = particle_contact_->detect(state_.surfaces, model_.mesh, st);
+    points_.particles = particle_contact_->detect(model_.mesh, st, *candidates_);
     for (const auto& [p, d] : particle_contact_->moves()) {
       st.x[p] += d;
       st.x_star[p] += d;
@@ -443,17 +457,18 @@ void Simulation::sample_stage() {
     double lambda = 0.0;
     for (const ContactPoint& c : points_.bodies) lambda += c.lambda;
     s.contact_force = lambda / state_.dt;
-    s.contacts = contact_stats_.contacts;
+    const ContactStepStats& narrow = points_.narrowphase;
+    s.contacts = narrow.contacts;
     ContactLedger& ct = contact_totals_;
-    ct.node_face += contact_stats_.contacts;
-    ct.edge_edge += contact_stats_.edge_contacts;
-    ct.edge_candidates += contact_stats_.edge_candidates;
-    ct.candidates += contact_stats_.candidates;
-    ct.max_per_step = std::max(ct.max_per_step, contact_stats_.contacts);
+    ct.node_face += narrow.contacts;
+    ct.edge_edge += narrow.edge_contacts;
+    ct.edge_candidates += narrow.edge_candidates;
+    ct.candidates += narrow.candidates;
+    ct.max_per_step = std::max(ct.max_per_step, narrow.contacts);
     ct.normal_impulse += lambda;
-    ct.broadphase_build += contact_stats_.build_seconds;
-    ct.rebuilds += contact_stats_.rebuilt;
-    ct.broadphase_query += contact_stats_.query_seconds;
+    ct.broadphase_build += points_.broadphase.build_seconds;
+    ct.rebuilds += points_.broadphase.rebuilt;
+    ct.broadphase_query += points_.broadphase.query_seconds;
     if (lambda > 0.0) {
       if (ct.first_time < 0.0) ct.first_time = state_.t;
       ct.last_time = state_.t;
@@ -509,9 +524,9 @@ void Simulation::commit_stage() {
 void Simulation::fracture_stage() {
   if (fragmentation_->convert(model_.mesh, model_.materials, state_) == 0) return;
   state_.surfaces = fragmentation_->surfaces(model_.mesh);
-  particle_contact_->reset();
+  const std::vector<Index> renamed = candidates_->surfaces_changed(state_.surfaces);
   if (!model_.walls.empty()) surface_nodes_ = all_surface_nodes(state_.surfaces);
-  if (contact_) contact_->surfaces_changed();
+  if (contact_) contact_->edges_renamed(renamed);
   if (verifier_) verifier_->surfaces_changed();
 }
 

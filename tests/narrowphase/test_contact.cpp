@@ -57,8 +57,10 @@ TEST(ContactDetection, NodeEnteringAFaceIsAContactWithTheFacesNormal) {
   ContactSettings settings;
   settings.order = ContactSettings::Order::input;
   ContactDetection contact(s.mesh, s.surfaces, settings);
+  ContactCandidates candidates(s.mesh, s.surfaces, candidate_settings(settings, false));
+  EXPECT_TRUE(candidates.update(s.st).rebuilt);
   ContactStepStats stats;
-  const std::vector<ContactPoint> found = contact.detect(s.st, stats);
+  const std::vector<ContactPoint> found = contact.detect(s.st, candidates, stats);
   long b_on_a = 0, a_under_b = 0;
   for (const ContactPoint& c : found) {
     ASSERT_EQ(c.a_count, 1);
@@ -95,6 +97,8 @@ TEST(ContactDetection, BindingListsFindWhatAFreshSearchFinds) {
   ContactSettings on, off;
   off.binding_lists = false;
   ContactDetection lists(s.mesh, s.surfaces, on), fresh(s.mesh, s.surfaces, off);
+  ContactCandidates lists_pairs(s.mesh, s.surfaces, candidate_settings(on, false)),
+      fresh_pairs(s.mesh, s.surfaces, candidate_settings(off, false));
   const double dt = 1e-3;
   long contacts = 0, rebuilds = 0;
   const int steps = 200;
@@ -104,9 +108,11 @@ TEST(ContactDetection, BindingListsFindWhatAFreshSearchFinds) {
       const Vec3 v = Vec3(0.4, 0.1, -0.15) + Vec3(-r.y(), r.x(), 0.0) * 0.5;
       s.st.x_star[i] = s.st.x[i] + dt * v;
     }
+    const CandidateStats a_update = lists_pairs.update(s.st);
+    const CandidateStats b_update = fresh_pairs.update(s.st);
     ContactStepStats a_stats, b_stats;
-    const std::vector<ContactPoint> a = lists.detect(s.st, a_stats);
-    const std::vector<ContactPoint> b = fresh.detect(s.st, b_stats);
+    const std::vector<ContactPoint> a = lists.detect(s.st, lists_pairs, a_stats);
+    const std::vector<ContactPoint> b = fresh.detect(s.st, fresh_pairs, b_stats);
     ASSERT_EQ(a.size(), b.size()) << "step " << k;
     for (std::size_t c = 0; c < a.size(); ++c) {
       ASSERT_EQ(a[c].a_nodes, b[c].a_nodes) << "step " << k << ", contact " << c;
@@ -115,9 +121,9 @@ TEST(ContactDetection, BindingListsFindWhatAFreshSearchFinds) {
       ASSERT_EQ(a[c].normal, b[c].normal);
       ASSERT_EQ(a[c].gap, b[c].gap);
     }
-    EXPECT_TRUE(b_stats.rebuilt);
+    EXPECT_TRUE(b_update.rebuilt);
     contacts += static_cast<long>(a.size());
-    rebuilds += a_stats.rebuilt;
+    rebuilds += a_update.rebuilt;
     s.st.x = s.st.x_star;
   }
   EXPECT_GT(contacts, 500);  // the scene has contacts to agree on

@@ -1,7 +1,7 @@
 // Contact detection between bodies: node–face (the contact-boundary notes §3) and edge–edge
-// (Dobritsa et al. 2019) — the broadphase's candidates (binding lists) tested by the
-// narrowphase's predicates and exact CCD. The contact points go to the impulse kernel
-// (response/), which corrects them in sequential passes.
+// (Dobritsa et al. 2019) — the candidates the detection's broadphase lists for the bodies
+// (broadphase/contact_candidates.hpp) tested by the narrowphase's predicates and exact CCD. The
+// contact points go to the impulse kernel (response/), which corrects them in sequential passes.
 #pragma once
 
 #include <array>
@@ -10,8 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "tetcontact/broadphase/binding_lists.hpp"
-#include "tetcontact/broadphase/broadphase.hpp"
+#include "tetcontact/broadphase/contact_candidates.hpp"
 #include "tetcontact/mesh/surface.hpp"
 #include "tetcontact/model/contact_point.hpp"
 #include "tetcontact/model/model.hpp"
@@ -19,28 +18,30 @@
 
 namespace tc {
 
-/// Per-step figures of the contact stage.
+/// Per-step figures of the narrow phase between bodies.
 struct ContactStepStats {
-  long candidates = 0;     // node–face pairs from the broadphase
+  long candidates = 0;     // node–face pairs listed
   long contacts = 0;       // confirmed node–face contacts
   long edge_contacts = 0;  // confirmed edge–edge contacts
   long edge_candidates = 0;
-  bool rebuilt = false;  // the candidate lists were rebuilt this step
-  double broadphase_seconds = 0.0, narrowphase_seconds = 0.0;
-  double build_seconds = 0.0, query_seconds = 0.0;  // the broadphase's own split
+  double narrowphase_seconds = 0.0;
 };
+
+/// The detection's broadphase settings for contact between bodies (and particles with
+/// `particles`): the case's method, binding lists and margin, the edges when edge–edge is on,
+/// and the layer box of node–face contact.
+CandidateSettings candidate_settings(const ContactSettings& contact, bool particles);
 
 class ContactDetection {
  public:
-  /// `surfaces` are the live surfaces of the run (owned by the caller, read at every step):
-  /// after they change, call surfaces_changed().
+  /// `surfaces`: the run's at the start (the separation and the reach of edge pairs that stay
+  /// in contact are set from their mean tet edges).
   ContactDetection(const Mesh& mesh, const std::vector<Surface>& surfaces,
                    const ContactSettings& settings);
 
-  /// The surfaces changed (cells turned into particles exposed new faces): the primitives are
-  /// rebuilt; the edge pairs in contact are kept (by their nodes); the binding lists are
-  /// rebuilt at the next step.
-  void surfaces_changed();
+  /// The surfaces changed (cells turned into particles exposed new faces): the edge pairs in
+  /// contact are kept under their edges' new indices (ContactCandidates::surfaces_changed).
+  void edges_renamed(const std::vector<Index>& renamed);
 
   /// Contacts of this step: every surface node of one body against the faces of the others
   /// (symmetric), from positions xⁿ (st.x) and x* (st.x_star). A candidate is a contact when
@@ -50,9 +51,10 @@ class ContactDetection {
   /// vertex–face test). Testing only the face's own tet is not enough: a node entering near a
   /// vertex lands in a tet that touches the surface only there. Ordered by node mass (lighter
   /// first) or by (node, face).
-  std::vector<ContactPoint> detect(const State& st, ContactStepStats& stats);
+  /// The pairs are `candidates.bodies()`, updated for this step.
+  std::vector<ContactPoint> detect(const State& st, const ContactCandidates& candidates,
+                                   ContactStepStats& stats);
 
-  const Broadphase& broadphase() const { return *broadphase_; }
   /// The separation contacts aim at beyond the rounding margin (m).
   double separation() const { return separation_; }
 
@@ -77,35 +79,20 @@ class ContactDetection {
                                               const Vec3& outward_b) const;
 
  private:
-  void build_primitives();
-  void refresh_lists(const State& st, ContactStepStats& stats);
-  void node_face_contacts(const State& st, std::vector<ContactPoint>& contacts);
-  void edge_edge_contacts(const State& st, ContactStepStats& stats,
+  void node_face_contacts(const State& st, const ContactCandidates& candidates,
                           std::vector<ContactPoint>& contacts);
-  Box layer_box(Index face, const State& st, double margin) const;
+  void edge_edge_contacts(const State& st, const ContactCandidates& candidates,
+                          ContactStepStats& stats, std::vector<ContactPoint>& contacts);
   void set_friction(ContactPoint& c, Index body_a, Index body_b) const;
   const Mesh& mesh_;
-  const std::vector<Surface>& surfaces_;
   ContactSettings settings_;
-  std::unique_ptr<Broadphase> broadphase_;
-  // Surface primitives of all bodies.
-  std::vector<Index> nodes_, node_body_, node_surface_, node_slot_;
-  std::vector<Face> faces_;
-  std::vector<Index> face_body_, face_tet_;
-  std::vector<Edge> edges_;
-  std::vector<Index> edge_body_;
-  std::vector<std::array<Index, 2>>
-      edge_faces_;  // the two surface faces at each edge (into faces_)
   // Edge pairs in contact last step, with their oriented normal: the contact-boundary notes checks
   // contacts already made for staying in contact; an edge pair that has drifted through by
   // round-off would otherwise never be found crossing again.
   std::vector<std::pair<std::pair<Index, Index>, Vec3>> active_edges_;
-  BroadphaseInput input_;
-  BindingLists lists_;       // the candidates, kept while the surface nodes stay within reach
+  double reach_ = 0.0;       // binding_reach of the start's surfaces: edge pairs stay in contact
   double separation_ = 0.0;  // aimed at beyond the rounding margin (ContactSettings::separation)
-  // This step's layer boxes of the faces the lists name (binding lists).
-  std::vector<Index> listed_faces_;
-  std::vector<Box> step_face_box_;
+  std::vector<Box> step_face_box_;  // this step's layer boxes of the faces the lists name
 };
 
 }  // namespace tc

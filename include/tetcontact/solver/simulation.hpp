@@ -48,6 +48,8 @@ State initial_state(const Model& model);
 /// The contact points of one step, from detection through the passes to the verification
 /// (plain data between the stages).
 struct StepContacts {
+  CandidateStats broadphase;                     // the detection's one broadphase update
+  ContactStepStats narrowphase;                  // the narrow phase between bodies
   std::vector<std::vector<ContactPoint>> walls;  // per wall
   std::vector<ContactPoint> bodies;     // between bodies; the verification adds rescue points
   std::vector<ContactPoint> particles;  // particle–face and particle–particle
@@ -161,13 +163,13 @@ class Simulation {
   ElementScratch scratch_;
   std::vector<Index> surface_nodes_;
   std::vector<WallResult> wall_results_;
+  std::unique_ptr<ContactCandidates> candidates_;  // detection's broadphase: bodies, particles
   std::unique_ptr<ContactDetection> contact_;
   std::unique_ptr<Fragmentation> fragmentation_;
   std::unique_ptr<ParticleContact> particle_contact_;
   std::unique_ptr<StepVerifier> verifier_;
   StepContacts points_;     // this step's contact points
   ResolveScratch resolve_;  // the verification's working arrays
-  ContactStepStats contact_stats_;
   ContactLedger contact_totals_;
   std::vector<double> wall_force_max_;
   Sample first_, last_;

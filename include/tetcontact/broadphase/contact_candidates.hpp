@@ -1,0 +1,105 @@
+// The detection stage's one broadphase: the surface nodes, faces and edges of every body and
+// the particles, boxed over the step xⁿ → x*, found in one search and kept on one set of binding
+// lists. The narrow phases (node–face and edge–edge between bodies, particle–face and
+// particle–particle) then test the pairs it lists for them.
+#pragma once
+
+#include <array>
+#include <memory>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "tetcontact/broadphase/binding_lists.hpp"
+#include "tetcontact/broadphase/broadphase.hpp"
+#include "tetcontact/mesh/surface.hpp"
+#include "tetcontact/model/state.hpp"
+
+namespace tc {
+
+/// The surface primitives of all bodies, in surface order (the numbering every list uses).
+struct SurfacePrimitives {
+  std::vector<Index> nodes, node_body, node_surface, node_slot;  // slot: index in its surface
+  std::vector<Face> faces;
+  std::vector<Index> face_body, face_tet;
+  std::vector<Edge> edges;  // only when edge–edge pairs are asked for
+  std::vector<Index> edge_body;
+  std::vector<std::array<Index, 2>> edge_faces;  // the two faces at each edge (into faces)
+};
+
+SurfacePrimitives surface_primitives(const std::vector<Surface>& surfaces, bool edges);
+
+/// The box of the region where node–face contact accepts a node for a face (narrowphase's
+/// behind_face): the prism from the face down to the altitude of its tet, at xⁿ and x*, widened
+/// by `rim` times its longest edge and by `margin`. It holds the face itself at both ends.
+Box layer_box(const Face& face, const Tet& tet, const std::vector<Vec3>& x0,
+              const std::vector<Vec3>& x1, double rim, double margin);
+
+/// What is listed. Bodies: node–face pairs (and edge–edge pairs with `edges`) between different
+/// bodies, a face's box its layer box (`rim`, `margin`). Particles: each particle against every
+/// face and every other particle, a particle's box its path inflated by its radius.
+struct CandidateSettings {
+  std::string broadphase = "fcl_tree";
+  bool binding_lists = true;
+  bool bodies = true;
+  bool edges = false;
+  bool particles = false;
+  double margin = 0.0;  // m, added to the bodies' boxes
+  double rim = 0.0;     // of the layer box
+};
+
+/// Pairs of the lists for one narrow phase, with the faces they name (sorted, each once).
+struct CandidateLists : Candidates {
+  std::vector<Index> faces;
+};
+
+/// Figures of one update.
+struct CandidateStats {
+  bool rebuilt = false;                             // the broadphase ran
+  double seconds = 0.0;                             // the whole update
+  double build_seconds = 0.0, query_seconds = 0.0;  // the broadphase's own split
+};
+
+class ContactCandidates {
+ public:
+  /// The binding lists' reach is binding_reach(surfaces) of these (the start's) surfaces, or 0
+  /// without binding lists; `mesh` gives each face's tet (its layer box).
+  ContactCandidates(const Mesh& mesh, const std::vector<Surface>& surfaces,
+                    const CandidateSettings& settings);
+
+  /// The surfaces changed (cells turned into particles): primitives rebuilt, lists found anew
+  /// at the next update. Returns the new index of each former edge (−1: no longer a surface edge).
+  std::vector<Index> surfaces_changed(const std::vector<Surface>& surfaces);
+
+  /// The step's update from xⁿ (st.x) and x* (st.x_star): the lists kept while every surface
+  /// node and particle is within the reach of where it was at the last search (at both ends of
+  /// the step), else found anew from the boxes enlarged by the reach. A pair whose boxes of this
+  /// step overlap is then in the lists; the narrow phases skip listed pairs whose boxes of the
+  /// step do not overlap, and find what a fresh search finds.
+  CandidateStats update(const State& st);
+
+  const SurfacePrimitives& primitives() const { return prims_; }
+  /// (surface node, face) and (edge, edge) between bodies; indices into primitives().
+  const CandidateLists& bodies() const { return bodies_; }
+  /// (particle, face) (node_face) and (particle, particle) (edge_edge); particle i is node
+  /// st.first_particle + i.
+  const CandidateLists& particles() const { return particles_; }
+  /// The reach of the binding lists (m; 0 without them).
+  double reach() const { return lists_.reach(); }
+  const CandidateSettings& settings() const { return settings_; }
+  const Broadphase& broadphase() const { return *broadphase_; }
+
+ private:
+  bool lists_hold(const State& st) const;
+  void search(const State& st);
+  const Mesh& mesh_;
+  CandidateSettings settings_;
+  std::unique_ptr<Broadphase> broadphase_;
+  SurfacePrimitives prims_;
+  BindingLists lists_;           // the one search's pairs; the points they hold for in anchored_
+  std::vector<Index> anchored_;  // surface nodes, then particles
+  Index particles_listed_ = 0;
+  CandidateLists bodies_, particles_;
+};
+
+}  // namespace tc

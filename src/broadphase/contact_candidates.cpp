@@ -1,0 +1,200 @@
+#include "tetcontact/broadphase/contact_candidates.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <map>
+
+namespace tc {
+
+SurfacePrimitives surface_primitives(const std::vector<Surface>& surfaces, bool edges) {
+  SurfacePrimitives p;
+  Index face_base = 0;
+  for (std::size_t s = 0; s < surfaces.size(); ++s) {
+    const Surface& surf = surfaces[s];
+    for (std::size_t i = 0; i < surf.nodes.size(); ++i) {
+      p.nodes.push_back(surf.nodes[i]);
+      p.node_body.push_back(surf.body);
+      p.node_surface.push_back(static_cast<Index>(s));
+      p.node_slot.push_back(static_cast<Index>(i));
+    }
+    for (std::size_t f = 0; f < surf.faces.size(); ++f) {
+      p.faces.push_back(surf.faces[f]);
+      p.face_body.push_back(surf.body);
+      p.face_tet.push_back(surf.face_tet[f]);
+    }
+    if (edges) {
+      // The two faces at each edge (the surface is closed: every edge has two).
+      std::map<Edge, std::array<Index, 2>> at_edge;
+      for (std::size_t f = 0; f < surf.faces.size(); ++f)
+        for (int k = 0; k < 3; ++k) {
+          Edge e{surf.faces[f][k], surf.faces[f][(k + 1) % 3]};
+          if (e[0] > e[1]) std::swap(e[0], e[1]);
+          auto [it, fresh] = at_edge.try_emplace(e, std::array<Index, 2>{-1, -1});
+          it->second[fresh ? 0 : 1] = face_base + static_cast<Index>(f);
+        }
+      for (const Edge& e : surf.edges) {
+        p.edges.push_back(e);
+        p.edge_body.push_back(surf.body);
+        p.edge_faces.push_back(at_edge.at(e));
+      }
+    }
+    face_base += static_cast<Index>(surf.faces.size());
+  }
+  return p;
+}
+
+Box layer_box(const Face& k, const Tet& tet, const std::vector<Vec3>& x0,
+              const std::vector<Vec3>& x1, double rim, double margin) {
+  Box box;
+  bool first = true;
+  double widen = 0.0;
+  for (const std::vector<Vec3>* x : {&x0, &x1}) {
+    const Vec3 &a = (*x)[k[0]], &b = (*x)[k[1]], &c = (*x)[k[2]];
+    const Vec3 n2 = (b - a).cross(c - a);  // 2A n
+    const double vol = tet_signed_volume((*x)[tet[0]], (*x)[tet[1]], (*x)[tet[2]], (*x)[tet[3]]);
+    const double nn = n2.squaredNorm();
+    const Vec3 down = nn > 0.0 ? Vec3(-6.0 * vol / nn * n2) : Vec3::Zero();  // −h n, h = 3V/A
+    for (const Vec3& p : {a, b, c, Vec3(a + down), Vec3(b + down), Vec3(c + down)}) {
+      if (first) box.lo = box.hi = p, first = false;
+      box.lo = box.lo.cwiseMin(p);
+      box.hi = box.hi.cwiseMax(p);
+    }
+    widen = std::max(widen, rim * std::sqrt(std::max({(b - a).squaredNorm(), (c - b).squaredNorm(),
+                                                      (a - c).squaredNorm()})));
+  }
+  box.lo.array() -= margin + widen;
+  box.hi.array() += margin + widen;
+  return box;
+}
+
+ContactCandidates::ContactCandidates(const Mesh& mesh, const std::vector<Surface>& surfaces,
+                                     const CandidateSettings& settings)
+    : mesh_(mesh),
+      settings_(settings),
+      broadphase_(make_broadphase(settings.broadphase)),
+      prims_(surface_primitives(surfaces, settings.bodies && settings.edges)),
+      lists_(settings.binding_lists ? binding_reach(surfaces) : 0.0) {}
+
+std::vector<Index> ContactCandidates::surfaces_changed(const std::vector<Surface>& surfaces) {
+  SurfacePrimitives fresh = surface_primitives(surfaces, settings_.bodies && settings_.edges);
+  std::map<Edge, Index> edge_index;
+  for (std::size_t e = 0; e < fresh.edges.size(); ++e)
+    edge_index.emplace(fresh.edges[e], static_cast<Index>(e));
+  std::vector<Index> renamed(prims_.edges.size(), -1);
+  for (std::size_t e = 0; e < prims_.edges.size(); ++e) {
+    const auto it = edge_index.find(prims_.edges[e]);
+    if (it != edge_index.end()) renamed[e] = it->second;
+  }
+  prims_ = std::move(fresh);
+  lists_.reset();  // the faces a conversion exposed are in no list yet
+  return renamed;
+}
+
+bool ContactCandidates::lists_hold(const State& st) const {
+  const Index count = settings_.particles ? st.particle_count() : 0;
+  return settings_.binding_lists && particles_listed_ == count &&
+         lists_.hold(anchored_, st.x, st.x_star);
+}
+
+// One search over every primitive the narrow phases need. The nodes are the surface nodes
+// (bodies), then the particles; the edges the surface edges (edge–edge), then each particle as
+// an edge of one point (particle–particle). A particle is a body of its own (−2 − i), so that
+// it pairs with every face, its own body's too, and with every other particle; the pairs of a
+// particle and a surface edge are dropped.
+void ContactCandidates::search(const State& st) {
+  const std::vector<Vec3>& x0 = st.x;
+  const std::vector<Vec3>& x1 = st.x_star;
+  const double reach = lists_.reach();
+  const double margin = settings_.margin + reach;
+  const Index count = settings_.particles ? st.particle_count() : 0;
+  BroadphaseInput in;
+  if (settings_.bodies) {
+    for (const Index n : prims_.nodes) {
+      in.node_box.push_back(swept_box({&x0[n], &x1[n]}, margin));
+      in.node_id.push_back(n);
+    }
+    in.node_body = prims_.node_body;
+    for (std::size_t e = 0; e < prims_.edges.size(); ++e) {
+      const Edge& k = prims_.edges[e];
+      in.edge_box.push_back(swept_box({&x0[k[0]], &x0[k[1]], &x1[k[0]], &x1[k[1]]}, margin));
+      in.edge_nodes.push_back(k);
+      in.edge_body.push_back(prims_.edge_body[e]);
+    }
+  }
+  const Index node_base = static_cast<Index>(in.node_id.size());
+  const Index edge_base = static_cast<Index>(in.edge_nodes.size());
+  for (Index i = 0; i < count; ++i) {
+    const Index p = st.first_particle + i;
+    const Box b = swept_box({&x0[p], &x1[p]}, st.particle_radius[i] + reach);
+    in.node_box.push_back(b);
+    in.node_id.push_back(p);
+    in.node_body.push_back(-2 - i);
+    in.edge_box.push_back(b);
+    in.edge_nodes.push_back({p, p});
+    in.edge_body.push_back(-2 - i);
+  }
+  // A face's box: its layer box for the bodies' node–face contact (which holds the face at
+  // both ends of the step), else the face's own path. Without the bodies, a face outside the box
+  // of all particles' boxes cannot pair with any: it stays out of the search.
+  Box all;
+  if (count > 0) {
+    all = in.node_box[node_base];
+    for (std::size_t i = node_base; i < in.node_box.size(); ++i)
+      all.lo = all.lo.cwiseMin(in.node_box[i].lo), all.hi = all.hi.cwiseMax(in.node_box[i].hi);
+  }
+  std::vector<Index> number;  // the face (into primitives) of each searched face
+  for (std::size_t f = 0; f < prims_.faces.size(); ++f) {
+    const Face& k = prims_.faces[f];
+    const Box box =
+        settings_.bodies
+            ? layer_box(k, mesh_.tets[prims_.face_tet[f]], x0, x1, settings_.rim, margin)
+            : swept_box({&x0[k[0]], &x0[k[1]], &x0[k[2]], &x1[k[0]], &x1[k[1]], &x1[k[2]]}, reach);
+    if (!settings_.bodies && !(count > 0 && boxes_overlap(box, all))) continue;
+    in.face_box.push_back(box);
+    in.face_nodes.push_back(k);
+    in.face_body.push_back(prims_.face_body[f]);
+    number.push_back(static_cast<Index>(f));
+  }
+  Candidates found = broadphase_->find(in);
+
+  for (auto& [n, f] : found.node_face) f = number[f];  // numbers rise with f: still sorted
+
+  // Split in order: the lists stay sorted.
+  bodies_ = CandidateLists{};
+  particles_ = CandidateLists{};
+  for (const auto& [n, f] : found.node_face) {
+    if (n < node_base)
+      bodies_.node_face.emplace_back(n, f);
+    else
+      particles_.node_face.emplace_back(n - node_base, f);
+  }
+  for (const auto& [a, b] : found.edge_edge) {
+    if (b < edge_base)
+      bodies_.edge_edge.emplace_back(a, b);
+    else if (a >= edge_base)
+      particles_.edge_edge.emplace_back(a - edge_base, b - edge_base);
+  }
+  bodies_.faces = listed_faces(bodies_.node_face);
+  particles_.faces = listed_faces(particles_.node_face);
+  anchored_ = prims_.nodes;
+  for (Index i = 0; i < count; ++i) anchored_.push_back(st.first_particle + i);
+  particles_listed_ = count;
+  lists_.set(std::move(found), anchored_, x0);
+}
+
+CandidateStats ContactCandidates::update(const State& st) {
+  using Clock = std::chrono::steady_clock;
+  const auto t0 = Clock::now();
+  CandidateStats stats;
+  stats.rebuilt = !lists_hold(st);
+  if (stats.rebuilt) {
+    search(st);
+    stats.build_seconds = broadphase_->build_seconds;
+    stats.query_seconds = broadphase_->query_seconds;
+  }
+  stats.seconds = std::chrono::duration<double>(Clock::now() - t0).count();
+  return stats;
+}
+
+}  // namespace tc
