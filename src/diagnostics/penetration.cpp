@@ -28,42 +28,50 @@ Penetration PenetrationProbe::measure(const std::vector<Vec3>& x) {
   return measure(x, model_.surfaces, {}, static_cast<Index>(x.size()));
 }
 
-// The body each boundary node (and particle) is inside, −1 for none: the broadphase's "faces"
-// are the tets of the bodies here (cells turned into particles are no longer cells).
-std::vector<Index> PenetrationProbe::bodies_holding(const std::vector<Vec3>& x,
-                                                    const std::vector<Damage>& damage) {
+// The body each boundary node (and particle) is inside, −1 for none: the search's "faces" are
+// the tets of the bodies here (cells turned into particles are no longer cells), found on
+// binding lists; a listed pair goes on to the exact test only when its boxes of now overlap,
+// so each node takes the body of the first tet, in the pairs' (sorted) order, that holds it, as a
+// fresh search would give.
+std::vector<Index> PenetrationProbe::bodies_holding(const std::vector<Vec3>& x) {
   const Mesh& mesh = model_.mesh;
-  BroadphaseInput in;
-  std::vector<Index> in_tet;  // the tet of each of its "faces"
-  for (std::size_t i = 0; i < nodes_.size(); ++i) {
-    in.node_box.push_back(swept_box({&x[nodes_[i]]}, 0.0));
-    in.node_id.push_back(nodes_[i]);
-    in.node_body.push_back(node_body_[i]);
-  }
-  for (Index t = 0; t < mesh.tet_count(); ++t) {
-    if (!damage.empty() && damage[t] == Damage::particle) continue;  // no longer a cell
+  const auto tet_box = [&](Index t, double margin) {
     const Tet& k = mesh.tets[t];
-    in.face_box.push_back(swept_box({&x[k[0]], &x[k[1]], &x[k[2]], &x[k[3]]}, 0.0));
-    in.face_nodes.push_back({k[0], k[1], k[2]});
-    in.face_body.push_back(mesh.tet_body[t]);
-    in_tet.push_back(t);
+    return swept_box({&x[k[0]], &x[k[1]], &x[k[2]], &x[k[3]]}, margin);
+  };
+  if (!inside_lists_.holds(all_nodes_, x)) {
+    const double reach = inside_lists_.reach();
+    BroadphaseInput in;
+    for (std::size_t i = 0; i < nodes_.size(); ++i) {
+      in.node_box.push_back(swept_box({&x[nodes_[i]]}, reach));
+      in.node_id.push_back(nodes_[i]);
+      in.node_body.push_back(node_body_[i]);
+    }
+    for (const Index t : in_tet_) {
+      const Tet& k = mesh.tets[t];
+      in.face_box.push_back(tet_box(t, reach));
+      in.face_nodes.push_back({k[0], k[1], k[2]});
+      in.face_body.push_back(mesh.tet_body[t]);
+    }
+    inside_lists_.set(broadphase_->find(in), all_nodes_, x);
+    ++searches_;
   }
-  // The exact tests of the pairs on the threads; each node takes the body of the first tet in
-  // the pairs' (sorted) order that holds it.
-  const Candidates inside = broadphase_->find(in);
+  // The exact tests of the pairs on the threads.
+  const Candidates& inside = inside_lists_.lists();
   std::vector<char> holds(inside.node_face.size());
   parallel::for_each(inside.node_face.size(), [&](std::size_t k) {
     const auto& [ni, ti] = inside.node_face[k];
-    const Tet& t = mesh.tets[in_tet[ti]];
-    holds[k] = exact_point_in_tet(x[nodes_[ni]], x[t[0]], x[t[1]], x[t[2]], x[t[3]]);
+    const Vec3& p = x[nodes_[ni]];
+    const Tet& t = mesh.tets[in_tet_[ti]];
+    holds[k] = boxes_overlap(swept_box({&p}, 0.0), tet_box(in_tet_[ti], 0.0)) &&
+               exact_point_in_tet(p, x[t[0]], x[t[1]], x[t[2]], x[t[3]]);
   });
   std::vector<Index> inside_body(x.size(), -1);
   for (std::size_t k = 0; k < holds.size(); ++k) {
     const Index node = nodes_[inside.node_face[k].first];
     if (holds[k] && inside_body[node] < 0)
-      inside_body[node] = mesh.tet_body[in_tet[inside.node_face[k].second]];
+      inside_body[node] = mesh.tet_body[in_tet_[inside.node_face[k].second]];
   }
-
   return inside_body;
 }
 
@@ -126,27 +134,40 @@ void PenetrationProbe::measure_depths(const std::vector<Vec3>& x,
   }
 }
 
-// Boundary edges of one body crossing boundary faces of another, and the deepest crossing.
+// Boundary edges of one body crossing boundary faces of another, and the deepest crossing; the
+// pairs from binding lists, each going on only when its boxes of now overlap.
 void PenetrationProbe::measure_crossings(const std::vector<Vec3>& x, Penetration& r) {
-  BroadphaseInput cross;
-  for (std::size_t e = 0; e < edges_.size(); ++e) {
-    cross.node_box.push_back(swept_box({&x[edges_[e][0]], &x[edges_[e][1]]}, 0.0));
-    cross.node_id.push_back(edges_[e][0]);
-    cross.node_body.push_back(edge_body_[e]);
-  }
-  for (std::size_t f = 0; f < faces_.size(); ++f) {
+  const auto edge_box = [&](std::size_t e, double margin) {
+    return swept_box({&x[edges_[e][0]], &x[edges_[e][1]]}, margin);
+  };
+  const auto face_box = [&](std::size_t f, double margin) {
     const Face& k = faces_[f];
-    cross.face_box.push_back(swept_box({&x[k[0]], &x[k[1]], &x[k[2]]}, 0.0));
-    cross.face_nodes.push_back(k);
-    cross.face_body.push_back(face_body_[f]);
+    return swept_box({&x[k[0]], &x[k[1]], &x[k[2]]}, margin);
+  };
+  if (!cross_lists_.holds(nodes_, x)) {
+    const double reach = cross_lists_.reach();
+    BroadphaseInput cross;
+    for (std::size_t e = 0; e < edges_.size(); ++e) {
+      cross.node_box.push_back(edge_box(e, reach));
+      cross.node_id.push_back(edges_[e][0]);
+      cross.node_body.push_back(edge_body_[e]);
+    }
+    for (std::size_t f = 0; f < faces_.size(); ++f) {
+      cross.face_box.push_back(face_box(f, reach));
+      cross.face_nodes.push_back(faces_[f]);
+      cross.face_body.push_back(face_body_[f]);
+    }
+    cross_lists_.set(broadphase_->find(cross), nodes_, x);
+    ++searches_;
   }
+  const Candidates& pairs = cross_lists_.lists();
   // Each pair on the threads: −1 when the edge does not cross the face, else the crossing's
   // depth; then counted and maximised in order.
-  const Candidates pairs = broadphase_->find(cross);
   std::vector<double> crossing(pairs.node_face.size(), -1.0);
   parallel::for_each(pairs.node_face.size(), [&](std::size_t pair) {
     const auto& [e, f] = pairs.node_face[pair];
     const Face& k = faces_[f];
+    if (!boxes_overlap(edge_box(e, 0.0), face_box(f, 0.0))) return;
     if (exact_segment_crosses_triangle(x[edges_[e][0]], x[edges_[e][1]], x[k[0]], x[k[1]],
                                        x[k[2]])) {
       // Depth of the crossing: the shorter of the two moves that undo it, sliding the edge out
@@ -176,28 +197,52 @@ void PenetrationProbe::measure_crossings(const std::vector<Vec3>& x, Penetration
     }
 }
 
-Penetration PenetrationProbe::measure(const std::vector<Vec3>& x,
-                                      const std::vector<Surface>& surfaces,
-                                      const std::vector<Damage>& damage, Index first_particle) {
-  // The surfaces as they are now (fracture changes them).
-  nodes_.clear(), node_body_.clear(), edges_.clear(), edge_body_.clear();
-  faces_.clear(), face_body_.clear(), body_h_.clear();
+// The primitives as they are now (fracture changes them): when they differ from the last
+// call's, the binding lists are found anew.
+bool PenetrationProbe::primitives_changed(const std::vector<Vec3>& x,
+                                          const std::vector<Surface>& surfaces,
+                                          const std::vector<Damage>& damage, Index first_particle) {
+  std::vector<Index> nodes, node_body, edge_body, face_body, in_tet;
+  std::vector<Edge> edges;
+  std::vector<Face> faces;
+  std::vector<double> body_h;
   for (const Surface& s : surfaces) {
-    for (Index n : s.nodes) nodes_.push_back(n), node_body_.push_back(s.body);
-    for (const Edge& e : s.edges) edges_.push_back(e), edge_body_.push_back(s.body);
-    for (const Face& f : s.faces) faces_.push_back(f), face_body_.push_back(s.body);
-    body_h_.push_back(s.mean_edge_length);
+    for (Index n : s.nodes) nodes.push_back(n), node_body.push_back(s.body);
+    for (const Edge& e : s.edges) edges.push_back(e), edge_body.push_back(s.body);
+    for (const Face& f : s.faces) faces.push_back(f), face_body.push_back(s.body);
+    body_h.push_back(s.mean_edge_length);
   }
   // Particles are points of no body: inside any body counts.
   for (Index p = first_particle; p < static_cast<Index>(x.size()); ++p)
-    nodes_.push_back(p), node_body_.push_back(-1);
+    nodes.push_back(p), node_body.push_back(-1);
+  for (Index t = 0; t < model_.mesh.tet_count(); ++t)
+    if (damage.empty() || damage[t] != Damage::particle) in_tet.push_back(t);
+  const bool changed = nodes != nodes_ || node_body != node_body_ || edges != edges_ ||
+                       faces != faces_ || in_tet != in_tet_ || all_nodes_.size() != x.size();
+  if (!changed) return false;
+  nodes_ = std::move(nodes), node_body_ = std::move(node_body);
+  edges_ = std::move(edges), edge_body_ = std::move(edge_body);
+  faces_ = std::move(faces), face_body_ = std::move(face_body);
+  body_h_ = std::move(body_h);
+  in_tet_ = std::move(in_tet);
+  all_nodes_.resize(x.size());
+  for (std::size_t i = 0; i < x.size(); ++i) all_nodes_[i] = static_cast<Index>(i);
+  const double reach = binding_reach(surfaces);
+  inside_lists_ = BindingLists(reach);
+  cross_lists_ = BindingLists(reach);
+  return true;
+}
 
+Penetration PenetrationProbe::measure(const std::vector<Vec3>& x,
+                                      const std::vector<Surface>& surfaces,
+                                      const std::vector<Damage>& damage, Index first_particle) {
+  primitives_changed(x, surfaces, damage, first_particle);
   Penetration r;
   r.node_depth.assign(x.size(), 0.0);
   const Mesh& mesh = model_.mesh;
   if (mesh.bodies.size() < 2 && static_cast<Index>(x.size()) == first_particle) return r;
 
-  const std::vector<Index> inside_body = bodies_holding(x, damage);
+  const std::vector<Index> inside_body = bodies_holding(x);
   measure_depths(x, inside_body, first_particle, r);
   measure_crossings(x, r);
   return r;

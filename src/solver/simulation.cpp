@@ -6,7 +6,6 @@
 #include <cstring>
 #include <iomanip>
 #include <optional>
-#include <set>
 #include <sstream>
 #include <type_traits>
 
@@ -127,7 +126,7 @@ Simulation::Simulation(Model model, SolverSettings settings)
     modules_.push_back("response:node_face");
     if (model_.contact->edge_edge) modules_.push_back("narrowphase:edge_edge");
     if (model_.contact->verify) {
-      verifier_ = std::make_unique<StepVerifier>(model_.mesh);
+      resolver_ = std::make_unique<StepResolver>(model_.mesh);
       modules_.push_back("contact:verify");
     }
   }
@@ -136,7 +135,7 @@ Simulation::Simulation(Model model, SolverSettings settings)
   // The profile lists the stages this case runs, in pipeline order.
   for (const Named<Stage>& stage : k_stage_names) {
     const Stage s = stage.value;
-    if (s == Stage::verify && !verifier_) continue;
+    if (s == Stage::verify && !resolver_) continue;
     if (s == Stage::broadphase && !candidates_) continue;
     if (s == Stage::narrowphase && !contact_) continue;
     if (s == Stage::response && !corrects()) continue;
@@ -193,7 +192,7 @@ void Simulation::step() {
   timed(Stage::predict, [&] { predict_stage(); });  // U*, x* (eqs. 2, 3)
   detect_stage();   // contact points: walls, bodies (broadphase, narrowphase), particles
   respond_stage();  // the sequential passes over them, island by island
-  if (verifier_) timed(Stage::verify, [&] { resolve_stage(); });  // the verified step
+  if (resolver_) timed(Stage::verify, [&] { resolve_stage(); });  // the verified step
   timed(Stage::balance, [&] { sample_stage(); });                 // energy, momentum at tⁿ
   timed(Stage::output, [&] { output_stage(); });                  // observers see tⁿ
   timed(Stage::commit, [&] { commit_stage(); });                  // Uⁿ⁺¹, xⁿ⁺¹ (eq. 1)
@@ -272,149 +271,9 @@ void Simulation::respond_stage() {
   wall_results_ = wall_results(points_.walls);
 }
 
-// The step's motion verified (diagnostics/verify.hpp): xⁿ⁺¹ = xⁿ + τ U*, the same doubles the
-// commit will write (commit_stage: x += τ U with U = U*). Where pairs fail, each gets a
-// contact point of its own and the islands of contact points that move their nodes get
-// further passes (up to k_extra_rounds rounds, doubling), verified after each; what still fails
-// goes into rigid impact zones (response/impact_zones.hpp), verified again until none fails: a
-// failure across zones merges them, one inside a zone escalates it (rigid → exact translation →
-// frozen).
+// The step's motion verified, and failures resolved (solver/resolve.hpp).
 void Simulation::resolve_stage() {
-  State& st = state_;
-  const std::vector<ContactList>& lists = points_.lists;
-  const int passes = contact_ ? model_.contact->passes : 1;
-  ContactLedger& ct = contact_totals_;
-  const std::size_t n = st.x.size();
-  resolve_.x_end.resize(n);
-  resolve_.fixed_x.clear();
-  const auto end_positions = [&] {
-    parallel::for_each(
-        n, [&](std::size_t i) { resolve_.x_end[i] = st.x[i] + st.dt * st.v_star[i]; },
-        parallel::k_light_block);
-    for (const auto& [node, x] : resolve_.fixed_x) resolve_.x_end[node] = x;
-  };
-  end_positions();
-  Verification v = verifier_->verify(st.surfaces, st.x, resolve_.x_end, st.first_particle);
-  // Again after a round: only the pairs that read a node whose end position changed.
-  const auto verify_again = [&] {
-    end_positions();
-    resolve_.changed.assign(n, 0);
-    for (std::size_t i = 0; i < n; ++i)
-      if (resolve_.x_end[i] != resolve_.x_tested[i])
-        resolve_.changed[i] = 1, resolve_.x_tested[i] = resolve_.x_end[i];
-    v = verifier_->verify_again(st.surfaces, st.x, resolve_.x_end, st.first_particle,
-                                resolve_.changed);
-  };
-  ct.verified_pairs += v.pairs_checked;
-  if (v.failed.empty()) return;
-  ct.failed_pairs += static_cast<long>(v.failed.size());
-  for (const FailedPair& p : v.failed) {
-    ct.failed_touching += p.touching_at_start;
-    ct.failed_edge_edge += p.edge_edge;
-  }
-  ++ct.steps_failed;
-  resolve_.x_tested = resolve_.x_end;
-  // Further passes where the failures are: a failing pair becomes a contact point of its own
-  // (once a step: restoring, aimed beyond touching, ContactDetection::vertex_face_point and
-  // edge_edge_point), and the islands of the points that move a failing pair's nodes get
-  // more passes: `passes` in the first round, doubling each round (the passes converge
-  // slowly on large coupled islands; only the failing islands pay).
-  resolve_.marked.assign(n, 0);
-  std::set<std::array<Index, 5>> rescued;  // (edge–edge, the pair's four nodes)
-  int stalled = 0;
-  for (int extra = 0; extra < k_extra_rounds && !v.failed.empty(); ++extra) {
-    for (const FailedPair& p : v.failed) {
-      for (int k = 0; k < p.count; ++k) resolve_.marked[p.nodes[k]] = 1;
-      const auto& k = p.nodes;
-      if (!rescued.insert({p.edge_edge, k[0], k[1], k[2], k[3]}).second) continue;
-      const std::optional<ContactPoint> c =
-          p.edge_edge ? contact_->edge_edge_point(st, resolve_.x_end, {k[0], k[1]}, {k[2], k[3]},
-                                                  p.body_a, p.body_b, p.outward_a, p.outward_b)
-                      : contact_->vertex_face_point(st, resolve_.x_end, k[0], {k[1], k[2], k[3]},
-                                                    p.body_a, p.body_b);
-      if (c) points_.bodies.push_back(*c), ++ct.rescue_points;
-    }
-    const Islands failing =
-        islands_with(lists, contact_islands(lists, n, points_.island_slot), resolve_.marked);
-    if (failing.count() == 0) break;  // no contact point moves them: only zones can
-    correct_in_islands(lists, failing, passes << extra, st);
-    ++ct.extra_rounds;
-    const std::size_t before = v.failed.size();
-    verify_again();
-    // Three rounds in a row that do not lower the failing pairs: the passes stall, zones take
-    // over (after one such round the coarse Taylor rods had zones on 81 steps, after two on 19
-    // and the full rods missed their radius by 2.6 %, after three on 6, and the full rods pass).
-    stalled = v.failed.size() >= before ? stalled + 1 : 0;
-    if (stalled == 3) break;
-  }
-  if (v.failed.empty()) return;
-  ct.failed_after_extra += static_cast<long>(v.failed.size());
-  ++ct.steps_with_zones;
-  resolve_.zones.reset(n);
-  resolve_.u_passes = st.v_star;
-  int round = 0;
-  for (; round < k_zone_rounds && !v.failed.empty(); ++round) {
-    // A failure inside one zone: rounding; the zone moves by an exact translation, or, if
-    // that too fails, is frozen.
-    std::vector<Index> escalate;
-    for (const FailedPair& p : v.failed)
-      if (resolve_.zones.same_zone(p.nodes.data(), p.count)) escalate.push_back(p.nodes[0]);
-    for (const FailedPair& p : v.failed) resolve_.zones.merge(p.nodes.data(), p.count);
-    std::vector<Index> escalated;  // one node per zone: each zone escalates once a round
-    for (const Index node : escalate) {
-      bool seen = false;
-      for (const Index e : escalated) {
-        const std::array<Index, 2> pair{e, node};
-        seen = seen || resolve_.zones.same_zone(pair.data(), 2);
-      }
-      if (!seen) escalated.push_back(node), resolve_.zones.escalate(node);
-    }
-    resolve_.zones.apply(resolve_.u_passes, st, st.contact_impulse);
-    // Rounding a rigid motion to doubles can leave a pair that touches inside a zone an ulp
-    // through: the contact points inside the rigid zones get `passes` again from zero impulse
-    // (they only push; equal and opposite at one place: both momenta kept), which puts such a
-    // pair a rounding margin apart and leaves the others as the rigid field moves them.
-    resolve_.in_rigid.assign(n, 0);
-    for (const ImpactZones::Zone& z : resolve_.zones.zones())
-      if (z.motion == ImpactZones::Motion::rigid)
-        for (const Index node : z.nodes) resolve_.in_rigid[node] = 1;
-    resolve_.inside.clear();
-    for (const std::vector<ContactPoint>* list : {&points_.bodies, &points_.particles})
-      for (const ContactPoint& c : *list) {
-        bool inside = true;
-        for (int k = 0; k < c.a_count; ++k) inside = inside && resolve_.in_rigid[c.a_nodes[k]];
-        for (int k = 0; k < c.b_count; ++k) inside = inside && resolve_.in_rigid[c.b_nodes[k]];
-        if (!inside) continue;
-        resolve_.inside.push_back(c);
-        resolve_.inside.back().lambda = 0.0;
-        resolve_.inside.back().tangential.setZero();
-      }
-    if (!resolve_.inside.empty()) {
-      const std::vector<ContactList> inner{{&resolve_.inside, &st.contact_impulse}};
-      correct_in_islands(inner, contact_islands(inner, n, points_.island_slot), passes, st);
-    }
-    resolve_.fixed_x.clear();
-    for (const ImpactZones::Zone& z : resolve_.zones.zones()) {
-      if (z.motion == ImpactZones::Motion::rigid) continue;
-      Vec3 d = Vec3::Zero();
-      if (z.motion == ImpactZones::Motion::translated) {
-        double mass = 0.0;
-        Vec3 p = Vec3::Zero();
-        for (const Index node : z.nodes) mass += st.m[node], p += st.m[node] * st.v_star[node];
-        if (mass > 0.0) d = exact_translation(st.x, z.nodes, st.dt * p / mass);
-      }
-      for (const Index node : z.nodes) resolve_.fixed_x.push_back({node, Vec3(st.x[node] + d)});
-    }
-    verify_again();
-  }
-  ct.zone_rounds += round;
-  ct.unresolved_steps += !v.failed.empty();
-  for (const ImpactZones::Zone& z : resolve_.zones.zones()) {
-    ++ct.impact_zones;
-    ct.translated_zones += z.motion == ImpactZones::Motion::translated;
-    ct.frozen_zones += z.motion == ImpactZones::Motion::frozen;
-    ct.largest_zone_nodes = std::max(ct.largest_zone_nodes, static_cast<long>(z.nodes.size()));
-  }
+  resolver_->resolve(state_, points_, *contact_, model_.contact->passes, contact_totals_);
 }
 
 void Simulation::predict_stage() {
@@ -514,7 +373,8 @@ void Simulation::commit_stage() {
   commit(state_);
   // Translated and frozen impact zones take the positions the zones set (their velocities
   // are the zone's rigid ones).
-  for (const auto& [node, x] : resolve_.fixed_x) state_.x[node] = x;
+  if (resolver_)
+    for (const auto& [node, x] : resolver_->fixed_positions()) state_.x[node] = x;
 }
 
 // Destroyed boundary cells of the last element pass become particles before this one, which
@@ -527,7 +387,7 @@ void Simulation::fracture_stage() {
   const std::vector<Index> renamed = candidates_->surfaces_changed(state_.surfaces);
   if (!model_.walls.empty()) surface_nodes_ = all_surface_nodes(state_.surfaces);
   if (contact_) contact_->edges_renamed(renamed);
-  if (verifier_) verifier_->surfaces_changed();
+  if (resolver_) resolver_->surfaces_changed();
 }
 
 void Simulation::elements_stage() {

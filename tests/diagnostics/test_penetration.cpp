@@ -112,3 +112,37 @@ TEST(Penetration, ExactPredicatesOnTheBoundary) {
   EXPECT_FALSE(exact_segment_crosses_triangle(Vec3(0.5, 0.0, -1), Vec3(0.5, 0.0, 1), a, b, c));
   EXPECT_FALSE(exact_segment_crosses_triangle(Vec3(0, 0, -1), Vec3(0, 0, 1), a, b, c));
 }
+
+// One probe measuring at every step of b sliding into a and turning (its binding lists kept
+// while nothing has moved past the reach) against a new probe at each step (a fresh search):
+// the same measures, node by node, bit for bit; and the lists did last.
+TEST(Penetration, BindingListsMeasureWhatAFreshSearchMeasures) {
+  const Model m = two_cubes(1.05, Vec3(0, 0.1, 0.07));
+  PenetrationProbe kept(m);
+  std::vector<Vec3> x = m.mesh.x;
+  long inside = 0, crossings = 0;
+  for (int k = 0; k < 60; ++k) {
+    const double angle = 0.002 * k;
+    for (Index i = m.mesh.bodies[1].node_begin; i < m.mesh.bodies[1].node_end; ++i) {
+      const Vec3 p = m.mesh.x[i] - Vec3(0.004 * k, 0, 0);
+      x[i] = Vec3(p.x(), std::cos(angle) * p.y() - std::sin(angle) * p.z(),
+                  std::sin(angle) * p.y() + std::cos(angle) * p.z());
+    }
+    const Penetration a = kept.measure(x);
+    PenetrationProbe fresh(m);
+    const Penetration b = fresh.measure(x);
+    ASSERT_EQ(a.node_depth, b.node_depth) << "step " << k;
+    ASSERT_EQ(a.nodes_inside, b.nodes_inside);
+    ASSERT_EQ(a.max_depth, b.max_depth);
+    ASSERT_EQ(a.crossings, b.crossings);
+    ASSERT_EQ(a.max_crossing_depth, b.max_crossing_depth);
+    ASSERT_EQ(a.deepest_node_body, b.deepest_node_body);
+    ASSERT_EQ(a.crossing_edge_body, b.crossing_edge_body);
+    inside += a.nodes_inside;
+    crossings += a.crossings;
+  }
+  EXPECT_GT(inside, 100);  // b ends 0.19 inside a: there is something to agree on
+  EXPECT_GT(crossings, 100);
+  EXPECT_GT(kept.searches(), 1);
+  EXPECT_LT(kept.searches(), 30);
+}

@@ -6,6 +6,7 @@
 #include <memory>
 #include <vector>
 
+#include "tetcontact/broadphase/binding_lists.hpp"
 #include "tetcontact/broadphase/broadphase.hpp"
 #include "tetcontact/model/model.hpp"
 #include "tetcontact/model/state.hpp"
@@ -58,16 +59,28 @@ class PenetrationProbe {
   /// out, and particle centres inside any body are measured as nodes are (particles_inside,
   /// max_particle_depth).
   Penetration measure(const State& st);
+  /// Searches of the binding lists so far (the nodes-in-tets search and the edges-across-faces
+  /// one each count).
+  long searches() const { return searches_; }
 
  private:
   Penetration measure(const std::vector<Vec3>& x, const std::vector<Surface>& surfaces,
                       const std::vector<Damage>& damage, Index first_particle);
-  std::vector<Index> bodies_holding(const std::vector<Vec3>& x, const std::vector<Damage>& damage);
+  std::vector<Index> bodies_holding(const std::vector<Vec3>& x);
   void measure_depths(const std::vector<Vec3>& x, const std::vector<Index>& inside_body,
                       Index first_particle, Penetration& r);
   void measure_crossings(const std::vector<Vec3>& x, Penetration& r);
+  bool primitives_changed(const std::vector<Vec3>& x, const std::vector<Surface>& surfaces,
+                          const std::vector<Damage>& damage, Index first_particle);
   const Model& model_;
   std::unique_ptr<Broadphase> broadphase_;
+  // Binding lists of the two searches over every node (nodes in tets) and over the surface
+  // (edges across faces), from boxes enlarged by the reach, kept while the points stay within
+  // it and the primitives are the same (a probe every step or every few steps searches rarely).
+  BindingLists inside_lists_, cross_lists_;
+  long searches_ = 0;
+  std::vector<Index> all_nodes_;  // 0 … n − 1: the points of the tets' boxes
+  std::vector<Index> in_tet_;     // the tet of each "face" of the nodes-in-tets search
   std::vector<Index> nodes_, node_body_;
   std::vector<Edge> edges_;
   std::vector<Index> edge_body_;

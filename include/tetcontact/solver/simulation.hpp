@@ -9,7 +9,6 @@
 
 #include "tetcontact/diagnostics/balance.hpp"
 #include "tetcontact/diagnostics/reference.hpp"
-#include "tetcontact/diagnostics/verify.hpp"
 #include "tetcontact/element/element.hpp"
 #include "tetcontact/fracture/particles.hpp"
 #include "tetcontact/mesh/partition.hpp"
@@ -19,9 +18,8 @@
 #include "tetcontact/model/state.hpp"
 #include "tetcontact/narrowphase/contact.hpp"
 #include "tetcontact/narrowphase/particle_contact.hpp"
-#include "tetcontact/response/impact_zones.hpp"
-#include "tetcontact/response/islands.hpp"
 #include "tetcontact/response/wall.hpp"
+#include "tetcontact/solver/resolve.hpp"
 
 namespace tc {
 
@@ -45,41 +43,8 @@ struct StepCollapse {
 /// each tet's mass on each of its nodes), zero stress, sound speeds.
 State initial_state(const Model& model);
 
-/// The contact points of one step, from detection through the passes to the verification
-/// (plain data between the stages).
-struct StepContacts {
-  CandidateStats broadphase;                     // the detection's one broadphase update
-  ContactStepStats narrowphase;                  // the narrow phase between bodies
-  std::vector<std::vector<ContactPoint>> walls;  // per wall
-  std::vector<ContactPoint> bodies;     // between bodies; the verification adds rescue points
-  std::vector<ContactPoint> particles;  // particle–face and particle–particle
-  std::vector<ContactList> lists;       // the passes' lists over the above, in that order
-  std::vector<Index> island_slot;       // contact_islands' scratch
-};
-
-/// The verification's working arrays (resolve_stage), kept between steps to save allocations.
-struct ResolveScratch {
-  std::vector<Vec3> x_end;  // xⁿ⁺¹ as the commit will write it
-  ImpactZones zones;
-  std::vector<Vec3> u_passes;        // U* as the passes left it (zone steps)
-  std::vector<char> marked;          // nodes of failing pairs
-  std::vector<char> in_rigid;        // nodes in rigid zones
-  std::vector<ContactPoint> inside;  // the contact points inside rigid zones, from Λ = 0
-  std::vector<char> changed;         // nodes whose end position changed since the last verification
-  std::vector<Vec3> x_tested;        // the end positions last verified
-  std::vector<std::pair<Index, Vec3>> fixed_x;  // nodes of translated and frozen zones, xⁿ⁺¹
-};
-
 class Simulation {
  public:
-  /// Rounds of impact zones a step may take before its failures are reported unresolved
-  /// (each round merges, grows or freezes a zone, so a start state free of overlap never
-  /// needs this many).
-  static constexpr int k_zone_rounds = 64;
-  /// Rounds of further passes (`contact.passes` in the first, doubling each round) over the
-  /// islands where a step's verification failed, before impact zones.
-  static constexpr int k_extra_rounds = 8;
-
   Simulation(Model model, SolverSettings settings);
   // The stages hold references into the model and the state: a Simulation stays where it is.
   Simulation(const Simulation&) = delete;
@@ -167,9 +132,8 @@ class Simulation {
   std::unique_ptr<ContactDetection> contact_;
   std::unique_ptr<Fragmentation> fragmentation_;
   std::unique_ptr<ParticleContact> particle_contact_;
-  std::unique_ptr<StepVerifier> verifier_;
-  StepContacts points_;     // this step's contact points
-  ResolveScratch resolve_;  // the verification's working arrays
+  std::unique_ptr<StepResolver> resolver_;  // with contact.verify
+  StepContacts points_;                     // this step's contact points
   ContactLedger contact_totals_;
   std::vector<double> wall_force_max_;
   Sample first_, last_;

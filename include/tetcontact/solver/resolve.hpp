@@ -1,0 +1,78 @@
+// The resolve stage (contact.verify): the step's motion verified with the exact CCD, and where
+// pairs fail, rescue points and further passes, then rigid impact zones, until none fails.
+#pragma once
+
+#include <utility>
+#include <vector>
+
+#include "tetcontact/broadphase/contact_candidates.hpp"
+#include "tetcontact/diagnostics/verify.hpp"
+#include "tetcontact/model/contact_point.hpp"
+#include "tetcontact/model/ledger.hpp"
+#include "tetcontact/model/state.hpp"
+#include "tetcontact/narrowphase/contact.hpp"
+#include "tetcontact/response/impact_zones.hpp"
+#include "tetcontact/response/islands.hpp"
+
+namespace tc {
+
+/// The contact points of one step, from detection through the passes to the verification
+/// (plain data between the stages).
+struct StepContacts {
+  CandidateStats broadphase;                     // the detection's one broadphase update
+  ContactStepStats narrowphase;                  // the narrow phase between bodies
+  std::vector<std::vector<ContactPoint>> walls;  // per wall
+  std::vector<ContactPoint> bodies;     // between bodies; the verification adds rescue points
+  std::vector<ContactPoint> particles;  // particle–face and particle–particle
+  std::vector<ContactList> lists;       // the passes' lists over the above, in that order
+  std::vector<Index> island_slot;       // contact_islands' scratch
+};
+
+class StepResolver {
+ public:
+  /// Rounds of impact zones a step may take before its failures are reported unresolved
+  /// (each round merges, grows or freezes a zone, so a start state free of overlap never
+  /// needs this many).
+  static constexpr int k_zone_rounds = 64;
+  /// Rounds of further passes (`contact.passes` in the first, doubling each round) over the
+  /// islands where a step's verification failed, before impact zones.
+  static constexpr int k_extra_rounds = 8;
+
+  explicit StepResolver(const Mesh& mesh) : verifier_(mesh) {}
+
+  /// The surfaces changed (cells turned into particles): the verification's lists are found anew.
+  void surfaces_changed() { verifier_.surfaces_changed(); }
+
+  /// The step's motion xⁿ → xⁿ⁺¹ = xⁿ + τ U* verified; failing pairs resolved by rescue points
+  /// (from `contact`, added to `points.bodies`), further passes (`passes` in the first round) and
+  /// impact zones, which change U* (st.v_star) and may fix end positions (fixed_positions()).
+  /// The counts go to `ledger`.
+  void resolve(State& st, StepContacts& points, const ContactDetection& contact, int passes,
+               ContactLedger& ledger);
+
+  /// Nodes of translated and frozen impact zones of the last resolve() with their xⁿ⁺¹: the
+  /// commit writes these positions.
+  const std::vector<std::pair<Index, Vec3>>& fixed_positions() const { return fixed_x_; }
+
+ private:
+  Verification verify_again(const State& st);
+  void end_positions(const State& st);
+  Verification extra_passes(State& st, StepContacts& points, const ContactDetection& contact,
+                            int passes, Verification v, ContactLedger& ct);
+  Verification impact_zones(State& st, StepContacts& points, int passes, Verification v,
+                            ContactLedger& ct);
+
+  StepVerifier verifier_;
+  // Working arrays, kept between steps to save allocations.
+  std::vector<Vec3> x_end_;  // xⁿ⁺¹ as the commit will write it
+  ImpactZones zones_;
+  std::vector<Vec3> u_passes_;        // U* as the passes left it (zone steps)
+  std::vector<char> marked_;          // nodes of failing pairs
+  std::vector<char> in_rigid_;        // nodes in rigid zones
+  std::vector<ContactPoint> inside_;  // the contact points inside rigid zones, from Λ = 0
+  std::vector<char> changed_;   // nodes whose end position changed since the last verification
+  std::vector<Vec3> x_tested_;  // the end positions last verified
+  std::vector<std::pair<Index, Vec3>> fixed_x_;  // nodes of translated and frozen zones, xⁿ⁺¹
+};
+
+}  // namespace tc
