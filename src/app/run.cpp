@@ -208,51 +208,38 @@ int run_case(const RunOptions& o) {
 namespace {
 
 // Rank 0's part after the run: the summary with the case's checks, and the table.
-int report_run(const RunOptions& o, const Case& c, const Simulation& s, OutputWriter& writer,
+int report_run(const RunOptions& o, const Case& c, const Simulation& sim, OutputWriter& writer,
                RunRecord run) {
-  const Simulation* sim = &s;
-  const std::string &dir = run.dir, &status = run.status;
   int code = run.code;
-  const double wall = run.wall;
   writer.close();
-  Json summary = summary_json(c, *sim, writer, status, wall, run.warnings);
-  if (const std::vector<std::string> regimes = regime_notes(c, sim->model()); !regimes.empty())
-    summary["regimes"] = regimes;
-  summary["parallel"] = parallel_json(*sim, run.communication);
-  // The case's stated bounds (`expect`), each against its summary figure.
-  std::string expect_lines;
+  RunSummary summary = summarize(c, sim, writer, run.status, run.wall);
+  summary.out_dir = run.dir;
+  summary.warnings = run.warnings;
+  summary.regimes = regime_notes(c, sim.model());
+  summary.communication = run.communication;
+  // The case's stated bounds (`expect`), each against its summary figure: failed when the run
+  // did not end ok.
   if (!c.expect.empty()) {
     ExpectFigures figures;
-    figures.momentum_error = momentum_error(sim->first_sample(), sim->last_sample());
-    figures.energy_balance = sim->balance_error_max();
+    figures.momentum_error = momentum_error(sim.first_sample(), sim.last_sample());
+    figures.energy_balance = sim.balance_error_max();
     if (writer.measured_penetration()) {
       figures.penetration = writer.penetration_max();
       figures.particles_inside_end = writer.penetration_last().particles_inside;
     }
-    Json list = Json::array();
-    const bool all = expect_summary(judge_expect(c.expect, figures), code == 0, list, expect_lines);
-    summary["expect"] = list;
-    summary["expect_pass"] = all;
-    if (o.check && !all && code == 0) code = 1;
+    summary.expect = judge_expect(c.expect, figures);
+    for (ExpectResult& e : summary.expect) e.pass = e.pass && code == 0;
+    if (o.check && !expect_pass(summary) && code == 0) code = 1;
   }
-  std::vector<ReferenceResult> refs;
   if (code == 0 && !c.references.empty()) {
-    refs = run.references->finish(sim->model(), sim->state(), sim->run_figures());
-    const Json list = references_json(refs);
-    const bool all = std::all_of(refs.begin(), refs.end(), [](const auto& r) { return r.pass; });
-    summary["references"] = list;
-    summary["references_pass"] = all;
-    if (o.check && !all) code = 1;
+    summary.references = run.references->finish(sim.model(), sim.state(), sim.run_figures());
+    if (o.check && !references_pass(summary)) code = 1;
   }
-  write_file_atomic(dir + "/summary.json", summary.dump(2) + "\n");
-  if (!o.quiet || code != 0) {
-    print_table(c, *sim, status, dir, writer.frames(), wall);
-    print_references(refs);
-  }
-  if (!o.quiet || code != 0) std::cout << expect_lines;
-  if (o.check && code != 0 && status == "ok")
+  write_file_atomic(run.dir + "/summary.json", summary_json(summary).dump(2) + "\n");
+  if (!o.quiet || code != 0) print_table(summary);
+  if (o.check && code != 0 && run.status == "ok")
     std::cerr << "tetcontact: check failed: a reference value or an expected bound is missed\n";
-  if (status != "ok") std::cerr << "tetcontact: run failed: " << status.substr(8) << "\n";
+  if (run.status != "ok") std::cerr << "tetcontact: run failed: " << run.status.substr(8) << "\n";
   return code;
 }
 

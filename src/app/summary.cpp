@@ -8,7 +8,6 @@
 #include <sstream>
 
 #include "tetcontact/app/partition.hpp"
-#include "tetcontact/diagnostics/balance.hpp"
 #include "tetcontact/parallel/parallel.hpp"
 
 namespace tc {
@@ -23,62 +22,179 @@ std::string fmt3(const Vec3& v) {
   return "[" + fmt(v.x()) + ", " + fmt(v.y()) + ", " + fmt(v.z()) + "]";
 }
 
+// ---- What the run measured, gathered once --------------------------------------------------
+
 namespace {
 
-// The summary's sections, each built as its own value (ordered_json: no reference into an
-// object survives an insert into it). Stages a run does not have are null: "not measured",
-// never zero.
-Json mesh_json(const Model& model, const std::vector<Surface>& surfaces) {
-  std::size_t faces = 0, edges = 0;
-  for (const Surface& s : surfaces) faces += s.faces.size(), edges += s.edges.size();
-  Json mesh = Json::object();
-  mesh["nodes"] = model.mesh.x.size();
-  mesh["tets"] = model.mesh.tets.size();
-  mesh["surface_faces"] = faces;
-  mesh["surface_edges"] = edges;
-  return mesh;
+RunSummary::TimeStep time_step_of(const Case& c, const Simulation& sim) {
+  const Model& model = sim.model();
+  const State& st = sim.state();
+  RunSummary::TimeStep ts;
+  ts.cfl = c.cfl;
+  ts.min = sim.min_dt();
+  ts.first = sim.first_dt();
+  ts.critical_tet = static_cast<long>(sim.critical_tet());
+  if (const Index t = sim.critical_tet(); t >= 0) {  // what limits the step, for the user
+    const BodyRange& b = model.mesh.bodies[model.mesh.tet_body[t]];
+    ts.critical = RunSummary::Critical{b.name, static_cast<long>(t - b.tet_begin),
+                                       st.vol[t] / st.vol0[t], static_cast<long>(st.damage[t])};
+  }
+  ts.collapses = sim.step_collapses();
+  return ts;
 }
 
-Json energy_json(const Simulation& sim) {
-  const Sample& first = sim.first_sample();
-  const Sample& last = sim.last_sample();
-  Json e = Json::object();
-  e["kinetic"] = last.kinetic;
-  e["internal"] = last.internal;
-  e["plastic_work"] = last.plastic_work;
-  e["viscous_work"] = last.viscous_work;
-  // Node–face, edge–edge and particle contacts all do work.
-  e["contact_work"] = sim.has_contact() || sim.conversions() ? Json(last.contact.work) : Json();
-  e["boundary_work"] = last.boundary.work;
-  e["wall_work"] = last.walls.work;
-  e["total_initial"] = first.total;
-  e["total_final"] = last.total;
-  e["balance_error"] = last.balance_error;
-  e["balance_error_max"] = sim.balance_error_max();
-  return e;
+std::optional<RunSummary::Contact> contact_of(const Simulation& sim) {
+  if (!sim.has_contact()) return std::nullopt;
+  const ContactSettings& cs = *sim.model().contact;
+  return RunSummary::Contact{sim.contact_totals(), cs.edge_edge, cs.verify, cs.broadphase,
+                             sim.contact_separation()};
 }
 
-Json momentum_json(const Sample& first, const Sample& last) {
-  Json p = Json::object();
-  p["initial"] = first.momentum;
-  p["final"] = last.momentum;
-  p["boundary_impulse"] = last.boundary.impulse;
-  p["wall_impulse"] = last.walls.impulse;
-  p["relative_error"] = momentum_error(first, last);
+std::optional<RunSummary::PenetrationMeasures> penetration_of(const Case& c, const Simulation& sim,
+                                                              const OutputWriter& writer) {
+  const bool one_body = sim.model().mesh.bodies.size() < 2 && !sim.model().particles;
+  // One body cannot penetrate another: zero is a measurement then, not a default.
+  if (!one_body && !writer.measured_penetration()) return std::nullopt;
+  return RunSummary::PenetrationMeasures{
+      writer.penetration_max(), sim.model().particles, writer.penetration_last().particles_inside,
+      c.output.penetration_every_step, writer.penetration_samples()};
+}
+
+std::optional<RunSummary::Particles> particles_of(const Simulation& sim) {
+  const ConversionLedger* l = sim.conversions();
+  if (!l) return std::nullopt;
+  const Model& model = sim.model();
+  const State& st = sim.state();
+  RunSummary::Particles p;
+  p.ledger = *l;
+  p.particle_contacts = sim.contact_totals().particle_contacts;
+  p.particles_moved_out = sim.contact_totals().particles_moved_out;  // a safeguard
+  p.particle_move_max = sim.contact_totals().particle_move_max;
+  // Cells failed by Johnson–Cook's ductile damage (D ≥ 1; eroded, so among `eroded`).
+  if (std::any_of(model.materials.begin(), model.materials.end(),
+                  [](const Material& m) { return m.ductile_failure; }))
+    p.ductile_failed = static_cast<long>(
+        std::count_if(st.ductile.begin(), st.ductile.end(), [](double d) { return d >= 1.0; }));
+  for (Index i = 0; i < st.particle_count(); ++i) {
+    const Index n = st.first_particle + i;
+    p.particle_kinetic_energy += 0.5 * st.m[n] * centred_velocity(st, n).squaredNorm();
+  }
+  for (std::size_t b = 0; b < model.mesh.bodies.size(); ++b) {  // where the particles came from
+    RunSummary::FromBody from{model.mesh.bodies[b].name, 0, 0.0};
+    for (Index i = 0; i < st.particle_count(); ++i)
+      if (model.mesh.tet_body[st.particle_tet[i]] == static_cast<Index>(b))
+        ++from.particles, from.mass += st.m[st.first_particle + i];
+    p.from_bodies.push_back(from);
+  }
   return p;
 }
 
-Json mass_json(const Sample& first, const Sample& last) {
+}  // namespace
+
+RunSummary summarize(const Case& c, const Simulation& sim, const OutputWriter& writer,
+                     const std::string& status, double wall) {
+  const Model& model = sim.model();
+  RunSummary s;
+  s.case_name = c.name;
+  s.case_file = c.file;
+  s.parameters.assign(c.parameters.begin(), c.parameters.end());
+  s.status = status;
+  s.steps = sim.state().step;
+  s.time = sim.last_sample().t;
+  s.end_time = c.end_time;
+  s.wall = wall;
+  s.modules = sim.modules();
+  s.material_library = c.material_library;
+  s.frames = writer.frames();
+  s.nodes = model.mesh.x.size();
+  s.tets = model.mesh.tets.size();
+  for (const Surface& f : sim.state().surfaces)
+    s.surface_faces += f.faces.size(), s.surface_edges += f.edges.size();
+  s.stages = sim.profile().stages;
+  if (writer.measured_penetration()) s.probe_seconds = writer.probe_seconds();
+  s.threads = parallel::threads();
+  s.first = sim.first_sample();
+  s.last = sim.last_sample();
+  s.balance_error_max = sim.balance_error_max();
+  s.contact_work = sim.has_contact() || sim.conversions();
+  s.bodies = body_stats(model, sim.state());
+  for (std::size_t w = 0; w < model.walls.size(); ++w)
+    s.walls.push_back({model.walls[w].name, sim.wall_force_max()[w]});
+  s.time_step = time_step_of(c, sim);
+  s.contact = contact_of(sim);
+  s.penetration = penetration_of(c, sim, writer);
+  s.fracture = c.fracture;
+  s.particles = particles_of(sim);
+  bool erodes = model.erosion_step_ratio > 0;
+  for (const Material& m : model.materials)
+    erodes = erodes || m.erosion_plastic_strain > 0 || m.ductile_failure;
+  if (s.particles) {
+    if (erodes) s.eroded = s.particles->ledger.eroded;
+    s.particles_moved_out = s.particles->particles_moved_out;
+  }
+  s.partition = sim.partition();
+  return s;
+}
+
+bool expect_pass(const RunSummary& s) {
+  return std::all_of(s.expect.begin(), s.expect.end(), [](const auto& e) { return e.pass; });
+}
+
+bool references_pass(const RunSummary& s) {
+  return std::all_of(s.references.begin(), s.references.end(),
+                     [](const auto& r) { return r.pass; });
+}
+
+// ---- summary.json --------------------------------------------------------------------------
+
+namespace {
+
+// Each section built as its own value (ordered_json: no reference into an object survives an
+// insert into it).
+template <class T>
+Json or_null(const std::optional<T>& v) {
+  return v ? Json(*v) : Json();
+}
+
+Json energy_json(const RunSummary& s) {
+  Json e = Json::object();
+  e["kinetic"] = s.last.kinetic;
+  e["internal"] = s.last.internal;
+  e["plastic_work"] = s.last.plastic_work;
+  e["viscous_work"] = s.last.viscous_work;
+  // Node–face, edge–edge and particle contacts all do work.
+  e["contact_work"] = s.contact_work ? Json(s.last.contact.work) : Json();
+  e["boundary_work"] = s.last.boundary.work;
+  e["wall_work"] = s.last.walls.work;
+  e["total_initial"] = s.first.total;
+  e["total_final"] = s.last.total;
+  e["balance_error"] = s.last.balance_error;
+  e["balance_error_max"] = s.balance_error_max;
+  return e;
+}
+
+Json momentum_json(const RunSummary& s) {
+  Json p = Json::object();
+  p["initial"] = s.first.momentum;
+  p["final"] = s.last.momentum;
+  p["boundary_impulse"] = s.last.boundary.impulse;
+  p["wall_impulse"] = s.last.walls.impulse;
+  p["relative_error"] = momentum_error(s.first, s.last);
+  return p;
+}
+
+Json mass_json(const RunSummary& s) {
   Json mass = Json::object();
-  mass["initial"] = first.mass;
-  mass["final"] = last.mass;
-  mass["relative_error"] = first.mass > 0 ? std::abs(last.mass - first.mass) / first.mass : 0.0;
+  mass["initial"] = s.first.mass;
+  mass["final"] = s.last.mass;
+  mass["relative_error"] =
+      s.first.mass > 0 ? std::abs(s.last.mass - s.first.mass) / s.first.mass : 0.0;
   return mass;
 }
 
-Json bodies_json(const Model& model, const State& st) {
+Json bodies_json(const RunSummary& s) {
   Json bodies = Json::array();
-  for (const BodyStats& b : body_stats(model, st)) {
+  for (const BodyStats& b : s.bodies) {
     Json o = Json::object();
     o["name"] = b.name;
     o["mass"] = b.mass;
@@ -91,36 +207,34 @@ Json bodies_json(const Model& model, const State& st) {
   return bodies;
 }
 
-Json walls_json(const Simulation& sim) {
+Json walls_json(const RunSummary& s) {
   Json walls = Json::array();
-  for (std::size_t w = 0; w < sim.model().walls.size(); ++w) {
+  for (const RunSummary::Wall& w : s.walls) {
     Json o = Json::object();
-    o["name"] = sim.model().walls[w].name;
-    o["max_force"] = sim.wall_force_max()[w];
-    o["impulse"] = sim.last_sample().walls.impulse;  // all walls together
+    o["name"] = w.name;
+    o["max_force"] = w.max_force;
+    o["impulse"] = s.last.walls.impulse;  // all walls together
     walls.push_back(o);
   }
   return walls;
 }
 
-Json time_step_json(const Case& c, const Simulation& sim) {
-  const Model& model = sim.model();
-  const State& st = sim.state();
+Json time_step_json(const RunSummary& s) {
+  const RunSummary::TimeStep& t = s.time_step;
   Json ts = Json::object();
-  ts["last"] = sim.last_sample().dt;
-  ts["cfl"] = c.cfl;
-  ts["critical_tet"] = static_cast<long>(sim.critical_tet());
-  ts["min"] = sim.min_dt();
-  if (const Index t = sim.critical_tet(); t >= 0) {  // what limits the step, for the user
-    const BodyRange& b = model.mesh.bodies[model.mesh.tet_body[t]];
-    ts["critical_body"] = b.name;
-    ts["critical_body_tet"] = static_cast<long>(t - b.tet_begin);
-    ts["critical_volume_ratio"] = st.vol[t] / st.vol0[t];
-    ts["critical_damage"] = static_cast<long>(st.damage[t]);
+  ts["last"] = s.last.dt;
+  ts["cfl"] = t.cfl;
+  ts["critical_tet"] = t.critical_tet;
+  ts["min"] = t.min;
+  if (t.critical) {
+    ts["critical_body"] = t.critical->body;
+    ts["critical_body_tet"] = t.critical->body_tet;
+    ts["critical_volume_ratio"] = t.critical->volume_ratio;
+    ts["critical_damage"] = t.critical->damage;
   }
   // The falls of the step by a decade below the first (also among the warnings).
   Json falls = Json::array();
-  for (const StepCollapse& f : sim.step_collapses()) {
+  for (const StepCollapse& f : t.collapses) {
     Json o = Json::object();
     o["step"] = f.step;
     o["t"] = f.t;
@@ -136,19 +250,40 @@ Json time_step_json(const Case& c, const Simulation& sim) {
     o["steps_to_end"] = f.steps_to_end;
     falls.push_back(o);
   }
-  ts["first"] = sim.first_dt();
+  ts["first"] = t.first;
   ts["collapses"] = falls;
   return ts;
 }
 
-Json contact_json(const Simulation& sim) {
+// Every step's motion checked with the exact CCD (null when contact.verify is off).
+Json verification_json(const ContactLedger& ct) {
+  Json v = Json::object();
+  v["pairs_checked"] = ct.verified_pairs;
+  v["failed_after_passes"] = ct.failed_pairs;
+  v["failed_from_touching"] = ct.failed_touching;
+  v["failed_edge_edge"] = ct.failed_edge_edge;
+  v["extra_pass_rounds"] = ct.extra_rounds;
+  v["rescue_points"] = ct.rescue_points;
+  v["failed_after_extra_passes"] = ct.failed_after_extra;
+  v["steps_failed"] = ct.steps_failed;
+  v["impact_zones"] = ct.impact_zones;
+  v["largest_zone_nodes"] = ct.largest_zone_nodes;
+  v["steps_with_zones"] = ct.steps_with_zones;
+  v["translated_zones"] = ct.translated_zones;
+  v["frozen_zones"] = ct.frozen_zones;
+  v["zone_rounds"] = ct.zone_rounds;
+  v["unresolved_steps"] = ct.unresolved_steps;
+  return v;
+}
+
+Json contact_json(const RunSummary& s) {
   Json contact = Json::object();
   for (const char* k :
        {"node_face", "edge_edge", "candidates", "first_time", "last_time", "max_force", "work"})
     contact[k] = nullptr;
-  if (!sim.has_contact()) return contact;
-  const auto& ct = sim.contact_totals();
-  const bool edges = sim.model().contact->edge_edge;
+  if (!s.contact) return contact;
+  const ContactLedger& ct = s.contact->ledger;
+  const bool edges = s.contact->edge_edge;
   contact["node_face"] = ct.node_face;
   contact["edge_edge"] = edges ? Json(ct.edge_edge) : Json();
   contact["edge_candidates"] = edges ? Json(ct.edge_candidates) : Json();
@@ -159,82 +294,65 @@ Json contact_json(const Simulation& sim) {
   contact["last_time"] = ct.last_time >= 0 ? Json(ct.last_time) : Json();
   contact["duration"] = ct.first_time >= 0 ? Json(ct.last_time - ct.first_time) : Json();
   contact["max_force"] = ct.max_force;
-  contact["work"] = sim.last_sample().contact.work;
-  contact["broadphase"] = sim.model().contact->broadphase;
+  contact["work"] = s.last.contact.work;
+  contact["broadphase"] = s.contact->broadphase;
   contact["broadphase_runs"] = ct.rebuilds;
-  contact["separation"] = sim.contact_separation();
-  // Every step's motion checked with the exact CCD (null when contact.verify is off).
-  if (sim.model().contact->verify) {
-    Json v = Json::object();
-    v["pairs_checked"] = ct.verified_pairs;
-    v["failed_after_passes"] = ct.failed_pairs;
-    v["failed_from_touching"] = ct.failed_touching;
-    v["failed_edge_edge"] = ct.failed_edge_edge;
-    v["extra_pass_rounds"] = ct.extra_rounds;
-    v["rescue_points"] = ct.rescue_points;
-    v["failed_after_extra_passes"] = ct.failed_after_extra;
-    v["steps_failed"] = ct.steps_failed;
-    v["impact_zones"] = ct.impact_zones;
-    v["largest_zone_nodes"] = ct.largest_zone_nodes;
-    v["steps_with_zones"] = ct.steps_with_zones;
-    v["translated_zones"] = ct.translated_zones;
-    v["frozen_zones"] = ct.frozen_zones;
-    v["zone_rounds"] = ct.zone_rounds;
-    v["unresolved_steps"] = ct.unresolved_steps;
-    contact["verification"] = v;
-  } else {
-    contact["verification"] = nullptr;
-  }
+  contact["separation"] = s.contact->separation;
+  contact["verification"] = s.contact->verify ? verification_json(ct) : Json();
   return contact;
+}
+
+// Penetration (null where it was not measured).
+Json penetration_json(const RunSummary& s) {
+  Json pen = Json::object();
+  for (const char* k : {"max_depth", "max_depth_over_h", "max_crossings"}) pen[k] = nullptr;
+  if (!s.penetration) return pen;
+  const Penetration& pm = s.penetration->max;
+  pen["max_depth"] = pm.max_depth;
+  pen["max_depth_over_h"] = pm.max_depth_over_h;
+  pen["max_crossings"] = pm.crossings;
+  pen["max_crossing_depth"] = pm.max_crossing_depth;
+  pen["max_nodes_inside"] = pm.nodes_inside;
+  if (s.penetration->particles) {
+    pen["max_particles_inside"] = pm.particles_inside;
+    pen["max_particle_depth"] = pm.max_particle_depth;
+    pen["particles_inside_at_end"] = s.penetration->particles_inside_at_end;
+  }
+  pen["measured_at"] = s.penetration->every_step ? "every step" : "output frames";
+  pen["samples"] = s.penetration->samples;
+  return pen;
 }
 
 // Fracture: cells damaged and destroyed at the end, and the conversions into particles with
 // their ledger (null when the case makes no particles).
-Json fracture_json(const Case& c, const Simulation& sim) {
-  const Model& model = sim.model();
-  const State& st = sim.state();
+Json fracture_json(const RunSummary& s) {
   Json fr = Json::object();
-  fr["enabled"] = c.fracture;
-  fr["damaged"] = c.fracture ? Json(sim.last_sample().damaged) : Json();
-  fr["destroyed"] = c.fracture ? Json(sim.last_sample().destroyed) : Json();
+  fr["enabled"] = s.fracture;
+  fr["damaged"] = s.fracture ? Json(s.last.damaged) : Json();
+  fr["destroyed"] = s.fracture ? Json(s.last.destroyed) : Json();
   fr["particles"] = nullptr;
   fr["mass_to_particles"] = nullptr;
-  const ConversionLedger* l = sim.conversions();
-  if (!l) return fr;
-  fr["particles"] = l->particles;
-  fr["mass_to_particles"] = l->mass;
-  fr["internal_energy_to_particles"] = l->internal;
-  fr["kinetic_spread_to_particles"] = l->kinetic_spread;
-  fr["conversion_momentum_error"] = l->momentum_error;
-  fr["conversion_mass_error"] = l->mass_error;
-  fr["particle_contacts"] = sim.contact_totals().particle_contacts;
-  fr["eroded"] = l->eroded;  // a safeguard: cells whose step fell below the erosion limit
-  // Cells failed by Johnson–Cook's ductile damage (D ≥ 1; eroded, so among `eroded`).
-  const bool ductile = std::any_of(model.materials.begin(), model.materials.end(),
-                                   [](const Material& m) { return m.ductile_failure; });
-  fr["ductile_failed"] =
-      ductile ? Json(static_cast<long>(std::count_if(st.ductile.begin(), st.ductile.end(),
-                                                     [](double d) { return d >= 1.0; })))
-              : Json();
-  fr["particles_moved_out"] = sim.contact_totals().particles_moved_out;  // a safeguard
-  fr["particle_move_max"] = sim.contact_totals().particle_move_max;
-  double kinetic = 0.0;
-  for (Index i = 0; i < st.particle_count(); ++i) {
-    const Index n = st.first_particle + i;
-    kinetic += 0.5 * st.m[n] * centred_velocity(st, n).squaredNorm();
-  }
-  fr["particle_kinetic_energy"] = kinetic;
-  Json by_body = Json::array();  // where the particles came from
-  for (std::size_t b = 0; b < model.mesh.bodies.size(); ++b) {
-    long n = 0;
-    double m = 0.0;
-    for (Index i = 0; i < st.particle_count(); ++i)
-      if (model.mesh.tet_body[st.particle_tet[i]] == static_cast<Index>(b))
-        ++n, m += st.m[st.first_particle + i];
+  if (!s.particles) return fr;
+  const RunSummary::Particles& p = *s.particles;
+  const ConversionLedger& l = p.ledger;
+  fr["particles"] = l.particles;
+  fr["mass_to_particles"] = l.mass;
+  fr["internal_energy_to_particles"] = l.internal;
+  fr["kinetic_spread_to_particles"] = l.kinetic_spread;
+  fr["conversion_momentum_error"] = l.momentum_error;
+  fr["conversion_mass_error"] = l.mass_error;
+  fr["particle_contacts"] = p.particle_contacts;
+  fr["eroded"] = l.eroded;  // a safeguard: cells whose step fell below the erosion limit
+  fr["ductile_failed"] = or_null(p.ductile_failed);
+  fr["particles_moved_out"] = p.particles_moved_out;  // a safeguard
+  fr["particle_move_max"] = p.particle_move_max;
+  fr["particle_kinetic_energy"] = p.particle_kinetic_energy;
+  Json by_body = Json::array();
+  for (const RunSummary::FromBody& b : p.from_bodies) {
     Json o = Json::object();
-    o["name"] = model.mesh.bodies[b].name;
-    o["particles"] = n;
-    o["mass"] = m;
+    o["name"] = b.name;
+    o["particles"] = b.particles;
+    o["mass"] = b.mass;
     by_body.push_back(o);
   }
   fr["from_bodies"] = by_body;
@@ -242,163 +360,45 @@ Json fracture_json(const Case& c, const Simulation& sim) {
 }
 
 // The safeguards that acted (null: the run has no such safeguard).
-Json safeguards_json(const Simulation& sim) {
-  const ConversionLedger* conv = sim.conversions();
+Json safeguards_json(const RunSummary& s) {
   Json safe = Json::object();
-  bool erodes = sim.model().erosion_step_ratio > 0;
-  for (const Material& m : sim.model().materials)
-    erodes = erodes || m.erosion_plastic_strain > 0 || m.ductile_failure;
-  safe["eroded"] = conv && erodes ? Json(conv->eroded) : Json();
-  safe["particles_moved_out"] = conv ? Json(sim.contact_totals().particles_moved_out) : Json();
+  safe["eroded"] = or_null(s.eroded);
+  safe["particles_moved_out"] = or_null(s.particles_moved_out);
   return safe;
 }
 
-// Penetration at the output frames (null where it was not measured).
-Json penetration_json(const Case& c, const Simulation& sim, const OutputWriter& writer) {
-  Json pen = Json::object();
-  for (const char* k : {"max_depth", "max_depth_over_h", "max_crossings"}) pen[k] = nullptr;
-  const bool one_body = sim.model().mesh.bodies.size() < 2 && !sim.model().particles;
-  // One body cannot penetrate another: zero is a measurement then, not a default.
-  if (!one_body && !writer.measured_penetration()) return pen;
-  const Penetration& pm = writer.penetration_max();
-  pen["max_depth"] = pm.max_depth;
-  pen["max_depth_over_h"] = pm.max_depth_over_h;
-  pen["max_crossings"] = pm.crossings;
-  pen["max_crossing_depth"] = pm.max_crossing_depth;
-  pen["max_nodes_inside"] = pm.nodes_inside;
-  if (sim.model().particles) {
-    pen["max_particles_inside"] = pm.particles_inside;
-    pen["max_particle_depth"] = pm.max_particle_depth;
-    pen["particles_inside_at_end"] = writer.penetration_last().particles_inside;
-  }
-  pen["measured_at"] = c.output.penetration_every_step ? "every step" : "output frames";
-  pen["samples"] = writer.penetration_samples();
-  return pen;
-}
-
-}  // namespace
-
-Json summary_json(const Case& c, const Simulation& sim, const OutputWriter& writer,
-                  const std::string& status, double wall,
-                  const std::vector<std::string>& warnings) {
-  const Model& model = sim.model();
-  Json j = Json::object();
-  j["schema"] = "tetcontact.summary/1";
-  j["case"] = c.name;
-  j["case_file"] = c.file;
-  if (!c.parameters.empty()) {  // the values the case's expressions used
-    Json params = Json::object();
-    for (const auto& [name, value] : c.parameters) params[name] = value;
-    j["parameters"] = params;
-  }
-  j["status"] = status;
-  j["steps"] = sim.state().step;
-  j["time"] = sim.last_sample().t;
-  j["end_time"] = c.end_time;
-  j["wall_seconds"] = wall;
-  j["modules"] = sim.modules();
-  j["mesh"] = mesh_json(model, sim.state().surfaces);
-  Json timings = Json::object();
-  for (const auto& [name, seconds] : sim.profile().stages) timings[name] = seconds;
-  // The part of `output` the penetration measures took (the rest is writing the files).
-  if (writer.measured_penetration()) timings["output_penetration"] = writer.probe_seconds();
-  j["timings"] = timings;
-  j["threads"] = parallel::threads();
-  j["energy"] = energy_json(sim);
-  j["momentum"] = momentum_json(sim.first_sample(), sim.last_sample());
-  j["mass"] = mass_json(sim.first_sample(), sim.last_sample());
-  j["bodies"] = bodies_json(model, sim.state());
-  j["walls"] = walls_json(sim);
-  j["warnings"] = warnings;
-  j["material_library"] = c.material_library.empty() ? Json() : Json(c.material_library);
-  j["time_step"] = time_step_json(c, sim);
-  j["contact"] = contact_json(sim);
-  j["penetration"] = penetration_json(c, sim, writer);
-  j["fracture"] = fracture_json(c, sim);
-  j["safeguards"] = safeguards_json(sim);
-  return j;
-}
-
-void print_table(const Case& c, const Simulation& sim, const std::string& status,
-                 const std::string& dir, std::size_t frames, double wall) {
-  const Sample& first = sim.first_sample();
-  const Sample& last = sim.last_sample();
-  std::ostringstream os;
-  os << "tetcontact " << TETCONTACT_VERSION << " — case " << c.name << "\n";
-  os << "  status     " << status << "\n";
-  os << "  steps      " << sim.state().step << "   t = " << fmt(last.t) << " s   wall "
-     << fmt(wall, "%.3f") << " s\n";
-  os << "  energy     initial " << fmt(first.total, "%.6g") << " J   final "
-     << fmt(last.total, "%.6g") << " J   external work " << fmt(last.external_work(), "%.4g")
-     << " J   contact work " << fmt(last.contact.work, "%.4g") << " J   balance error "
-     << fmt(last.balance_error, "%.2e") << " (max " << fmt(sim.balance_error_max(), "%.2e")
-     << ")\n";
-  if (last.plastic_work > 0 || last.viscous_work > 0)
-    os << "  internal   " << fmt(last.internal, "%.6g") << " J, of which plastic work "
-       << fmt(last.plastic_work, "%.4g") << " J, viscous heat " << fmt(last.viscous_work, "%.4g")
-       << " J\n";
-  for (std::size_t w = 0; w < sim.model().walls.size(); ++w)
-    os << "  wall       " << sim.model().walls[w].name << ": max reaction force "
-       << fmt(sim.wall_force_max()[w]) << " N\n";
-  os << "  momentum   initial " << fmt3(first.momentum) << "   final " << fmt3(last.momentum)
-     << " kg m/s\n";
-  for (const BodyStats& b : body_stats(sim.model(), sim.state()))
-    if (b.mass > 0.0)
-      os << "  body       " << b.name << ": mass " << fmt(b.mass) << " kg, velocity "
-         << fmt3(b.velocity) << " m/s, bbox " << fmt3(b.bbox_min) << " – " << fmt3(b.bbox_max)
-         << " m\n";
-    else  // no velocity to average: not a NaN printed as one
-      os << "  body       " << b.name
-         << ": no cell left, all turned into particles (summary.fracture.from_bodies)\n";
-  const double total = sim.profile().total();
-  os << "  timings   ";
-  for (const auto& [name, s] : sim.profile().stages)
-    os << " " << name << " " << fmt(s, "%.3f") << " s ("
-       << fmt(100 * s / std::max(total, 1e-300), "%.0f") << "%)";
-  os << "\n  output     " << dir << "/ (case.pvd with " << frames
-     << " frames, history.csv, summary.json)\n";
-  std::cout << os.str();
-}
-
 // The processes and threads of the run, and the decomposition of a distributed one.
-Json parallel_json(const Simulation& sim, double communication) {
-  const Partition& p = sim.partition();
+Json parallel_json(const RunSummary& s) {
+  const Partition& p = s.partition;
   Json j = Json::object();
   j["ranks"] = p.ranks;
-  j["threads"] = parallel::threads();
+  j["threads"] = s.threads;
   // Distributed runs: every rank holds the whole state and repeats all but the
   // element stage, whose tets are cut between the ranks, and the verification's exact tests.
   j["distributed"] =
       p.ranks > 1 ? Json("element stage, verification tests; state replicated") : Json();
   j["partition"] = p.ranks > 1 ? partition_json(p) : Json();
   // The largest over the ranks of the seconds spent in the collectives.
-  j["communication_seconds"] = communication;
+  j["communication_seconds"] = s.communication;
   return j;
 }
 
-bool expect_summary(const std::vector<ExpectResult>& results, bool run_ok, Json& list,
-                    std::string& lines) {
-  bool all = true;
-  for (const ExpectResult& e : results) {
-    const bool pass = run_ok && e.pass;
+Json expect_json(const RunSummary& s) {
+  Json list = Json::array();
+  for (const ExpectResult& e : s.expect) {
     Json item = Json::object();
     item["name"] = e.name;
     item["bound"] = e.bound;
     item["measured"] = std::isnan(e.measured) ? Json() : Json(e.measured);
-    item["pass"] = pass;
+    item["pass"] = e.pass;
     list.push_back(item);
-    all = all && pass;
-    char line[160];
-    std::snprintf(line, sizeof line, "  expect     %-28s %-11.4g bound %-11.4g %s\n",
-                  e.name.c_str(), e.measured, e.bound, pass ? "pass" : "FAIL");
-    lines += line;
   }
-  return all;
+  return list;
 }
 
-Json references_json(const std::vector<ReferenceResult>& refs) {
+Json references_json(const RunSummary& s) {
   Json list = Json::array();
-  for (const ReferenceResult& r : refs) {
+  for (const ReferenceResult& r : s.references) {
     Json o = Json::object();
     o["name"] = r.spec->name;
     o["measure"] = name_of(ReferenceSpec::k_measure_names, r.spec->measure);
@@ -416,22 +416,138 @@ Json references_json(const std::vector<ReferenceResult>& refs) {
   return list;
 }
 
-void print_references(const std::vector<ReferenceResult>& refs) {
+}  // namespace
+
+Json summary_json(const RunSummary& s) {
+  Json j = Json::object();
+  j["schema"] = "tetcontact.summary/1";
+  j["case"] = s.case_name;
+  j["case_file"] = s.case_file;
+  if (!s.parameters.empty()) {  // the values the case's expressions used
+    Json params = Json::object();
+    for (const auto& [name, value] : s.parameters) params[name] = value;
+    j["parameters"] = params;
+  }
+  j["status"] = s.status;
+  j["steps"] = s.steps;
+  j["time"] = s.time;
+  j["end_time"] = s.end_time;
+  j["wall_seconds"] = s.wall;
+  j["modules"] = s.modules;
+  Json mesh = Json::object();
+  mesh["nodes"] = s.nodes;
+  mesh["tets"] = s.tets;
+  mesh["surface_faces"] = s.surface_faces;
+  mesh["surface_edges"] = s.surface_edges;
+  j["mesh"] = mesh;
+  Json timings = Json::object();
+  for (const auto& [name, seconds] : s.stages) timings[name] = seconds;
+  // The part of `output` the penetration measures took (the rest is writing the files).
+  if (s.probe_seconds) timings["output_penetration"] = *s.probe_seconds;
+  j["timings"] = timings;
+  j["threads"] = s.threads;
+  j["energy"] = energy_json(s);
+  j["momentum"] = momentum_json(s);
+  j["mass"] = mass_json(s);
+  j["bodies"] = bodies_json(s);
+  j["walls"] = walls_json(s);
+  j["warnings"] = s.warnings;
+  j["material_library"] = s.material_library.empty() ? Json() : Json(s.material_library);
+  j["time_step"] = time_step_json(s);
+  j["contact"] = contact_json(s);
+  j["penetration"] = penetration_json(s);
+  j["fracture"] = fracture_json(s);
+  j["safeguards"] = safeguards_json(s);
+  if (!s.regimes.empty()) j["regimes"] = s.regimes;
+  j["parallel"] = parallel_json(s);
+  if (!s.expect.empty()) {
+    j["expect"] = expect_json(s);
+    j["expect_pass"] = expect_pass(s);
+  }
+  if (!s.references.empty()) {
+    j["references"] = references_json(s);
+    j["references_pass"] = references_pass(s);
+  }
+  return j;
+}
+
+// ---- The console table ---------------------------------------------------------------------
+
+namespace {
+
+// printf into a string of any length.
+template <class... Args>
+std::string format(const char* f, Args... args) {
+  std::string out(static_cast<std::size_t>(std::snprintf(nullptr, 0, f, args...)), '\0');
+  std::snprintf(out.data(), out.size() + 1, f, args...);
+  return out;
+}
+
+void print_references(const std::vector<ReferenceResult>& refs, std::ostream& os) {
   for (const ReferenceResult& r : refs) {
     const std::string unit(name_of(ReferenceSpec::k_measure_units, r.spec->measure));
     const std::string u = unit.empty() ? "" : " " + unit;
     if (!r.error.empty())
-      std::printf("  reference  %-28s not measured: %s\n", r.spec->name.c_str(), r.error.c_str());
+      os << format("  reference  %-28s not measured: %s\n", r.spec->name.c_str(), r.error.c_str());
     else if (!r.judged)
-      std::printf("  measure    %-28s %.5g%s\n", r.spec->name.c_str(), r.measured, u.c_str());
+      os << format("  measure    %-28s %.5g%s\n", r.spec->name.c_str(), r.measured, u.c_str());
     else
-      std::printf(
+      os << format(
           "  %-10s %-28s measured %.5g%s, reference %.5g%s, error %+.2f%% (tolerance %.1f%%) "
           "%s\n",
           r.spec->kind == "regression" ? "regression" : "reference", r.spec->name.c_str(),
           r.measured, u.c_str(), r.spec->value, u.c_str(), 100 * r.relative_error,
           100 * r.spec->tolerance, r.pass ? "pass" : "FAIL");
   }
+}
+
+void print_expect(const std::vector<ExpectResult>& expect, std::ostream& os) {
+  for (const ExpectResult& e : expect)
+    os << format("  expect     %-28s %-11.4g bound %-11.4g %s\n", e.name.c_str(), e.measured,
+                 e.bound, e.pass ? "pass" : "FAIL");
+}
+
+}  // namespace
+
+void print_table(const RunSummary& s) {
+  const Sample& first = s.first;
+  const Sample& last = s.last;
+  std::ostringstream os;
+  os << "tetcontact " << TETCONTACT_VERSION << " — case " << s.case_name << "\n";
+  os << "  status     " << s.status << "\n";
+  os << "  steps      " << s.steps << "   t = " << fmt(last.t) << " s   wall "
+     << fmt(s.wall, "%.3f") << " s\n";
+  os << "  energy     initial " << fmt(first.total, "%.6g") << " J   final "
+     << fmt(last.total, "%.6g") << " J   external work " << fmt(last.external_work(), "%.4g")
+     << " J   contact work " << fmt(last.contact.work, "%.4g") << " J   balance error "
+     << fmt(last.balance_error, "%.2e") << " (max " << fmt(s.balance_error_max, "%.2e") << ")\n";
+  if (last.plastic_work > 0 || last.viscous_work > 0)
+    os << "  internal   " << fmt(last.internal, "%.6g") << " J, of which plastic work "
+       << fmt(last.plastic_work, "%.4g") << " J, viscous heat " << fmt(last.viscous_work, "%.4g")
+       << " J\n";
+  for (const RunSummary::Wall& w : s.walls)
+    os << "  wall       " << w.name << ": max reaction force " << fmt(w.max_force) << " N\n";
+  os << "  momentum   initial " << fmt3(first.momentum) << "   final " << fmt3(last.momentum)
+     << " kg m/s\n";
+  for (const BodyStats& b : s.bodies)
+    if (b.mass > 0.0)
+      os << "  body       " << b.name << ": mass " << fmt(b.mass) << " kg, velocity "
+         << fmt3(b.velocity) << " m/s, bbox " << fmt3(b.bbox_min) << " – " << fmt3(b.bbox_max)
+         << " m\n";
+    else  // no velocity to average: not a NaN printed as one
+      os << "  body       " << b.name
+         << ": no cell left, all turned into particles (summary.fracture.from_bodies)\n";
+  double total = 0.0;
+  for (const auto& [name, seconds] : s.stages) total += seconds;
+  os << "  timings   ";
+  for (const auto& [name, seconds] : s.stages)
+    os << " " << name << " " << fmt(seconds, "%.3f") << " s ("
+       << fmt(100 * seconds / std::max(total, 1e-300), "%.0f") << "%)";
+  os << "\n  output     " << s.out_dir << "/ (case.pvd with " << s.frames
+     << " frames, history.csv, summary.json)\n";
+  print_references(s.references, os);
+  print_expect(s.expect, os);
+  std::cout << os.str();
 }
 
 }  // namespace tc

@@ -1,13 +1,18 @@
-// A run's summary.json and its console table, from the simulation, the case and the output:
-// the one place where the summary's key names live (docs/guide/outputs.md lists each with its
-// unit). Sections a run does not have are null: "not measured", never zero.
+// A run's summary as plain data (RunSummary, gathered once from the simulation, the case and the
+// output by summarize()), and its one writer: summary.json and the console table. This is the
+// one place where the summary's key names live (docs/guide/outputs.md lists each with its unit).
+// Sections a run does not have are empty here and null in the file: "not measured", never zero.
 #pragma once
 
 #include <cstddef>
+#include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
+#include "tetcontact/diagnostics/balance.hpp"
 #include "tetcontact/diagnostics/expect.hpp"
+#include "tetcontact/diagnostics/penetration.hpp"
 #include "tetcontact/diagnostics/reference.hpp"
 #include "tetcontact/io/case.hpp"
 #include "tetcontact/io/json.hpp"
@@ -20,27 +25,94 @@ namespace tc {
 std::string fmt(double v, const char* f = "%.4g");
 std::string fmt3(const Vec3& v);
 
-/// summary.json without the case's checks (expect, references) and the run's processes.
-Json summary_json(const Case& c, const Simulation& sim, const OutputWriter& writer,
-                  const std::string& status, double wall, const std::vector<std::string>& warnings);
+struct RunSummary {
+  // The run.
+  std::string case_name, case_file, status, material_library, out_dir;
+  std::vector<std::pair<std::string, double>> parameters;  // the values the expressions used
+  long steps = 0;
+  double time = 0.0, end_time = 0.0, wall = 0.0;
+  std::vector<std::string> modules, warnings, regimes;
+  std::size_t nodes = 0, tets = 0, surface_faces = 0, surface_edges = 0, frames = 0;
+  std::vector<std::pair<std::string, double>> stages;  // seconds per stage (StepProfile)
+  std::optional<double> probe_seconds;  // the part of `output` the penetration probe took
+  int threads = 1;
+  // Balance and bodies.
+  Sample first, last;
+  double balance_error_max = 0.0;
+  bool contact_work = false;  // contact or particles: their work is measured
+  std::vector<BodyStats> bodies;
+  struct Wall {
+    std::string name;
+    double max_force = 0.0;  // N
+  };
+  std::vector<Wall> walls;
+  // The time step: its last, smallest and first, the tet that limits it, its falls.
+  struct Critical {
+    std::string body;
+    long body_tet = 0;
+    double volume_ratio = 0.0;
+    long damage = 0;
+  };
+  struct TimeStep {
+    double cfl = 0.0, min = 0.0, first = 0.0;
+    long critical_tet = -1;
+    std::optional<Critical> critical;
+    std::vector<StepCollapse> collapses;
+  } time_step;
+  // Contact between bodies (none without it).
+  struct Contact {
+    ContactLedger ledger;
+    bool edge_edge = false, verify = false;
+    std::string broadphase;
+    double separation = 0.0;
+  };
+  std::optional<Contact> contact;
+  // Penetration (none where it was not measured).
+  struct PenetrationMeasures {
+    Penetration max;
+    bool particles = false;
+    long particles_inside_at_end = 0;
+    bool every_step = false;
+    long samples = 0;
+  };
+  std::optional<PenetrationMeasures> penetration;
+  // Fracture, and the particles with their ledger (none when the case makes no particles).
+  bool fracture = false;
+  struct FromBody {
+    std::string name;
+    long particles = 0;
+    double mass = 0.0;
+  };
+  struct Particles {
+    ConversionLedger ledger;
+    long particle_contacts = 0, particles_moved_out = 0;
+    double particle_move_max = 0.0, particle_kinetic_energy = 0.0;
+    std::optional<long> ductile_failed;  // with Johnson–Cook ductile failure
+    std::vector<FromBody> from_bodies;
+  };
+  std::optional<Particles> particles;
+  std::optional<long> eroded, particles_moved_out;  // the safeguards the run has
+  // Processes.
+  Partition partition;
+  double communication = 0.0;  // s, the largest over the ranks
+  // The case's checks: its bounds (each failing when the run did not end ok) and references.
+  std::vector<ExpectResult> expect;
+  std::vector<ReferenceResult> references;
+};
 
-/// summary.parallel: the processes and threads, and the decomposition of a distributed run;
-/// `communication`: the largest time a rank spent in collectives, s.
-Json parallel_json(const Simulation& sim, double communication);
+/// Everything but the case's checks and the regimes, from the run as it ended.
+RunSummary summarize(const Case& c, const Simulation& sim, const OutputWriter& writer,
+                     const std::string& status, double wall);
 
-/// The final table on stdout: status, steps, energy, momentum, bodies, timings, output.
-void print_table(const Case& c, const Simulation& sim, const std::string& status,
-                 const std::string& dir, std::size_t frames, double wall);
+/// summary.json.
+Json summary_json(const RunSummary& s);
 
-/// summary.expect: each bound the case states against its figure, failing when the run did not
-/// end ok (`run_ok` false); `lines` gets the table's lines. Whether all pass.
-bool expect_summary(const std::vector<ExpectResult>& results, bool run_ok, Json& list,
-                    std::string& lines);
+/// The final table on stdout: status, steps, energy, momentum, bodies, timings, output, then
+/// each reference and each bound.
+void print_table(const RunSummary& s);
 
-/// summary.references: each reference with its measure, unit, value, error and verdict.
-Json references_json(const std::vector<ReferenceResult>& refs);
-
-/// The table's line of each reference, its unit beside every number.
-void print_references(const std::vector<ReferenceResult>& refs);
+/// Whether every bound and every reference the run states passes.
+bool expect_pass(const RunSummary& s);
+bool references_pass(const RunSummary& s);
 
 }  // namespace tc
