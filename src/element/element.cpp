@@ -213,187 +213,210 @@ ForceResult compute_forces(const std::vector<Tet>& tets, const ElementOptions& o
   return finish_forces(r);
 }
 
-ForceResult update_material(const std::vector<Tet>& tets, const std::vector<Material>& materials,
-                            const ElementOptions& options, double tau, State& st,
-                            ElementScratch& scratch) {
-  const std::size_t mesh_nodes = static_cast<std::size_t>(st.first_particle);
-  build_incidence(tets, mesh_nodes, scratch);
-  if (distributed(scratch)) build_distribution(tets, mesh_nodes, scratch);
-  const auto anp = [&](Index mat) {
-    return mat < static_cast<Index>(options.average_nodal_pressure.size()) &&
-           options.average_nodal_pressure[mat];
-  };
-  const bool any_anp = std::any_of(options.average_nodal_pressure.begin(),
-                                   options.average_nodal_pressure.end(), [](char c) { return c; });
-  if (any_anp) {
-    const std::size_t n = st.x.size();
-    if (scratch.vol0.size() != n) {  // nodal reference volumes and materials, once
-      scratch.vol0.assign(n, 0.0);
-      scratch.node_material.assign(n, -1);
-      for (std::size_t t = 0; t < tets.size(); ++t)
-        for (Index k : tets[t]) {
-          scratch.vol0[k] += 0.25 * st.vol0[t];
-          // Nodes of one body share its material.
-          if (anp(st.tet_material[t])) scratch.node_material[k] = st.tet_material[t];
-        }
-    }
-    scratch.pressure.assign(n, 0.0);
-    scratch.node_j.assign(n, 1.0);
-    scratch.tet_dvol.assign(tets.size(), 0.0);
-    scratch.tet_energy.assign(tets.size(), 0.0);
-    scratch.tet_averaged.assign(tets.size(), 0);
-  }
+namespace {
 
-  // Pass 1: kinematics, deviator, viscosity; for per-tet pressure also the EOS, the energy
-  // and the forces.
-  const double h = 0.5 * tau;
-  const MyTets mine(scratch, tets.size());
-  std::vector<ForceResult> blocks = block_results(mine.size());
-  ForceResult forces = collective_pass(scratch, blocks, [&] {
-    parallel::for_blocks(mine.size(), [&](std::size_t blk, std::size_t begin, std::size_t end) {
-      TetGeometry gm, ge;  // mid-step and end-of-step geometry
-      for (std::size_t i = begin; i < end; ++i) {
-        const std::size_t t = mine[i];
-        if (st.damage[t] == Damage::particle) continue;  // now a particle: no longer a cell
-        const Index ti = static_cast<Index>(t);
-        const Tet& k = tets[t];
-        const Index mi = st.tet_material[t];
-        const Material& mat = materials[mi];
+// Whether material `mat` takes the average nodal pressure.
+bool averages_pressure(const ElementOptions& options, Index mat) {
+  return mat < static_cast<Index>(options.average_nodal_pressure.size()) &&
+         options.average_nodal_pressure[mat];
+}
 
-        // Edges at the end of the step and at mid-step (x^{n+1/2} = x^{n+1} − τ/2 U^{n+1}), and
-        // the velocity differences U_i − U_0.
-        const Vec3 &x0 = st.x[k[0]], &u0 = st.v[k[0]];
-        double ee[3][3], em[3][3], du[3][3];
-        for (int i = 0; i < 3; ++i) {
-          const Vec3 &xi = st.x[k[i + 1]], &ui = st.v[k[i + 1]];
-          for (int d = 0; d < 3; ++d) {
-            ee[i][d] = xi[d] - x0[d];
-            du[i][d] = ui[d] - u0[d];
-            em[i][d] = ee[i][d] - h * du[i][d];
-          }
-        }
-        tet_geometry(em, gm);
-        if (!(gm.vol > 0.0)) inverted(ti, "during the step", gm.vol, st.vol0[t]);
-        tet_geometry(ee, ge);
-        if (!std::isfinite(ge.vol)) throw InvertedElement(ti, "non-finite node position");
-        if (!(ge.vol > 0.0)) inverted(ti, "at the end of the step", ge.vol, st.vol0[t]);
-
-        // L = Σ_i (U_i − U_0) ⊗ ∇N_i, ∇N_i = −a_i / (3V) at mid-step.
-        double L[3][3];
-        const double inv3v = -1.0 / (3.0 * gm.vol);
-        for (int r = 0; r < 3; ++r)
-          for (int c = 0; c < 3; ++c)
-            L[r][c] =
-                inv3v * (du[0][r] * gm.a[1][c] + du[1][r] * gm.a[2][c] + du[2][r] * gm.a[3][c]);
-        const Sym6 d{L[0][0],
-                     L[1][1],
-                     L[2][2],
-                     0.5 * (L[0][1] + L[1][0]),
-                     0.5 * (L[1][2] + L[2][1]),
-                     0.5 * (L[0][2] + L[2][0])};
-        const std::array<double, 3> w{0.5 * (L[2][1] - L[1][2]), 0.5 * (L[0][2] - L[2][0]),
-                                      0.5 * (L[1][0] - L[0][1])};
-        const double trD = d[0] + d[1] + d[2];
-
-        // Deviator (Jaumann rate, radial return) and its trapezoidal work τ V ½(sⁿ + sⁿ⁺¹) : D.
-        const Sym6 s_old = st.s[t];
-        const bool failed = options.fracture && st.damage[t] != Damage::intact;  // no deviator
-        const double rho_mid = mat.density * st.vol0[t] / gm.vol;
-        const DeviatorIncrement inc = failed
-                                          ? DeviatorIncrement{}
-                                          : update_deviator6(mat, st.s[t], d, w, tau, st.eps_p[t],
-                                                             st.temperature[t], rho_mid, st.p[t]);
-        const Sym6& s_new = st.s[t];
-        double sd = 0.0;
-        for (int c = 0; c < 6; ++c) sd += (c < 3 ? 1.0 : 2.0) * (s_old[c] + s_new[c]) * d[c];
-        const double w_dev = 0.5 * tau * gm.vol * sd;
-        double w_p = 0.0;
-        if (inc.dplastic > 0.0) {
-          // Plastic work V σy Δε̄p: bilinear with σy at mid-increment (exact for linear
-          // hardening), the other laws at the end of the step (the heating their return
-          // assumed).
-          const double y = mat.strength == StrengthModel::bilinear
-                               ? inc.yield - 0.5 * mat.hardening_modulus * inc.dplastic
-                               : inc.yield;
-          w_p = gm.vol * y * inc.dplastic;
-          st.w_plastic[t] += w_p;
-          st.eps_p[t] += inc.dplastic;
-          // Erosion by strain: the cell is listed with those whose step is too short.
-          if (mat.erosion_plastic_strain > 0.0 && st.eps_p[t] >= mat.erosion_plastic_strain)
-            blocks[blk].eroding.push_back(ti);
-          // Ductile failure: D += Δε̄p / ε_f(σ*, ε̇p, T), σ* = −p / σ_eq with the pressure of
-          // the step's start and the returned deviator; eroded as the strain limit is, at D = 1.
-          if (mat.ductile_failure) {
-            const double eq = von_mises(s_new);
-            const double triax = eq > 0.0 ? -st.p[t] / eq : 0.0;
-            st.ductile[t] +=
-                inc.dplastic / johnson_cook_failure_strain(mat.johnson_cook_failure, triax,
-                                                           inc.dplastic / tau, st.temperature[t]);
-            if (st.ductile[t] >= 1.0) blocks[blk].eroding.push_back(ti);
-          }
-        }
-
-        // Viscosity from the mid-step strain rate; its work is the trapezoid of the values at
-        // both ends of the step (q^{n+1/2} is what the forces at t^{n+1} carry), as for the
-        // pressure.
-        double q = 0.0;
-        if (trD < 0.0) {  // compression only: length and sound speed only then
-          const double l = 3.0 * gm.vol / std::sqrt(gm.amax2);
-          q = bulk_viscosity(rho_mid, l, std::sqrt(st.sound2[t]), trD, options.viscosity_linear,
-                             options.viscosity_quadratic);
-        }
-        const double dvol = ge.vol - st.vol[t];
-        const double w_q = -0.5 * (st.q[t] + q) * dvol;
-        st.q[t] = q;
-        st.trace_d[t] = trD;
-        st.w_viscous[t] += w_q;
-        st.vol[t] = ge.vol;
-        // Temperature: the viscous (shock) heat and the fraction χ of the plastic work.
-        if (mat.thermal())
-          st.temperature[t] +=
-              (mat.taylor_quinney * w_p + w_q) / (mat.density * st.vol0[t] * mat.specific_heat);
-
-        if (anp(mi)) {
-          // Failed cells are left out of the nodal averages: their neighbours' pressure must not
-          // depend on a loosened cell's volume (an intact cell beside spalled ones was crushed to
-          // V/V0 = 0.29 under an averaged pressure far below its own).
-          scratch.tet_averaged[t] = !options.fracture || st.damage[t] == Damage::intact;
-          scratch.tet_energy[t] = st.e_int[t];
-          st.e_int[t] += w_dev + w_q;  // the pressure work follows in pass 3
-          scratch.tet_dvol[t] = dvol;
-          continue;
-        }
-        // Per-tet pressure: p^{n+1} = A(μ) + B E^{n+1}/V0 with
-        //   E^{n+1} = E^n + W_dev − ½ (p^n + p^{n+1}) ΔV + W_q, solved for E^{n+1}.
-        const double mu = st.vol0[t] / ge.vol - 1.0;
-        const EosTerms eos = eos_terms(mat, mu);
-        double e_new = implicit_energy(st.e_int[t] + w_dev, w_q, st.p[t], eos, dvol, st.vol0[t]);
-        double p_new = eos.a + eos.b * e_new / st.vol0[t];
-        if (options.fracture) {
-          const double carried = fail(mat, ti, ge.vol, p_new, st);
-          if (carried != p_new) {  // the energy with the pressure the cell carries
-            p_new = carried;
-            e_new = st.e_int[t] + w_dev - 0.5 * (st.p[t] + p_new) * dvol + w_q;
-          }
-        }
-        st.e_int[t] = e_new;
-        st.p[t] = p_new;
-        st.sound2[t] = sound_speed2(mat, mu, st.p[t], eos, st.temperature[t]);
-        tet_forces(ti, ge, options, st, &scratch.tet_force[4 * t], blocks[blk]);
+// The arrays of the nodal averages: the nodal reference volumes and materials once, the rest
+// cleared each step.
+void prepare_averages(const std::vector<Tet>& tets, const ElementOptions& options, const State& st,
+                      ElementScratch& scratch) {
+  const std::size_t n = st.x.size();
+  if (scratch.vol0.size() != n) {
+    scratch.vol0.assign(n, 0.0);
+    scratch.node_material.assign(n, -1);
+    for (std::size_t t = 0; t < tets.size(); ++t)
+      for (Index k : tets[t]) {
+        scratch.vol0[k] += 0.25 * st.vol0[t];
+        // Nodes of one body share its material.
+        if (averages_pressure(options, st.tet_material[t]))
+          scratch.node_material[k] = st.tet_material[t];
       }
-    });
-  });
-  if (!any_anp) {
-    gather_forces(mesh_nodes, scratch, st);
-    if (distributed(scratch)) share_damaged(scratch, st, forces.eroding);
-    return finish_forces(forces);
   }
-  // Distributed: the inputs of the nodal averages at shared nodes, from the tets around them.
-  if (distributed(scratch)) share_tets(scratch, st, k_averages, scratch.rank_frontier_tets);
+  scratch.pressure.assign(n, 0.0);
+  scratch.node_j.assign(n, 1.0);
+  scratch.tet_dvol.assign(tets.size(), 0.0);
+  scratch.tet_energy.assign(tets.size(), 0.0);
+  scratch.tet_averaged.assign(tets.size(), 0);
+}
 
-  // Pass 2: nodal volumes and energies gathered from the cells in the averages (a quarter of
-  // each), then nodal pressures from them (per reference volume); distributed, at the nodes of
-  // this rank's tets only (pass 3 reads no other).
+// One cell's motion over the step: its geometry at mid-step (x^{n+1/2} = x^{n+1} − τ/2 U^{n+1})
+// and at the end, and the rate of deformation D, the spin W and tr D from the velocity gradient
+// at mid-step.
+struct CellKinematics {
+  TetGeometry gm, ge;
+  Sym6 d;
+  std::array<double, 3> w;
+  double trD;
+};
+
+[[gnu::always_inline]] inline void cell_kinematics(Index ti, const Tet& k, double tau,
+                                                   const State& st, CellKinematics& c) {
+  const double h = 0.5 * tau;
+  // Edges at the end of the step and at mid-step, and the velocity differences U_i − U_0.
+  const Vec3 &x0 = st.x[k[0]], &u0 = st.v[k[0]];
+  double ee[3][3], em[3][3], du[3][3];
+  for (int i = 0; i < 3; ++i) {
+    const Vec3 &xi = st.x[k[i + 1]], &ui = st.v[k[i + 1]];
+    for (int d = 0; d < 3; ++d) {
+      ee[i][d] = xi[d] - x0[d];
+      du[i][d] = ui[d] - u0[d];
+      em[i][d] = ee[i][d] - h * du[i][d];
+    }
+  }
+  const double vol0 = st.vol0[ti];
+  tet_geometry(em, c.gm);
+  if (!(c.gm.vol > 0.0)) inverted(ti, "during the step", c.gm.vol, vol0);
+  tet_geometry(ee, c.ge);
+  if (!std::isfinite(c.ge.vol)) throw InvertedElement(ti, "non-finite node position");
+  if (!(c.ge.vol > 0.0)) inverted(ti, "at the end of the step", c.ge.vol, vol0);
+
+  // L = Σ_i (U_i − U_0) ⊗ ∇N_i, ∇N_i = −a_i / (3V) at mid-step.
+  double L[3][3];
+  const double inv3v = -1.0 / (3.0 * c.gm.vol);
+  for (int r = 0; r < 3; ++r)
+    for (int col = 0; col < 3; ++col)
+      L[r][col] = inv3v * (du[0][r] * c.gm.a[1][col] + du[1][r] * c.gm.a[2][col] +
+                           du[2][r] * c.gm.a[3][col]);
+  c.d = Sym6{L[0][0],
+             L[1][1],
+             L[2][2],
+             0.5 * (L[0][1] + L[1][0]),
+             0.5 * (L[1][2] + L[2][1]),
+             0.5 * (L[0][2] + L[2][0])};
+  c.w = {0.5 * (L[2][1] - L[1][2]), 0.5 * (L[0][2] - L[2][0]), 0.5 * (L[1][0] - L[0][1])};
+  c.trD = c.d[0] + c.d[1] + c.d[2];
+}
+
+// The deviator (Jaumann rate, radial return; none in a failed cell) and its trapezoidal work
+// τ V ½(sⁿ + sⁿ⁺¹) : D, returned; the plastic work V σy Δε̄p into `w_p` (bilinear with σy at
+// mid-increment, exact for linear hardening; the other laws at the end of the step, the heating
+// their return assumed), the plastic strain, and the cell listed as eroding when it reaches the
+// strain limit or Johnson–Cook's ductile damage D = 1:
+//   D += Δε̄p / ε_f(σ*, ε̇p, T),  σ* = −p / σ_eq  (the start's pressure, the returned deviator).
+[[gnu::always_inline]] inline double deviator_work(Index t, const Material& mat,
+                                                   const CellKinematics& c, double rho_mid,
+                                                   const ElementOptions& options, double tau,
+                                                   State& st, ForceResult& block, double& w_p) {
+  const Sym6 s_old = st.s[t];
+  const bool failed = options.fracture && st.damage[t] != Damage::intact;
+  const DeviatorIncrement inc = failed ? DeviatorIncrement{}
+                                       : update_deviator6(mat, st.s[t], c.d, c.w, tau, st.eps_p[t],
+                                                          st.temperature[t], rho_mid, st.p[t]);
+  const Sym6& s_new = st.s[t];
+  double sd = 0.0;
+  for (int k = 0; k < 6; ++k) sd += (k < 3 ? 1.0 : 2.0) * (s_old[k] + s_new[k]) * c.d[k];
+  const double w_dev = 0.5 * tau * c.gm.vol * sd;
+  w_p = 0.0;
+  if (inc.dplastic > 0.0) {
+    const double y = mat.strength == StrengthModel::bilinear
+                         ? inc.yield - 0.5 * mat.hardening_modulus * inc.dplastic
+                         : inc.yield;
+    w_p = c.gm.vol * y * inc.dplastic;
+    st.w_plastic[t] += w_p;
+    st.eps_p[t] += inc.dplastic;
+    if (mat.erosion_plastic_strain > 0.0 && st.eps_p[t] >= mat.erosion_plastic_strain)
+      block.eroding.push_back(t);
+    if (mat.ductile_failure) {
+      const double eq = von_mises(s_new);
+      const double triax = eq > 0.0 ? -st.p[t] / eq : 0.0;
+      st.ductile[t] +=
+          inc.dplastic / johnson_cook_failure_strain(mat.johnson_cook_failure, triax,
+                                                     inc.dplastic / tau, st.temperature[t]);
+      if (st.ductile[t] >= 1.0) block.eroding.push_back(t);
+    }
+  }
+  return w_dev;
+}
+
+// Viscosity from the mid-step strain rate, in compression only; its work, returned, is the
+// trapezoid of the values at both ends of the step (q^{n+1/2} is what the forces at t^{n+1}
+// carry), as for the pressure. The cell takes its end volume (`dvol` the change) and the heat:
+// the viscous (shock) heat and the fraction χ of the plastic work.
+[[gnu::always_inline]] inline double viscous_work(Index t, const Material& mat,
+                                                  const CellKinematics& c, double rho_mid,
+                                                  double w_p, const ElementOptions& options,
+                                                  State& st, double& dvol) {
+  double q = 0.0;
+  if (c.trD < 0.0) {
+    const double l = 3.0 * c.gm.vol / std::sqrt(c.gm.amax2);
+    q = bulk_viscosity(rho_mid, l, std::sqrt(st.sound2[t]), c.trD, options.viscosity_linear,
+                       options.viscosity_quadratic);
+  }
+  dvol = c.ge.vol - st.vol[t];
+  const double w_q = -0.5 * (st.q[t] + q) * dvol;
+  st.q[t] = q;
+  st.trace_d[t] = c.trD;
+  st.w_viscous[t] += w_q;
+  st.vol[t] = c.ge.vol;
+  if (mat.thermal())
+    st.temperature[t] +=
+        (mat.taylor_quinney * w_p + w_q) / (mat.density * st.vol0[t] * mat.specific_heat);
+  return w_q;
+}
+
+// Per-tet pressure, p^{n+1} = A(μ) + B E^{n+1}/V0 with
+//   E^{n+1} = E^n + W_dev − ½ (p^n + p^{n+1}) ΔV + W_q, solved for E^{n+1},
+// failure (the pressure a failed cell carries, its energy with it), the sound speed, and the
+// cell's forces from its end geometry.
+[[gnu::always_inline]] inline void cell_pressure(Index t, const Material& mat,
+                                                 const CellKinematics& c, double w_dev, double w_q,
+                                                 double dvol, const ElementOptions& options,
+                                                 State& st, Vec3* f, ForceResult& block) {
+  const double mu = st.vol0[t] / c.ge.vol - 1.0;
+  const EosTerms eos = eos_terms(mat, mu);
+  double e_new = implicit_energy(st.e_int[t] + w_dev, w_q, st.p[t], eos, dvol, st.vol0[t]);
+  double p_new = eos.a + eos.b * e_new / st.vol0[t];
+  if (options.fracture) {
+    const double carried = fail(mat, t, c.ge.vol, p_new, st);
+    if (carried != p_new) {
+      p_new = carried;
+      e_new = st.e_int[t] + w_dev - 0.5 * (st.p[t] + p_new) * dvol + w_q;
+    }
+  }
+  st.e_int[t] = e_new;
+  st.p[t] = p_new;
+  st.sound2[t] = sound_speed2(mat, mu, st.p[t], eos, st.temperature[t]);
+  tet_forces(t, c.ge, options, st, f, block);
+}
+
+// Pass 1 for one cell: kinematics, deviator, viscosity; with per-tet pressure also the EOS, the
+// energy and the forces; with the average nodal pressure what pass 2 gathers (failed cells are
+// left out of the averages: their neighbours' pressure must not depend on a loosened cell's
+// volume — an intact cell beside spalled ones was crushed to V/V0 = 0.29 under an averaged
+// pressure far below its own), the pressure work following in pass 3.
+[[gnu::always_inline]] inline void update_cell(std::size_t t, const Tet& k,
+                                               const std::vector<Material>& materials,
+                                               const ElementOptions& options, double tau, State& st,
+                                               ElementScratch& scratch, ForceResult& block) {
+  const Index ti = static_cast<Index>(t);
+  const Index mi = st.tet_material[t];
+  const Material& mat = materials[mi];
+  CellKinematics c;
+  cell_kinematics(ti, k, tau, st, c);
+  const double rho_mid = mat.density * st.vol0[t] / c.gm.vol;
+  double w_p = 0.0, dvol = 0.0;
+  const double w_dev = deviator_work(ti, mat, c, rho_mid, options, tau, st, block, w_p);
+  const double w_q = viscous_work(ti, mat, c, rho_mid, w_p, options, st, dvol);
+  if (averages_pressure(options, mi)) {
+    scratch.tet_averaged[t] = !options.fracture || st.damage[t] == Damage::intact;
+    scratch.tet_energy[t] = st.e_int[t];
+    st.e_int[t] += w_dev + w_q;
+    scratch.tet_dvol[t] = dvol;
+    return;
+  }
+  cell_pressure(ti, mat, c, w_dev, w_q, dvol, options, st, &scratch.tet_force[4 * t], block);
+}
+
+// Pass 2: nodal volumes and energies gathered from the cells in the averages (a quarter of
+// each), then nodal pressures from them (per reference volume); distributed, at the nodes of
+// this rank's tets only (pass 3 reads no other).
+void nodal_pressures(const std::vector<Material>& materials, const ElementOptions& options,
+                     std::size_t mesh_nodes, const State& st, ElementScratch& scratch) {
   const std::size_t averaged_nodes = distributed(scratch) ? scratch.my_nodes.size() : mesh_nodes;
   parallel::for_each(averaged_nodes, [&](std::size_t i) {
     const std::size_t n = distributed(scratch) ? static_cast<std::size_t>(scratch.my_nodes[i]) : i;
@@ -413,47 +436,88 @@ ForceResult update_material(const std::vector<Tet>& tets, const std::vector<Mate
     scratch.pressure[n] = eos_pressure(materials[nm], mu, energy / scratch.vol0[n]);
     scratch.node_j[n] = vol / scratch.vol0[n];
   });
+}
 
-  // Pass 3: element pressure = mean of its nodes'; trapezoidal pressure work; forces.
+// Pass 3 for one cell of the average nodal pressure: its pressure the mean of its nodes',
+// stabilized, its own EOS when failed; the trapezoidal pressure work; the forces.
+[[gnu::always_inline]] inline void averaged_cell_pressure(std::size_t t, const Tet& k,
+                                                          const Material& mat,
+                                                          const ElementOptions& options, State& st,
+                                                          ElementScratch& scratch,
+                                                          ForceResult& block) {
+  const Index ti = static_cast<Index>(t);
+  const double mu = st.vol0[t] / st.vol[t] - 1.0, dvol = scratch.tet_dvol[t];
+  const EosTerms eos = eos_terms(mat, mu);
+  double p_new = 0.25 * (scratch.pressure[k[0]] + scratch.pressure[k[1]] + scratch.pressure[k[2]] +
+                         scratch.pressure[k[3]]);
+  // Stabilization: the averages leave a tet free to change its volume where its nodes' volumes
+  // do not (a tet crushed to J = 0.36 under an averaged tension, at the axis of a Taylor rod);
+  // α K (J̄ − J) / J resists only that difference, J̄ the mean of its nodes' volume ratios, and
+  // vanishes where the tet follows its nodes.
+  if (options.anp_stabilization > 0.0) {
+    const double j = st.vol[t] / st.vol0[t];
+    const double jbar = 0.25 * (scratch.node_j[k[0]] + scratch.node_j[k[1]] + scratch.node_j[k[2]] +
+                                scratch.node_j[k[3]]);
+    p_new += options.anp_stabilization * mat.bulk_modulus * (jbar - j) / j;
+  }
+  if (options.fracture && st.damage[t] != Damage::intact) {
+    // A failed cell no longer averages its pressure with its neighbours' nodes (loosened
+    // neighbours in tension would leave it no resistance to compression): its own EOS, the
+    // energy solved implicitly as in the per-tet path.
+    p_new = eos.a +
+            eos.b * implicit_energy(st.e_int[t], 0.0, st.p[t], eos, dvol, st.vol0[t]) / st.vol0[t];
+  }
+  if (options.fracture) p_new = fail(mat, ti, st.vol[t], p_new, st);
+  st.e_int[t] -= 0.5 * (st.p[t] + p_new) * dvol;
+  st.p[t] = p_new;
+  st.sound2[t] = sound_speed2(mat, mu, p_new, eos, st.temperature[t]);
+  TetGeometry g;
+  end_geometry(ti, k, st, g, "at the end of the step");
+  tet_forces(ti, g, options, st, &scratch.tet_force[4 * t], block);
+}
+
+}  // namespace
+
+// The element stage: pass 1 over the cells (update_cell); without the average nodal pressure the
+// forces are then gathered; with it, pass 2 (nodal_pressures) and pass 3
+// (averaged_cell_pressure) follow.
+ForceResult update_material(const std::vector<Tet>& tets, const std::vector<Material>& materials,
+                            const ElementOptions& options, double tau, State& st,
+                            ElementScratch& scratch) {
+  const std::size_t mesh_nodes = static_cast<std::size_t>(st.first_particle);
+  build_incidence(tets, mesh_nodes, scratch);
+  if (distributed(scratch)) build_distribution(tets, mesh_nodes, scratch);
+  const bool any_anp = std::any_of(options.average_nodal_pressure.begin(),
+                                   options.average_nodal_pressure.end(), [](char c) { return c; });
+  if (any_anp) prepare_averages(tets, options, st, scratch);
+
+  const MyTets mine(scratch, tets.size());
+  std::vector<ForceResult> blocks = block_results(mine.size());
+  ForceResult forces = collective_pass(scratch, blocks, [&] {
+    parallel::for_blocks(mine.size(), [&](std::size_t blk, std::size_t begin, std::size_t end) {
+      for (std::size_t i = begin; i < end; ++i) {
+        const std::size_t t = mine[i];
+        if (st.damage[t] == Damage::particle) continue;  // now a particle: no longer a cell
+        update_cell(t, tets[t], materials, options, tau, st, scratch, blocks[blk]);
+      }
+    });
+  });
+  if (!any_anp) {
+    gather_forces(mesh_nodes, scratch, st);
+    if (distributed(scratch)) share_damaged(scratch, st, forces.eroding);
+    return finish_forces(forces);
+  }
+  // Distributed: the inputs of the nodal averages at shared nodes, from the tets around them.
+  if (distributed(scratch)) share_tets(scratch, st, k_averages, scratch.rank_frontier_tets);
+  nodal_pressures(materials, options, mesh_nodes, st, scratch);
   blocks = block_results(mine.size());
   const ForceResult third = collective_pass(scratch, blocks, [&] {
     parallel::for_blocks(mine.size(), [&](std::size_t blk, std::size_t begin, std::size_t end) {
       for (std::size_t i = begin; i < end; ++i) {
         const std::size_t t = mine[i];
         const Index mi = st.tet_material[t];
-        if (!anp(mi) || st.damage[t] == Damage::particle) continue;
-        const Index ti = static_cast<Index>(t);
-        const Tet& k = tets[t];
-        const Material& mat = materials[mi];
-        const double mu = st.vol0[t] / st.vol[t] - 1.0, dvol = scratch.tet_dvol[t];
-        const EosTerms eos = eos_terms(mat, mu);
-        double p_new = 0.25 * (scratch.pressure[k[0]] + scratch.pressure[k[1]] +
-                               scratch.pressure[k[2]] + scratch.pressure[k[3]]);
-        // Stabilization: the averages leave a tet free to change its volume where its nodes'
-        // volumes do not (a tet crushed to J = 0.36 under an averaged tension, at the axis of a
-        // Taylor rod); α K (J̄ − J) / J resists only that difference, J̄ the mean of its nodes'
-        // volume ratios, and vanishes where the tet follows its nodes.
-        if (options.anp_stabilization > 0.0) {
-          const double j = st.vol[t] / st.vol0[t];
-          const double jbar = 0.25 * (scratch.node_j[k[0]] + scratch.node_j[k[1]] +
-                                      scratch.node_j[k[2]] + scratch.node_j[k[3]]);
-          p_new += options.anp_stabilization * mat.bulk_modulus * (jbar - j) / j;
-        }
-        if (options.fracture && st.damage[t] != Damage::intact) {
-          // A failed cell no longer averages its pressure with its neighbours' nodes (loosened
-          // neighbours in tension would leave it no resistance to compression): its own EOS,
-          // the energy solved implicitly as in the per-tet path.
-          p_new = eos.a + eos.b *
-                              implicit_energy(st.e_int[t], 0.0, st.p[t], eos, dvol, st.vol0[t]) /
-                              st.vol0[t];
-        }
-        if (options.fracture) p_new = fail(mat, ti, st.vol[t], p_new, st);
-        st.e_int[t] -= 0.5 * (st.p[t] + p_new) * dvol;
-        st.p[t] = p_new;
-        st.sound2[t] = sound_speed2(mat, mu, p_new, eos, st.temperature[t]);
-        TetGeometry g;
-        end_geometry(ti, k, st, g, "at the end of the step");
-        tet_forces(ti, g, options, st, &scratch.tet_force[4 * t], blocks[blk]);
+        if (!averages_pressure(options, mi) || st.damage[t] == Damage::particle) continue;
+        averaged_cell_pressure(t, tets[t], materials[mi], options, st, scratch, blocks[blk]);
       }
     });
   });
