@@ -67,7 +67,7 @@ Simulation::Simulation(Model model, SolverSettings settings)
     : model_(std::move(model)),
       settings_(settings),
       state_(initial_state(model_)),
-      element_(model_.element) {
+      elements_(model_.element) {
   // Threads: all the cores by default; processes sharing a machine share its cores.
   parallel::set_threads(settings_.threads > 0 || mpi::local_ranks() == 1
                             ? settings_.threads
@@ -153,11 +153,10 @@ Simulation::Simulation(Model model, SolverSettings settings)
       throw RunFailure(std::string("cannot run on ") + std::to_string(mpi::ranks()) +
                        " processes: " + e.what());
     }
-    scratch_.rank = mpi::rank();
-    scratch_.rank_tets.assign(static_cast<std::size_t>(mpi::ranks()), {});
+    std::vector<std::vector<Index>> rank_tets(static_cast<std::size_t>(mpi::ranks()));
     for (std::size_t t = 0; t < partition_.tet_rank.size(); ++t)
-      scratch_.rank_tets[static_cast<std::size_t>(partition_.tet_rank[t])].push_back(
-          static_cast<Index>(t));
+      rank_tets[static_cast<std::size_t>(partition_.tet_rank[t])].push_back(static_cast<Index>(t));
+    elements_.distribute(mpi::rank(), std::move(rank_tets));
     modules_.push_back("parallel:mpi_replicated");
   }
   elements_stage();  // F^0 and τ^0; the first step then uses τ_v = τ/2
@@ -366,7 +365,7 @@ void Simulation::output_stage() {
 }
 
 void Simulation::gather_state() {
-  share_whole_state(scratch_, state_);
+  elements_.share_whole_state(state_);
 }
 
 void Simulation::commit_stage() {
@@ -393,13 +392,13 @@ void Simulation::fracture_stage() {
 void Simulation::elements_stage() {
   State& st = state_;
   try {
-    const ForceResult r = st.step > 0 ? update_material(model_.mesh.tets, model_.materials,
-                                                        element_, st.dt_prev, st, scratch_)
-                                      : compute_forces(model_.mesh.tets, element_, st, scratch_);
+    const ForceResult r = st.step > 0
+                              ? elements_.update(model_.mesh.tets, model_.materials, st.dt_prev, st)
+                              : elements_.forces(model_.mesh.tets, st);
     critical_tet_ = r.critical_tet;
     if (fragmentation_) {  // erosion: by the step, and by the plastic strain (per material)
       if (st.step == 0 && model_.erosion_step_ratio > 0.0)  // a fraction of the first step
-        element_.erode_dt2 = std::pow(model_.erosion_step_ratio * r.dt_stable, 2);
+        elements_.set_erosion_limit(std::pow(model_.erosion_step_ratio * r.dt_stable, 2));
       fragmentation_->erode(r.eroding);
     }
     // No step is shortened to land on end_time: an abrupt change of τ costs the leapfrog
@@ -432,7 +431,7 @@ void Simulation::watch_step() {
   const Index t = critical_tet_;
   std::array<double, 4> fields{st.vol[t] / st.vol0[t], st.p[t], st.eps_p[t],
                                static_cast<double>(st.damage[t])};
-  if (!scratch_.rank_tets.empty()) {
+  if (elements_.rank_tets()) {
     std::string bytes(sizeof(fields), '\0');
     std::memcpy(bytes.data(), fields.data(), sizeof(fields));
     bytes = mpi::broadcast(bytes, partition_.tet_rank[t]);

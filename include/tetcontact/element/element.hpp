@@ -106,4 +106,37 @@ ForceResult update_material(const std::vector<Tet>& tets, const std::vector<Mate
 /// Sets the per-tet sound speed from the current state (needed before the first forces).
 void init_sound_speed(const std::vector<Material>& materials, State& st);
 
+/// The element stage of a run: the model's element options (with the erosion limit the first
+/// step sets) and the arrays it keeps between steps (ElementScratch), over the mesh's tets.
+class ElementStage {
+ public:
+  explicit ElementStage(const ElementOptions& options) : options_(options) {}
+  /// Distributed: this process is `rank` and updates the tets rank_tets[rank] (each ascending).
+  void distribute(int rank, std::vector<std::vector<Index>> rank_tets) {
+    scratch_.rank = rank;
+    scratch_.rank_tets = std::move(rank_tets);
+  }
+  /// This rank's tets; null on one process.
+  const std::vector<Index>* rank_tets() const {
+    return scratch_.rank_tets.empty() ? nullptr : &scratch_.rank_tets[scratch_.rank];
+  }
+  /// A cell whose stable step squared falls below `dt2` is listed eroding.
+  void set_erosion_limit(double dt2) { options_.erode_dt2 = dt2; }
+  /// The forces and stable step of the current state (compute_forces).
+  ForceResult forces(const std::vector<Tet>& tets, State& st) {
+    return compute_forces(tets, options_, st, scratch_);
+  }
+  /// The step's material update, forces and stable step (update_material).
+  ForceResult update(const std::vector<Tet>& tets, const std::vector<Material>& materials,
+                     double tau, State& st) {
+    return update_material(tets, materials, options_, tau, st, scratch_);
+  }
+  /// Distributed: every tet's fields on every rank (share_whole_state); nothing on one process.
+  void share_whole_state(State& st) { tc::share_whole_state(scratch_, st); }
+
+ private:
+  ElementOptions options_;
+  ElementScratch scratch_;
+};
+
 }  // namespace tc

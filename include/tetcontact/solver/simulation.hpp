@@ -99,9 +99,7 @@ class Simulation {
   /// the summary and references read them). Nothing on one process.
   void gather_state();
   /// Distributed: this rank's tets (ascending); null on one process.
-  const std::vector<Index>* rank_tets() const {
-    return scratch_.rank_tets.empty() ? nullptr : &scratch_.rank_tets[scratch_.rank];
-  }
+  const std::vector<Index>* rank_tets() const { return elements_.rank_tets(); }
 
  private:
   void predict_stage();
@@ -124,8 +122,7 @@ class Simulation {
   const Model model_;  // as set up: never changed during the run
   SolverSettings settings_;
   State state_;
-  ElementOptions element_;  // the model's, with the erosion limit of the first step
-  ElementScratch scratch_;
+  ElementStage elements_;
   std::vector<Index> surface_nodes_;
   std::vector<WallResult> wall_results_;
   std::unique_ptr<ContactCandidates> candidates_;  // detection's broadphase: bodies, particles
