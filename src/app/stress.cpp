@@ -14,6 +14,7 @@
 
 #include "tetcontact/app/float_ccd.hpp"
 #include "tetcontact/app/setup.hpp"
+#include "tetcontact/app/summary.hpp"
 #include "tetcontact/diagnostics/balance.hpp"
 #include "tetcontact/diagnostics/penetration.hpp"
 #include "tetcontact/io/case.hpp"
@@ -471,18 +472,10 @@ long micro_scenes_report(const StressOptions& o, const std::string& scenes_dir, 
       x["nodes_inside"] = r.penetration.nodes_inside;
       x["crossings"] = r.penetration.crossings;
       x["max_crossing_depth"] = r.penetration.max_crossing_depth;
-      Json bounds = Json::array();
       std::string missed;
-      for (const ExpectResult& e : r.expect) {
-        Json b = Json::object();
-        b["name"] = e.name;
-        b["bound"] = e.bound;
-        b["measured"] = std::isnan(e.measured) ? Json() : Json(e.measured);
-        b["pass"] = e.pass;
-        bounds.push_back(b);
+      for (const ExpectResult& e : r.expect)
         if (!e.pass) missed += " " + e.name;
-      }
-      x["expect"] = bounds;
+      x["expect"] = expect_json(r.expect);
       x["pass"] = r.pass;
       js.push_back(x);
       if (!o.json)

@@ -58,128 +58,162 @@ Verification StepVerifier::verify_again(const std::vector<Surface>& surfaces,
   return run(surfaces, x0, x1, first_particle, &changed);
 }
 
+namespace {
+
+// The boxes of primitive i over the motion x0 → x1 (not enlarged).
+void set_node_box(BroadphaseInput& in, std::size_t i, const std::vector<Vec3>& x0,
+                  const std::vector<Vec3>& x1) {
+  in.node_box[i] = swept_box({&x0[in.node_id[i]], &x1[in.node_id[i]]}, 0.0);
+}
+
+void set_face_box(BroadphaseInput& in, std::size_t f, const std::vector<Vec3>& x0,
+                  const std::vector<Vec3>& x1) {
+  const auto& k = in.face_nodes[f];
+  in.face_box[f] =
+      swept_box({&x0[k[0]], &x0[k[1]], &x0[k[2]], &x1[k[0]], &x1[k[1]], &x1[k[2]]}, 0.0);
+}
+
+void set_edge_box(BroadphaseInput& in, std::size_t e, const std::vector<Vec3>& x0,
+                  const std::vector<Vec3>& x1) {
+  const auto& k = in.edge_nodes[e];
+  in.edge_box[e] = swept_box({&x0[k[0]], &x0[k[1]], &x1[k[0]], &x1[k[1]]}, 0.0);
+}
+
+}  // namespace
+
 // The pairs to test: the listed pairs whose boxes of the motion overlap (a fresh search's);
 // again (`changed`), only the pairs with a side that reads a changed node, with the last
 // call's failing pairs.
 Candidates StepVerifier::candidate_pairs(const std::vector<Vec3>& x0, const std::vector<Vec3>& x1,
                                          const std::vector<char>* changed) {
+  return changed ? changed_pairs(x0, x1, *changed) : step_pairs(x0, x1);
+}
+
+// Binding lists, as contact's: the pairs of boxes enlarged by the reach, valid while every
+// vertex stays within the reach of where they were built (then a face's or an edge's box now
+// lies within its box then, enlarged by the reach). Each call keeps the listed pairs whose
+// boxes overlap now: the pairs a fresh search gives.
+Candidates StepVerifier::step_pairs(const std::vector<Vec3>& x0, const std::vector<Vec3>& x1) {
   BroadphaseInput& in = input_;
-  const auto node_box = [&](std::size_t i) {
-    in.node_box[i] = swept_box({&x0[in.node_id[i]], &x1[in.node_id[i]]}, 0.0);
-  };
-  const auto face_box = [&](std::size_t f) {
-    const auto& k = in.face_nodes[f];
-    in.face_box[f] =
-        swept_box({&x0[k[0]], &x0[k[1]], &x0[k[2]], &x1[k[0]], &x1[k[1]], &x1[k[2]]}, 0.0);
-  };
-  const auto edge_box = [&](std::size_t e) {
-    const auto& k = in.edge_nodes[e];
-    in.edge_box[e] = swept_box({&x0[k[0]], &x0[k[1]], &x1[k[0]], &x1[k[1]]}, 0.0);
-  };
-  Candidates pairs;
-  if (!changed) {
-    parallel::for_each(in.node_id.size(), node_box, parallel::k_light_block);
-    parallel::for_each(in.face_nodes.size(), face_box);
-    parallel::for_each(in.edge_nodes.size(), edge_box);
-    // Binding lists, as contact's: the pairs of boxes enlarged by the reach, valid while every
-    // vertex stays within the reach of where they were built (then a face's or an edge's box
-    // now lies within its box then, enlarged by the reach). Each call keeps the listed pairs
-    // whose boxes overlap now: the pairs a fresh search gives.
-    if (!lists_.hold(in.node_id, x0, x1)) {
-      BroadphaseInput enlarged = in;
-      for (auto* boxes : {&enlarged.node_box, &enlarged.face_box, &enlarged.edge_box})
-        for (Box& b : *boxes) b.lo.array() -= lists_.reach(), b.hi.array() += lists_.reach();
-      lists_.set(broadphase_->find(enlarged), in.node_id, x0);
-    }
-    for (const auto& p : lists_.lists().node_face)
-      if (boxes_overlap(in.node_box[p.first], in.face_box[p.second])) pairs.node_face.push_back(p);
-    for (const auto& p : lists_.lists().edge_edge)
-      if (boxes_overlap(in.edge_box[p.first], in.edge_box[p.second])) pairs.edge_edge.push_back(p);
-  } else {
-    // Again: a primitive is dirty when a node its pairs' tests read has moved (a face: its
-    // tet's nodes; an edge: the nodes of the faces at it). Only pairs with a dirty side can
-    // have changed: the broadphase runs on the dirty primitives and those whose boxes reach
-    // theirs; the clean pairs that failed last time are tested again as they are.
-    const auto any = [&](const auto& nodes) {
-      for (const Index n : nodes)
-        if ((*changed)[n]) return true;
-      return false;
-    };
-    std::vector<char> dirty_node(in.node_id.size()), dirty_face(in.face_nodes.size()),
-        dirty_edge(in.edge_nodes.size());
-    for (std::size_t i = 0; i < dirty_node.size(); ++i) dirty_node[i] = (*changed)[in.node_id[i]];
-    for (std::size_t f = 0; f < dirty_face.size(); ++f)
-      dirty_face[f] = any(in.face_nodes[f]) || any(mesh_.tets[face_tet_[f]]);
-    for (std::size_t e = 0; e < dirty_edge.size(); ++e) {
-      bool d = any(in.edge_nodes[e]);
-      for (const Index f : edge_faces_[e]) d = d || (f >= 0 && any(in.face_nodes[f]));
-      dirty_edge[e] = d;
-    }
-    Box reach;
-    bool have = false;
-    const auto grow = [&](const Box& b) {
-      if (!have) reach = b, have = true;
-      reach.lo = reach.lo.cwiseMin(b.lo);
-      reach.hi = reach.hi.cwiseMax(b.hi);
-    };
-    for (std::size_t i = 0; i < dirty_node.size(); ++i)
-      if (dirty_node[i]) node_box(i), grow(in.node_box[i]);
-    for (std::size_t f = 0; f < dirty_face.size(); ++f)
-      if (dirty_face[f]) face_box(f), grow(in.face_box[f]);
-    for (std::size_t e = 0; e < dirty_edge.size(); ++e)
-      if (dirty_edge[e]) edge_box(e), grow(in.edge_box[e]);
-    // The binding lists still hold every pair whose boxes overlap when the moved nodes stay
-    // within the reach (x⁰ was checked by the first call of the step); else a broadphase on
-    // the dirty primitives and those whose boxes reach theirs.
-    const bool valid = lists_.holds(in.node_id, x1, &dirty_node);
-    if (have && valid) {
-      for (const auto& p : lists_.lists().node_face)
-        if ((dirty_node[p.first] || dirty_face[p.second]) &&
-            boxes_overlap(in.node_box[p.first], in.face_box[p.second]))
-          pairs.node_face.push_back(p);
-      for (const auto& p : lists_.lists().edge_edge)
-        if ((dirty_edge[p.first] || dirty_edge[p.second]) &&
-            boxes_overlap(in.edge_box[p.first], in.edge_box[p.second]))
-          pairs.edge_edge.push_back(p);
-    } else if (have) {
-      BroadphaseInput sub;
-      std::vector<Index> node_map, face_map, edge_map;
-      for (std::size_t i = 0; i < dirty_node.size(); ++i)
-        if (dirty_node[i] || boxes_overlap(in.node_box[i], reach)) {
-          node_map.push_back(static_cast<Index>(i));
-          sub.node_box.push_back(in.node_box[i]);
-          sub.node_id.push_back(in.node_id[i]);
-          sub.node_body.push_back(in.node_body[i]);
-        }
-      for (std::size_t f = 0; f < dirty_face.size(); ++f)
-        if (dirty_face[f] || boxes_overlap(in.face_box[f], reach)) {
-          face_map.push_back(static_cast<Index>(f));
-          sub.face_box.push_back(in.face_box[f]);
-          sub.face_nodes.push_back(in.face_nodes[f]);
-          sub.face_body.push_back(in.face_body[f]);
-        }
-      for (std::size_t e = 0; e < dirty_edge.size(); ++e)
-        if (dirty_edge[e] || boxes_overlap(in.edge_box[e], reach)) {
-          edge_map.push_back(static_cast<Index>(e));
-          sub.edge_box.push_back(in.edge_box[e]);
-          sub.edge_nodes.push_back(in.edge_nodes[e]);
-          sub.edge_body.push_back(in.edge_body[e]);
-        }
-      const Candidates local = broadphase_->find(sub);
-      for (const auto& [a, b] : local.node_face)
-        if (dirty_node[node_map[a]] || dirty_face[face_map[b]])
-          pairs.node_face.push_back({node_map[a], face_map[b]});
-      for (const auto& [a, b] : local.edge_edge)
-        if (dirty_edge[edge_map[a]] || dirty_edge[edge_map[b]])
-          pairs.edge_edge.push_back(std::minmax(edge_map[a], edge_map[b]));
-    }
-    for (const auto& p : failed_vf_)
-      if (!dirty_node[p.first] && !dirty_face[p.second]) pairs.node_face.push_back(p);
-    for (const auto& p : failed_ee_)
-      if (!dirty_edge[p.first] && !dirty_edge[p.second]) pairs.edge_edge.push_back(p);
-    std::sort(pairs.node_face.begin(), pairs.node_face.end());
-    std::sort(pairs.edge_edge.begin(), pairs.edge_edge.end());
+  parallel::for_each(
+      in.node_id.size(), [&](std::size_t i) { set_node_box(in, i, x0, x1); },
+      parallel::k_light_block);
+  parallel::for_each(in.face_nodes.size(), [&](std::size_t f) { set_face_box(in, f, x0, x1); });
+  parallel::for_each(in.edge_nodes.size(), [&](std::size_t e) { set_edge_box(in, e, x0, x1); });
+  if (!lists_.hold(in.node_id, x0, x1)) {
+    BroadphaseInput enlarged = in;
+    for (auto* boxes : {&enlarged.node_box, &enlarged.face_box, &enlarged.edge_box})
+      for (Box& b : *boxes) b.lo.array() -= lists_.reach(), b.hi.array() += lists_.reach();
+    lists_.set(broadphase_->find(enlarged), in.node_id, x0);
   }
+  Candidates pairs;
+  for (const auto& p : lists_.lists().node_face)
+    if (boxes_overlap(in.node_box[p.first], in.face_box[p.second])) pairs.node_face.push_back(p);
+  for (const auto& p : lists_.lists().edge_edge)
+    if (boxes_overlap(in.edge_box[p.first], in.edge_box[p.second])) pairs.edge_edge.push_back(p);
+  return pairs;
+}
+
+// A primitive is dirty when a node its pairs' tests read has moved (a face: its tet's nodes; an
+// edge: the nodes of the faces at it); the boxes of the dirty ones are set anew, and `reach`
+// is the box of them all.
+StepVerifier::Dirty StepVerifier::dirty_primitives(const std::vector<Vec3>& x0,
+                                                   const std::vector<Vec3>& x1,
+                                                   const std::vector<char>& changed) {
+  BroadphaseInput& in = input_;
+  const auto any = [&](const auto& nodes) {
+    for (const Index n : nodes)
+      if (changed[n]) return true;
+    return false;
+  };
+  Dirty d;
+  d.node.resize(in.node_id.size());
+  d.face.resize(in.face_nodes.size());
+  d.edge.resize(in.edge_nodes.size());
+  for (std::size_t i = 0; i < d.node.size(); ++i) d.node[i] = changed[in.node_id[i]];
+  for (std::size_t f = 0; f < d.face.size(); ++f)
+    d.face[f] = any(in.face_nodes[f]) || any(mesh_.tets[face_tet_[f]]);
+  for (std::size_t e = 0; e < d.edge.size(); ++e) {
+    bool dirty = any(in.edge_nodes[e]);
+    for (const Index f : edge_faces_[e]) dirty = dirty || (f >= 0 && any(in.face_nodes[f]));
+    d.edge[e] = dirty;
+  }
+  const auto grow = [&](const Box& b) {
+    if (!d.any) d.reach = b, d.any = true;
+    d.reach.lo = d.reach.lo.cwiseMin(b.lo);
+    d.reach.hi = d.reach.hi.cwiseMax(b.hi);
+  };
+  for (std::size_t i = 0; i < d.node.size(); ++i)
+    if (d.node[i]) set_node_box(in, i, x0, x1), grow(in.node_box[i]);
+  for (std::size_t f = 0; f < d.face.size(); ++f)
+    if (d.face[f]) set_face_box(in, f, x0, x1), grow(in.face_box[f]);
+  for (std::size_t e = 0; e < d.edge.size(); ++e)
+    if (d.edge[e]) set_edge_box(in, e, x0, x1), grow(in.edge_box[e]);
+  return d;
+}
+
+// The pairs with a dirty side whose boxes overlap: from the binding lists while the moved nodes
+// stay within the reach (x⁰ was checked by the first call of the step), else from a broadphase
+// on the dirty primitives and those whose boxes reach theirs.
+Candidates StepVerifier::dirty_pairs(const Dirty& d, const std::vector<Vec3>& x1) {
+  const BroadphaseInput& in = input_;
+  Candidates pairs;
+  if (lists_.holds(in.node_id, x1, &d.node)) {
+    for (const auto& p : lists_.lists().node_face)
+      if ((d.node[p.first] || d.face[p.second]) &&
+          boxes_overlap(in.node_box[p.first], in.face_box[p.second]))
+        pairs.node_face.push_back(p);
+    for (const auto& p : lists_.lists().edge_edge)
+      if ((d.edge[p.first] || d.edge[p.second]) &&
+          boxes_overlap(in.edge_box[p.first], in.edge_box[p.second]))
+        pairs.edge_edge.push_back(p);
+    return pairs;
+  }
+  BroadphaseInput sub;
+  std::vector<Index> node_map, face_map, edge_map;
+  for (std::size_t i = 0; i < d.node.size(); ++i)
+    if (d.node[i] || boxes_overlap(in.node_box[i], d.reach)) {
+      node_map.push_back(static_cast<Index>(i));
+      sub.node_box.push_back(in.node_box[i]);
+      sub.node_id.push_back(in.node_id[i]);
+      sub.node_body.push_back(in.node_body[i]);
+    }
+  for (std::size_t f = 0; f < d.face.size(); ++f)
+    if (d.face[f] || boxes_overlap(in.face_box[f], d.reach)) {
+      face_map.push_back(static_cast<Index>(f));
+      sub.face_box.push_back(in.face_box[f]);
+      sub.face_nodes.push_back(in.face_nodes[f]);
+      sub.face_body.push_back(in.face_body[f]);
+    }
+  for (std::size_t e = 0; e < d.edge.size(); ++e)
+    if (d.edge[e] || boxes_overlap(in.edge_box[e], d.reach)) {
+      edge_map.push_back(static_cast<Index>(e));
+      sub.edge_box.push_back(in.edge_box[e]);
+      sub.edge_nodes.push_back(in.edge_nodes[e]);
+      sub.edge_body.push_back(in.edge_body[e]);
+    }
+  const Candidates local = broadphase_->find(sub);
+  for (const auto& [a, b] : local.node_face)
+    if (d.node[node_map[a]] || d.face[face_map[b]])
+      pairs.node_face.push_back({node_map[a], face_map[b]});
+  for (const auto& [a, b] : local.edge_edge)
+    if (d.edge[edge_map[a]] || d.edge[edge_map[b]])
+      pairs.edge_edge.push_back(std::minmax(edge_map[a], edge_map[b]));
+  return pairs;
+}
+
+// Again: only pairs with a dirty side can have changed; the clean pairs that failed last time
+// are tested again as they are.
+Candidates StepVerifier::changed_pairs(const std::vector<Vec3>& x0, const std::vector<Vec3>& x1,
+                                       const std::vector<char>& changed) {
+  const Dirty d = dirty_primitives(x0, x1, changed);
+  Candidates pairs = d.any ? dirty_pairs(d, x1) : Candidates{};
+  for (const auto& p : failed_vf_)
+    if (!d.node[p.first] && !d.face[p.second]) pairs.node_face.push_back(p);
+  for (const auto& p : failed_ee_)
+    if (!d.edge[p.first] && !d.edge[p.second]) pairs.edge_edge.push_back(p);
+  std::sort(pairs.node_face.begin(), pairs.node_face.end());
+  std::sort(pairs.edge_edge.begin(), pairs.edge_edge.end());
   return pairs;
 }
 

@@ -147,8 +147,95 @@ void ContactDetection::node_face_contacts(const State& st, const ContactCandidat
     contacts.insert(contacts.end(), block.begin(), block.end());
 }
 
-// Edge–edge contacts (Dobritsa et al.): the pairs in contact last step that are still close, then
-// the listed pairs that cross during the step (exact CCD); remembers this step's pairs.
+// The contact point of the edges ea and eb of the step, from their closest points at the start
+// `cp`; `kept`, the normal of a pair in contact last step. None when no normal can be found, or
+// when the normal would push each body into the other.
+std::optional<ContactPoint> ContactDetection::edge_contact(const State& st,
+                                                           const SurfacePrimitives& p, Index ea,
+                                                           Index eb, const SegmentPoints& cp,
+                                                           const Vec3* kept) const {
+  const std::vector<Vec3>& x0 = st.x;
+  const std::vector<Vec3>& x1 = st.x_star;
+  const std::vector<Edge>& edges = p.edges;
+  const Edge& e1 = edges[ea];
+  const Edge& e2 = edges[eb];
+  const Vec3 u = x0[e1[1]] - x0[e1[0]], v = x0[e2[1]] - x0[e2[0]];
+  const Vec3 apart = cp.on_a - cp.on_b;
+  const auto relative_velocity = [&](double alpha, double beta) {  // A's point less B's
+    return Vec3((1 - alpha) * st.v_star[e1[0]] + alpha * st.v_star[e1[1]] -
+                (1 - beta) * st.v_star[e2[0]] - beta * st.v_star[e2[1]]);
+  };
+  const Vec3 rel = relative_velocity(cp.alpha, cp.beta);
+  // The normal along the common perpendicular, from B's point to A's: oriented as it was
+  // when the contact began (kept), or by the side A's edge is on, or against the relative
+  // velocity when they touch; for nearly parallel edges, along the points' difference.
+  Vec3 n = u.cross(v);
+  if (n.squaredNorm() <= 1e-12 * u.squaredNorm() * v.squaredNorm()) n = kept ? *kept : apart;
+  if (n.squaredNorm() == 0.0) n = -rel;
+  if (n.squaredNorm() == 0.0) return std::nullopt;
+  n.normalize();
+  if (kept) {
+    if (n.dot(*kept) < 0.0) n = -n;
+  } else {
+    const double side = apart.dot(n);
+    if (side < 0.0 || (side == 0.0 && rel.dot(n) > 0.0)) n = -n;
+  }
+  // A normal that points into B's surface at its edge and out of A's at once (against the
+  // sums of the outward normals of the faces at each edge) would push each body into the
+  // other: not used. Edges touching side by side in a flattened patch get such normals,
+  // lying in the patch, whose pushes held two Hertz spheres together.
+  const auto outward = [&](Index e) {
+    Vec3 sum = Vec3::Zero();
+    for (const Index f : p.edge_faces[e])
+      if (f >= 0) sum += face_normal(p.faces[f], x0);
+    return sum;
+  };
+  if (n.dot(outward(ea)) >= 0.0 && n.dot(outward(eb)) <= 0.0) return std::nullopt;
+  double alpha = cp.alpha, beta = cp.beta;
+  double gap = apart.dot(n);  // < 0: already through by round-off: closed within the step
+  // Touching edges that stay in contact are measured at the step's end instead: the closest
+  // points and the normal at the predicted positions x*, and the gap there less what the
+  // predicted motion contributes, g = g(x*) − τ v*_rel·n*. The impulse's target −g/τ then
+  // gives g(x*) + τ Δv_rel·n* = 0 at the end of the step, where the gap at the start, carried
+  // by the start's normal and points, leaves the second-order drift of edges that slide and
+  // turn against each other (measured: 0.29 µm in the cubes case).
+  if (kept) {
+    const auto cp1 = closest_points_on_segments(x1[e1[0]], x1[e1[1]], x1[e2[0]], x1[e2[1]]);
+    Vec3 n1 = (x1[e1[1]] - x1[e1[0]]).cross(x1[e2[1]] - x1[e2[0]]);
+    if (cp1.alpha > 0.0 && cp1.alpha < 1.0 && cp1.beta > 0.0 && cp1.beta < 1.0 &&
+        n1.squaredNorm() > 0.0) {
+      n1.normalize();
+      if (n1.dot(n) < 0.0) n1 = -n1;
+      const Vec3 rel1 = relative_velocity(cp1.alpha, cp1.beta);
+      alpha = cp1.alpha;
+      beta = cp1.beta;
+      n = n1;
+      gap = (cp1.on_a - cp1.on_b).dot(n1) - st.dt * rel1.dot(n1);
+    }
+  }
+  ContactPoint c;  // side A: edge e1 (a, b) at α; side B: edge e2 (e, f) at β
+  c.a_nodes = {e1[0], e1[1], 0, 0};
+  c.a_w = {1.0 - alpha, alpha, 0, 0};
+  c.a_count = 2;
+  c.b_nodes = {e2[0], e2[1], 0, 0};
+  c.b_w = {1.0 - beta, beta, 0, 0};
+  c.b_count = 2;
+  c.normal = n;
+  c.gap = gap;
+  // Aim a few units of rounding beyond touching: positions land on doubles, and a target of
+  // exactly 0 leaves touching edges through each other by an ulp half the time (crossings
+  // of 5e-18 m in the cubes case).
+  c.separation = rounding_margin({&x1[e1[0]], &x1[e1[1]], &x1[e2[0]], &x1[e2[1]]});
+  c.standoff = separation_;
+  c.restore = true;
+  c.mode = settings_.mode;
+  c.friction = settings_.coefficient;
+  return c;
+}
+
+// Edge–edge contacts (Dobritsa et al.): surface edges of different bodies that cross during the
+// step (exact CCD), and first the pairs in contact last step that are still close (kept with
+// their normal's orientation); remembers this step's pairs.
 void ContactDetection::edge_edge_contacts(const State& st, const ContactCandidates& candidates,
                                           ContactStepStats& stats,
                                           std::vector<ContactPoint>& contacts) {
@@ -157,8 +244,6 @@ void ContactDetection::edge_edge_contacts(const State& st, const ContactCandidat
   const SurfacePrimitives& p = candidates.primitives();
   const std::vector<Edge>& edges = p.edges;
   const Candidates& cand = candidates.bodies();
-  // Dobritsa et al.: surface edges of different bodies that cross during the step, and the pairs in
-  // contact last step that are still close (kept with their normal's orientation).
   stats.edge_candidates = static_cast<long>(cand.edge_edge.size());
   stats.edge_contacts = 0;
   std::vector<std::pair<std::pair<Index, Index>, Vec3>> active;
@@ -167,84 +252,12 @@ void ContactDetection::edge_edge_contacts(const State& st, const ContactCandidat
     const Edge &e1 = edges[ea], &e2 = edges[eb];
     return closest_points_on_segments(x0[e1[0]], x0[e1[1]], x0[e2[0]], x0[e2[1]]);
   };
-  // `cp`: the edges' closest points at the start of the step.
-  const auto add_edge_contact = [&](Index ea, Index eb, const SegmentPoints& cp, const Vec3* kept) {
-    const Edge& e1 = edges[ea];
-    const Edge& e2 = edges[eb];
-    const Vec3 u = x0[e1[1]] - x0[e1[0]], v = x0[e2[1]] - x0[e2[0]];
-    const Vec3 apart = cp.on_a - cp.on_b;
-    const auto relative_velocity = [&](double alpha, double beta) {  // A's point less B's
-      return Vec3((1 - alpha) * st.v_star[e1[0]] + alpha * st.v_star[e1[1]] -
-                  (1 - beta) * st.v_star[e2[0]] - beta * st.v_star[e2[1]]);
-    };
-    const Vec3 rel = relative_velocity(cp.alpha, cp.beta);
-    // The normal along the common perpendicular, from B's point to A's: oriented as it was
-    // when the contact began (kept), or by the side A's edge is on, or against the relative
-    // velocity when they touch; for nearly parallel edges, along the points' difference.
-    Vec3 n = u.cross(v);
-    if (n.squaredNorm() <= 1e-12 * u.squaredNorm() * v.squaredNorm()) n = kept ? *kept : apart;
-    if (n.squaredNorm() == 0.0) n = -rel;
-    if (n.squaredNorm() == 0.0) return;
-    n.normalize();
-    if (kept) {
-      if (n.dot(*kept) < 0.0) n = -n;
-    } else {
-      const double side = apart.dot(n);
-      if (side < 0.0 || (side == 0.0 && rel.dot(n) > 0.0)) n = -n;
+  const auto add = [&](Index ea, Index eb, const SegmentPoints& cp, const Vec3* kept) {
+    if (const std::optional<ContactPoint> c = edge_contact(st, p, ea, eb, cp, kept)) {
+      contacts.push_back(*c);
+      active.push_back({{ea, eb}, c->normal});
+      ++stats.edge_contacts;
     }
-    // A normal that points into B's surface at its edge and out of A's at once (against the
-    // sums of the outward normals of the faces at each edge) would push each body into the
-    // other: not used. Edges touching side by side in a flattened patch get such normals,
-    // lying in the patch, whose pushes held two Hertz spheres together.
-    const auto outward = [&](Index e) {
-      Vec3 sum = Vec3::Zero();
-      for (const Index f : p.edge_faces[e])
-        if (f >= 0) sum += face_normal(p.faces[f], x0);
-      return sum;
-    };
-    if (n.dot(outward(ea)) >= 0.0 && n.dot(outward(eb)) <= 0.0) return;
-    double alpha = cp.alpha, beta = cp.beta;
-    double gap = apart.dot(n);  // < 0: already through by round-off: closed within the step
-    // Touching edges that stay in contact are measured at the step's end instead: the closest
-    // points and the normal at the predicted positions x*, and the gap there less what the
-    // predicted motion contributes, g = g(x*) − τ v*_rel·n*. The impulse's target −g/τ then
-    // gives g(x*) + τ Δv_rel·n* = 0 at the end of the step, where the gap at the start, carried
-    // by the start's normal and points, leaves the second-order drift of edges that slide and
-    // turn against each other (measured: 0.29 µm in the cubes case).
-    if (kept) {
-      const auto cp1 = closest_points_on_segments(x1[e1[0]], x1[e1[1]], x1[e2[0]], x1[e2[1]]);
-      Vec3 n1 = (x1[e1[1]] - x1[e1[0]]).cross(x1[e2[1]] - x1[e2[0]]);
-      if (cp1.alpha > 0.0 && cp1.alpha < 1.0 && cp1.beta > 0.0 && cp1.beta < 1.0 &&
-          n1.squaredNorm() > 0.0) {
-        n1.normalize();
-        if (n1.dot(n) < 0.0) n1 = -n1;
-        const Vec3 rel1 = relative_velocity(cp1.alpha, cp1.beta);
-        alpha = cp1.alpha;
-        beta = cp1.beta;
-        n = n1;
-        gap = (cp1.on_a - cp1.on_b).dot(n1) - st.dt * rel1.dot(n1);
-      }
-    }
-    ContactPoint c;  // side A: edge e1 (a, b) at α; side B: edge e2 (e, f) at β
-    c.a_nodes = {e1[0], e1[1], 0, 0};
-    c.a_w = {1.0 - alpha, alpha, 0, 0};
-    c.a_count = 2;
-    c.b_nodes = {e2[0], e2[1], 0, 0};
-    c.b_w = {1.0 - beta, beta, 0, 0};
-    c.b_count = 2;
-    c.normal = n;
-    c.gap = gap;
-    // Aim a few units of rounding beyond touching: positions land on doubles, and a target of
-    // exactly 0 leaves touching edges through each other by an ulp half the time (crossings
-    // of 5e-18 m in the cubes case).
-    c.separation = rounding_margin({&x1[e1[0]], &x1[e1[1]], &x1[e2[0]], &x1[e2[1]]});
-    c.standoff = separation_;
-    c.restore = true;
-    c.mode = settings_.mode;
-    c.friction = settings_.coefficient;
-    contacts.push_back(c);
-    active.push_back({{ea, eb}, n});
-    ++stats.edge_contacts;
   };
   // The pairs in contact last step first, whether or not the broadphase lists them now (its
   // boxes depend on the binding lists' reach): still in contact while their closest points
@@ -254,7 +267,7 @@ void ContactDetection::edge_edge_contacts(const State& st, const ContactCandidat
     const SegmentPoints cp = closest_at_start(pair.first, pair.second);
     if (cp.alpha > 0.0 && cp.alpha < 1.0 && cp.beta > 0.0 && cp.beta < 1.0 &&
         (cp.on_a - cp.on_b).dot(n) < reach_) {
-      add_edge_contact(pair.first, pair.second, cp, &n);
+      add(pair.first, pair.second, cp, &n);
       kept_pairs.push_back(pair);
     }
   }
@@ -273,7 +286,7 @@ void ContactDetection::edge_edge_contacts(const State& st, const ContactCandidat
   for (std::size_t k = 0; k < cand.edge_edge.size(); ++k)
     if (crosses[k]) {
       const auto& [ea, eb] = cand.edge_edge[k];
-      add_edge_contact(ea, eb, closest_at_start(ea, eb), nullptr);
+      add(ea, eb, closest_at_start(ea, eb), nullptr);
     }
   active_edges_ = std::move(active);
 }

@@ -111,6 +111,9 @@ Json summary_json(const RunSummary& s);
 /// each reference and each bound.
 void print_table(const RunSummary& s);
 
+/// summary.expect: each bound with its figure (null when not measured) and verdict.
+Json expect_json(const std::vector<ExpectResult>& expect);
+
 /// Whether every bound and every reference the run states passes.
 bool expect_pass(const RunSummary& s);
 bool references_pass(const RunSummary& s);

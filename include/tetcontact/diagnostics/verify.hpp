@@ -72,6 +72,18 @@ class StepVerifier {
                    const std::vector<char>* changed);
   Candidates candidate_pairs(const std::vector<Vec3>& x0, const std::vector<Vec3>& x1,
                              const std::vector<char>* changed);
+  Candidates step_pairs(const std::vector<Vec3>& x0, const std::vector<Vec3>& x1);
+  // The primitives whose tests read a changed node, and the box of them all.
+  struct Dirty {
+    std::vector<char> node, face, edge;
+    Box reach;
+    bool any = false;
+  };
+  Dirty dirty_primitives(const std::vector<Vec3>& x0, const std::vector<Vec3>& x1,
+                         const std::vector<char>& changed);
+  Candidates dirty_pairs(const Dirty& d, const std::vector<Vec3>& x1);
+  Candidates changed_pairs(const std::vector<Vec3>& x0, const std::vector<Vec3>& x1,
+                           const std::vector<char>& changed);
   std::vector<char> verdicts(const Candidates& pairs, const std::vector<Vec3>& x0,
                              const std::vector<Vec3>& x1) const;
   const Mesh& mesh_;

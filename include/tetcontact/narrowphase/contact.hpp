@@ -15,6 +15,7 @@
 #include "tetcontact/model/contact_point.hpp"
 #include "tetcontact/model/model.hpp"
 #include "tetcontact/model/state.hpp"
+#include "tetcontact/narrowphase/vertex_face.hpp"
 
 namespace tc {
 
@@ -83,6 +84,9 @@ class ContactDetection {
                           std::vector<ContactPoint>& contacts);
   void edge_edge_contacts(const State& st, const ContactCandidates& candidates,
                           ContactStepStats& stats, std::vector<ContactPoint>& contacts);
+  std::optional<ContactPoint> edge_contact(const State& st, const SurfacePrimitives& p, Index ea,
+                                           Index eb, const SegmentPoints& cp,
+                                           const Vec3* kept) const;
   void set_friction(ContactPoint& c, Index body_a, Index body_b) const;
   const Mesh& mesh_;
   ContactSettings settings_;
