@@ -8,7 +8,9 @@
 namespace tc {
 
 Fragmentation::Fragmentation(const Mesh& mesh)
-    : neighbours_(tet_neighbours(mesh)), removed_(mesh.tets.size(), 0) {
+    : neighbours_(tet_neighbours(mesh)),
+      lengths_(body_edge_lengths(mesh)),
+      removed_(mesh.tets.size(), 0) {
   cells_at_node_.assign(mesh.x.size(), 0);
   for (const Tet& k : mesh.tets)
     for (Index n : k) ++cells_at_node_[n];
@@ -19,7 +21,7 @@ void Fragmentation::erode(const std::vector<Index>& tets) {
 }
 
 std::vector<Surface> Fragmentation::surfaces(const Mesh& mesh) const {
-  return build_surfaces(mesh, neighbours_, removed_);
+  return build_surfaces(mesh, neighbours_, removed_, lengths_);
 }
 
 Index add_particle(State& st, const Vec3& x, const Vec3& v, double m, double radius, double energy,

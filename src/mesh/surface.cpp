@@ -62,30 +62,52 @@ std::vector<Surface> build_surfaces(const Mesh& mesh) {
   return build_surfaces(mesh, tet_neighbours(mesh), {});
 }
 
-std::vector<Surface> build_surfaces(const Mesh& mesh, const TetNeighbours& neighbours,
-                                    const std::vector<char>& removed) {
-  const auto gone = [&](Index t) { return !removed.empty() && removed[t]; };
-  std::vector<Surface> surfaces;
-  surfaces.reserve(mesh.bodies.size());
-  for (Index b = 0; b < static_cast<Index>(mesh.bodies.size()); ++b) {
-    const BodyRange& r = mesh.bodies[b];
-    Surface s;
-    s.body = b;
-
-    // A boundary face is a face of a present tet with no present tet across it; faces are
-    // listed in the order of their sorted node triples.
-    std::vector<FaceKey> keys;
+std::vector<EdgeLengths> body_edge_lengths(const Mesh& mesh) {
+  std::vector<EdgeLengths> lengths;
+  for (const BodyRange& r : mesh.bodies) {
+    EdgeLengths l;
     double edge_sum = 0.0;
     std::size_t edge_count = 0;
     for (Index t = r.tet_begin; t < r.tet_end; ++t) {
       const Tet& k = mesh.tets[t];
-      for (const auto& le : k_tet_edges) {  // of the whole body, removed tets included
+      for (const auto& le : k_tet_edges) {
         const double len = (mesh.x[k[le[0]]] - mesh.x[k[le[1]]]).norm();
         edge_sum += len;  // interior edges are counted once per tet that holds them
-        s.max_edge_length = std::max(s.max_edge_length, len);
+        l.max = std::max(l.max, len);
         ++edge_count;
       }
+    }
+    l.mean = edge_count ? edge_sum / static_cast<double>(edge_count) : 0.0;
+    lengths.push_back(l);
+  }
+  return lengths;
+}
+
+std::vector<Surface> build_surfaces(const Mesh& mesh, const TetNeighbours& neighbours,
+                                    const std::vector<char>& removed) {
+  return build_surfaces(mesh, neighbours, removed, body_edge_lengths(mesh));
+}
+
+std::vector<Surface> build_surfaces(const Mesh& mesh, const TetNeighbours& neighbours,
+                                    const std::vector<char>& removed,
+                                    const std::vector<EdgeLengths>& lengths) {
+  const auto gone = [&](Index t) { return !removed.empty() && removed[t]; };
+  std::vector<Surface> surfaces;
+  surfaces.reserve(mesh.bodies.size());
+  std::vector<Index> slot_of(mesh.x.size(), -1);  // a surface node's index in its surface
+  for (Index b = 0; b < static_cast<Index>(mesh.bodies.size()); ++b) {
+    const BodyRange& r = mesh.bodies[b];
+    Surface s;
+    s.body = b;
+    s.mean_edge_length = lengths[b].mean;  // of the whole body, removed tets included
+    s.max_edge_length = lengths[b].max;
+
+    // A boundary face is a face of a present tet with no present tet across it; faces are
+    // listed in the order of their sorted node triples.
+    std::vector<FaceKey> keys;
+    for (Index t = r.tet_begin; t < r.tet_end; ++t) {
       if (gone(t)) continue;
+      const Tet& k = mesh.tets[t];
       for (int i = 0; i < 4; ++i) {
         const Index other = neighbours[t][i];
         if (other >= 0 && !gone(other)) continue;
@@ -94,7 +116,6 @@ std::vector<Surface> build_surfaces(const Mesh& mesh, const TetNeighbours& neigh
         keys.push_back({sorted_face(f), f, t});
       }
     }
-    s.mean_edge_length = edge_count ? edge_sum / static_cast<double>(edge_count) : 0.0;
     std::sort(keys.begin(), keys.end());
     for (const FaceKey& key : keys) {
       s.faces.push_back(key.oriented);
@@ -114,12 +135,11 @@ std::vector<Surface> build_surfaces(const Mesh& mesh, const TetNeighbours& neigh
     std::sort(s.nodes.begin(), s.nodes.end());
     s.nodes.erase(std::unique(s.nodes.begin(), s.nodes.end()), s.nodes.end());
 
-    // node→faces in CSR form.
+    // node→faces in CSR form (each node's slot in s.nodes looked up in `slot_of`, cleared
+    // after the body).
     s.node_face_offsets.assign(s.nodes.size() + 1, 0);
-    auto slot = [&](Index node) {
-      return static_cast<std::size_t>(std::lower_bound(s.nodes.begin(), s.nodes.end(), node) -
-                                      s.nodes.begin());
-    };
+    for (std::size_t i = 0; i < s.nodes.size(); ++i) slot_of[s.nodes[i]] = static_cast<Index>(i);
+    const auto slot = [&](Index node) { return static_cast<std::size_t>(slot_of[node]); };
     for (const Face& f : s.faces)
       for (Index v : f) ++s.node_face_offsets[slot(v) + 1];
     for (std::size_t i = 0; i < s.nodes.size(); ++i)
@@ -128,6 +148,7 @@ std::vector<Surface> build_surfaces(const Mesh& mesh, const TetNeighbours& neigh
     std::vector<Index> fill(s.node_face_offsets.begin(), s.node_face_offsets.end() - 1);
     for (Index fi = 0; fi < static_cast<Index>(s.faces.size()); ++fi)
       for (Index v : s.faces[fi]) s.node_faces[fill[slot(v)]++] = fi;
+    for (const Index n : s.nodes) slot_of[n] = -1;
 
     surfaces.push_back(std::move(s));
   }

@@ -62,7 +62,8 @@ Box particle_box(const State& st, Index i, double margin) {
   return swept_box({&st.x[p], &st.x_star[p]}, st.particle_radius[i] + margin);
 }
 
-// The brute-force pairs of the boxes the settings define, with every box enlarged by `reach`.
+// The brute-force pairs of the boxes the narrow phases test, with every box enlarged by `reach`:
+// a face's layer box for node–face contact, its path for particles.
 struct Oracle {
   Pairs node_face, edge_edge, particle_face, particle_particle;
 };
@@ -91,9 +92,13 @@ Oracle brute_force(const Scene& s, const SurfacePrimitives& p, const CandidateSe
     }
   const Index n = s.st.particle_count();
   for (Index i = 0; i < n; ++i) {
-    for (std::size_t f = 0; f < face.size(); ++f)
-      if (boxes_overlap(particle_box(s.st, i, reach), face[f]))
+    for (std::size_t f = 0; f < face.size(); ++f) {
+      const Face& k = p.faces[f];
+      const Box path =
+          swept_box({&x0[k[0]], &x0[k[1]], &x0[k[2]], &x1[k[0]], &x1[k[1]], &x1[k[2]]}, reach);
+      if (boxes_overlap(particle_box(s.st, i, reach), path))
         o.particle_face.insert({i, static_cast<Index>(f)});
+    }
     for (Index j = i + 1; j < n; ++j)
       if (boxes_overlap(particle_box(s.st, i, reach), particle_box(s.st, j, reach)))
         o.particle_particle.insert({i, j});
@@ -119,10 +124,10 @@ CandidateSettings both(const std::string& method, bool binding_lists) {
 
 }  // namespace
 
-// Without binding lists, one search gives the bodies' node–face and edge–edge pairs and the
+// Without binding lists, the update gives the bodies' node–face and edge–edge pairs and the
 // particles' pairs with faces (their own body's too) and with each other, and nothing else: no
 // pair within a body, none of a particle and a surface edge.
-TEST(ContactCandidates, OneSearchListsWhatTheBoxesOfEachNarrowPhaseOverlap) {
+TEST(ContactCandidates, TheUpdateListsWhatTheBoxesOfEachNarrowPhaseOverlap) {
   for (const char* method : {"brute_force", "sweep", "grid", "fcl_tree", "fcl_sap"}) {
     SCOPED_TRACE(method);
     Scene s;
@@ -147,8 +152,8 @@ TEST(ContactCandidates, OneSearchListsWhatTheBoxesOfEachNarrowPhaseOverlap) {
 }
 
 // With binding lists: kept while every surface node and particle stays within the reach, and
-// then every pair the boxes of the step give is listed; found anew once a particle has moved
-// past it.
+// then every pair the boxes of the step give is listed; once only a particle has moved past it,
+// the particles' lists are found anew and the bodies' kept.
 TEST(ContactCandidates, BindingListsHoldEveryPairOfTheStepUntilSomethingLeavesTheReach) {
   Scene s;
   const CandidateSettings c = both("grid", true);
@@ -171,9 +176,16 @@ TEST(ContactCandidates, BindingListsHoldEveryPairOfTheStepUntilSomethingLeavesTh
   }
   EXPECT_GT(kept, 5);
   EXPECT_LT(kept, 40);
-  // A particle moved past the reach: found anew.
-  cand.update(s.st);
+  // A particle moved past the reach: the particles' lists are found anew, the bodies' kept.
+  s.move(0.0);
+  EXPECT_FALSE(cand.update(s.st).rebuilt);
+  const CandidateLists bodies = cand.bodies();
   s.st.x[s.st.first_particle] += Vec3(2.0 * cand.reach(), 0, 0);
   s.st.x_star[s.st.first_particle] += Vec3(2.0 * cand.reach(), 0, 0);
   EXPECT_TRUE(cand.update(s.st).rebuilt);
+  EXPECT_EQ(cand.bodies().node_face, bodies.node_face);
+  EXPECT_EQ(cand.bodies().edge_edge, bodies.edge_edge);
+  const Oracle o = brute_force(s, cand.primitives(), c, 0.0);
+  EXPECT_TRUE(contains(as_set(cand.particles().node_face), o.particle_face));
+  EXPECT_TRUE(contains(as_set(cand.particles().edge_edge), o.particle_particle));
 }

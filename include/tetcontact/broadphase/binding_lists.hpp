@@ -37,6 +37,8 @@ class BindingLists {
   }
   /// Lists found anew (from boxes enlarged by reach()) for the points `ids` at `x0`.
   void set(Candidates lists, const std::vector<Index>& ids, const std::vector<Vec3>& x0);
+  /// The same where the caller keeps the lists itself: only where the points were.
+  void anchor(const std::vector<Index>& ids, const std::vector<Vec3>& x0) { set({}, ids, x0); }
   /// The lists are found anew at the next use (the surfaces changed).
   void reset() { have_ = false; }
 

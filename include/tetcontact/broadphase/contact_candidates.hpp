@@ -1,7 +1,8 @@
-// The detection stage's one broadphase: the surface nodes, faces and edges of every body and
-// the particles, boxed over the step xⁿ → x*, found in one search and kept on one set of binding
-// lists. The narrow phases (node–face and edge–edge between bodies, particle–face and
-// particle–particle) then test the pairs it lists for them.
+// The detection stage's one broadphase update: the surface nodes, faces and edges of every body
+// and the particles, boxed over the step xⁿ → x*, on binding lists (the bodies' and the
+// particles', each found anew when its points have moved past the reach). The narrow phases
+// (node–face and edge–edge between bodies, particle–face and particle–particle) then test the
+// pairs it lists for them.
 #pragma once
 
 #include <array>
@@ -71,11 +72,13 @@ class ContactCandidates {
   /// at the next update. Returns the new index of each former edge (−1: no longer a surface edge).
   std::vector<Index> surfaces_changed(const std::vector<Surface>& surfaces);
 
-  /// The step's update from xⁿ (st.x) and x* (st.x_star): the lists kept while every surface
-  /// node and particle is within the reach of where it was at the last search (at both ends of
-  /// the step), else found anew from the boxes enlarged by the reach. A pair whose boxes of this
-  /// step overlap is then in the lists; the narrow phases skip listed pairs whose boxes of the
-  /// step do not overlap, and find what a fresh search finds.
+  /// The step's update from xⁿ (st.x) and x* (st.x_star). The bodies' lists are kept while
+  /// every surface node is within the reach of where it was at their search (at both ends of the
+  /// step), the particles' while every particle and surface node is and no particle was added;
+  /// the lists that ran out are found anew from the boxes enlarged by the reach (the
+  /// particles' against the faces near them). A pair whose boxes of this step overlap is then in
+  /// the lists; the narrow phases skip listed pairs whose boxes of the step do not overlap, and
+  /// find what a fresh search finds.
   CandidateStats update(const State& st);
 
   const SurfacePrimitives& primitives() const { return prims_; }
@@ -85,19 +88,22 @@ class ContactCandidates {
   /// st.first_particle + i.
   const CandidateLists& particles() const { return particles_; }
   /// The reach of the binding lists (m; 0 without them).
-  double reach() const { return lists_.reach(); }
+  double reach() const { return body_lists_.reach(); }
   const CandidateSettings& settings() const { return settings_; }
   const Broadphase& broadphase() const { return *broadphase_; }
 
  private:
-  bool lists_hold(const State& st) const;
-  void search(const State& st);
+  bool bodies_hold(const State& st) const;
+  bool particles_hold(const State& st) const;
+  void search(const State& st, bool bodies, bool particles);
   const Mesh& mesh_;
   CandidateSettings settings_;
   std::unique_ptr<Broadphase> broadphase_;
   SurfacePrimitives prims_;
-  BindingLists lists_;           // the one search's pairs; the points they hold for in anchored_
-  std::vector<Index> anchored_;  // surface nodes, then particles
+  // Where the points were at the last search of each part's lists (the lists: bodies_,
+  // particles_): the surface nodes; the particles, then the surface nodes.
+  BindingLists body_lists_, particle_lists_;
+  std::vector<Index> particle_anchored_;
   Index particles_listed_ = 0;
   CandidateLists bodies_, particles_;
 };

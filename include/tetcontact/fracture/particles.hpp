@@ -60,9 +60,10 @@ class Fragmentation {
 
  private:
   TetNeighbours neighbours_;
-  std::vector<char> removed_;       // per tet: turned into a particle
-  std::vector<Index> eroding_;      // cells to convert at the next call, wherever they are
-  std::vector<int> cells_at_node_;  // remaining cells around each mesh node
+  std::vector<EdgeLengths> lengths_;  // the bodies' tet edge lengths (the surfaces')
+  std::vector<char> removed_;         // per tet: turned into a particle
+  std::vector<Index> eroding_;        // cells to convert at the next call, wherever they are
+  std::vector<int> cells_at_node_;    // remaining cells around each mesh node
   double total_mass_ = 0.0;
   ConversionLedger ledger_;
 };

@@ -58,6 +58,19 @@ std::vector<Surface> build_surfaces(const Mesh& mesh);
 std::vector<Surface> build_surfaces(const Mesh& mesh, const TetNeighbours& neighbours,
                                     const std::vector<char>& removed);
 
+/// Each body's tet edge lengths at the reference positions, over all its tets' six edges (an
+/// interior edge once per tet that holds it): Surface's mean_edge_length and max_edge_length.
+struct EdgeLengths {
+  double mean = 0.0, max = 0.0;
+};
+std::vector<EdgeLengths> body_edge_lengths(const Mesh& mesh);
+
+/// The same with the bodies' edge lengths given (they never change: fracture, which rebuilds
+/// the surfaces after each conversion, computes them once).
+std::vector<Surface> build_surfaces(const Mesh& mesh, const TetNeighbours& neighbours,
+                                    const std::vector<char>& removed,
+                                    const std::vector<EdgeLengths>& lengths);
+
 /// Unit normal of a face at positions x (zero vector for a degenerate face).
 Vec3 face_normal(const Face& f, const std::vector<Vec3>& x);
 
