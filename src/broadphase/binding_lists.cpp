@@ -5,11 +5,7 @@
 namespace tc {
 
 double binding_reach(const std::vector<Surface>& surfaces) {
-  double h = 0.0;
-  for (const Surface& s : surfaces)
-    if (s.mean_edge_length > 0.0)
-      h = h > 0.0 ? std::min(h, s.mean_edge_length) : s.mean_edge_length;
-  return 0.2 * h;
+  return 0.2 * smallest_mean_edge(surfaces);
 }
 
 bool BindingLists::holds(const std::vector<Index>& ids, const std::vector<Vec3>& x,

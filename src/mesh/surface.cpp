@@ -155,6 +155,14 @@ std::vector<Surface> build_surfaces(const Mesh& mesh, const TetNeighbours& neigh
   return surfaces;
 }
 
+double smallest_mean_edge(const std::vector<Surface>& surfaces) {
+  double h = 0.0;
+  for (const Surface& s : surfaces)
+    if (s.mean_edge_length > 0.0)
+      h = h > 0.0 ? std::min(h, s.mean_edge_length) : s.mean_edge_length;
+  return h;
+}
+
 Vec3 face_normal(const Face& f, const std::vector<Vec3>& x) {
   const Vec3 n = (x[f[1]] - x[f[0]]).cross(x[f[2]] - x[f[0]]);
   const double len = n.norm();

@@ -37,14 +37,9 @@ ContactDetection::ContactDetection(const Mesh& mesh, const std::vector<Surface>&
                                    const ContactSettings& settings)
     : mesh_(mesh), settings_(settings), reach_(binding_reach(surfaces)) {
   // The separation aimed at: the case's, or a millionth of the smallest mean tet edge.
-  separation_ = settings.separation;
-  if (separation_ < 0.0) {
-    double h = 0.0;
-    for (const Surface& s : surfaces)
-      if (s.mean_edge_length > 0.0)
-        h = h > 0.0 ? std::min(h, s.mean_edge_length) : s.mean_edge_length;
-    separation_ = ContactSettings::k_separation_fraction * h;
-  }
+  separation_ = settings.separation >= 0.0
+                    ? settings.separation
+                    : ContactSettings::k_separation_fraction * smallest_mean_edge(surfaces);
 }
 
 // The edge pairs in contact are kept under their edges' new indices (an edge that left the

@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "../solver/solver_fixture.hpp"
+#include "same_contact_points.hpp"
 #include "tetcontact/fracture/particles.hpp"
 #include "tetcontact/narrowphase/particle_contact.hpp"
 #include "tetcontact/solver/integrator.hpp"
@@ -125,14 +126,7 @@ TEST(ParticleContact, BindingListsGiveTheContactsOfAFreshSearch) {
     fresh_builds += fresh_pairs.update(st).rebuilt;
     std::vector<ContactPoint> a = lists.detect(model.mesh, st, lists_pairs);
     const std::vector<ContactPoint> b = fresh.detect(model.mesh, st, fresh_pairs);
-    ASSERT_EQ(a.size(), b.size()) << "step " << k;
-    for (std::size_t c = 0; c < a.size(); ++c) {
-      ASSERT_EQ(a[c].a_nodes, b[c].a_nodes) << "step " << k << ", contact " << c;
-      ASSERT_EQ(a[c].b_nodes, b[c].b_nodes);
-      ASSERT_EQ(a[c].b_w, b[c].b_w);
-      ASSERT_EQ(a[c].normal, b[c].normal);
-      ASSERT_EQ(a[c].gap, b[c].gap);
-    }
+    ASSERT_TRUE(test::same_contact_points(a, b)) << "step " << k;
     ASSERT_EQ(lists.moves(), fresh.moves()) << "step " << k;
     contacts += static_cast<long>(a.size());
     for (const auto& [p, d] : lists.moves()) {

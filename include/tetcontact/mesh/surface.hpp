@@ -71,6 +71,10 @@ std::vector<Surface> build_surfaces(const Mesh& mesh, const TetNeighbours& neigh
                                     const std::vector<char>& removed,
                                     const std::vector<EdgeLengths>& lengths);
 
+/// The smallest mean tet edge of the surfaces' bodies (0 when no surface has an edge): the
+/// length the binding lists' reach and the contact's separation are fractions of.
+double smallest_mean_edge(const std::vector<Surface>& surfaces);
+
 /// Unit normal of a face at positions x (zero vector for a degenerate face).
 Vec3 face_normal(const Face& f, const std::vector<Vec3>& x);
 
