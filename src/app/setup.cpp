@@ -9,6 +9,7 @@
 #include "tetcontact/mesh/delaunay.hpp"
 #include "tetcontact/mesh/generators.hpp"
 #include "tetcontact/mesh/gmsh.hpp"
+#include "tetcontact/mesh/symmetry.hpp"
 
 namespace tc {
 namespace {
@@ -78,6 +79,41 @@ Index body_index(const Mesh& mesh, const std::string& name) {
   throw SetupError("unknown body '" + name + "'");
 }
 
+// The symmetry planes' conditions: the nodes on a plane keep no velocity along its normal (a
+// constraint: what the mirror image's equal and opposite motion leaves them), and every other
+// surface node and particle meets the plane as a frictionless rigid wall (what its mirror image
+// would do to it). A body whose nodes on the plane start moving across it is not symmetric.
+void add_symmetry_planes(const Case& c, Model& model) {
+  for (const SymmetryPlane& plane : c.symmetry) {
+    const std::string name = std::string("symmetry-") + "xyz"[plane.axis];
+    VelocityConstraint vc;
+    vc.name = name;
+    vc.components[0] = vc.components[1] = vc.components[2] = false;
+    vc.components[plane.axis] = true;
+    for (Index n = 0; n < model.mesh.node_count(); ++n) {
+      if (!on_plane(model.mesh.x[n], plane)) continue;
+      if (model.initial_velocity[n][plane.axis] != 0.0) {
+        const BodyRange& b = model.mesh.bodies[model.mesh.node_body[n]];
+        std::ostringstream os;
+        os << c.file << ": key 'symmetry': body '" << b.name << "' starts with a velocity of "
+           << model.initial_velocity[n][plane.axis] << " m/s across the symmetry plane "
+           << plane_name(plane) << " (node " << n - b.node_begin
+           << "); a symmetric motion has none";
+        throw SetupError(os.str());
+      }
+      vc.nodes.push_back(n);
+    }
+    model.constraints.push_back(std::move(vc));
+    RigidWall wall;
+    wall.name = name;
+    wall.point = Vec3::Zero();
+    wall.point[plane.axis] = plane.at;
+    wall.normal = Vec3::Zero();
+    wall.normal[plane.axis] = 1.0;
+    model.walls.push_back(wall);
+  }
+}
+
 }  // namespace
 
 SolverSettings solver_settings(const Case& c) {
@@ -97,6 +133,7 @@ Model build_model(const Case& c, std::vector<std::string>* notes) {
     try {
       TetMesh mesh = make_body_mesh(b, notes);
       apply_transform(mesh, b.transform);
+      for (const SymmetryPlane& plane : c.symmetry) cut_at_plane(mesh, plane, b.name);
       add_body(model.mesh, b.name, std::move(mesh));
     } catch (const std::exception& e) {  // MeshError, GmshError, generator limits
       throw SetupError(c.file + ": key '" + key + ".mesh': " + e.what());
@@ -111,6 +148,7 @@ Model build_model(const Case& c, std::vector<std::string>* notes) {
     }
     model.body_material.push_back(mi);
   }
+  model.mesh.symmetry = c.symmetry;
   try {
     model.surfaces = build_surfaces(model.mesh);
   } catch (const MeshError& e) {
@@ -122,9 +160,11 @@ Model build_model(const Case& c, std::vector<std::string>* notes) {
   for (std::size_t i = 0; i < c.bodies.size(); ++i) {
     const BodySpec& b = c.bodies[i];
     const BodyRange& r = model.mesh.bodies[i];
-    Vec3 lo = model.mesh.x[r.node_begin], hi = lo;  // the rotation's centre: the box's
+    // The rotation's centre: the box's (of the whole body, its mirror images included).
+    Vec3 lo = model.mesh.x[r.node_begin], hi = lo;
     for (Index n = r.node_begin; n < r.node_end; ++n)
-      lo = lo.cwiseMin(model.mesh.x[n]), hi = hi.cwiseMax(model.mesh.x[n]);
+      for (const Vec3& p : mirror_images(model.mesh.x[n], c.symmetry))
+        lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
     const Vec3 centre = 0.5 * (lo + hi);
     for (Index n = r.node_begin; n < r.node_end; ++n)
       model.initial_velocity[n] = b.velocity + b.angular_velocity.cross(model.mesh.x[n] - centre);
@@ -162,6 +202,7 @@ Model build_model(const Case& c, std::vector<std::string>* notes) {
   }
 
   model.walls = c.walls;
+  add_symmetry_planes(c, model);
   if (c.contact) {
     ContactSettings cs = c.contact_settings;
     for (std::size_t i = 0; i < cs.pairs.size(); ++i) {

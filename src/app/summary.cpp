@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "tetcontact/app/partition.hpp"
+#include "tetcontact/mesh/symmetry.hpp"
 #include "tetcontact/parallel/parallel.hpp"
 
 namespace tc {
@@ -108,6 +109,7 @@ RunSummary summarize(const Case& c, const Simulation& sim, const OutputWriter& w
   s.frames = writer.frames();
   s.nodes = model.mesh.x.size();
   s.tets = model.mesh.tets.size();
+  for (const SymmetryPlane& plane : model.mesh.symmetry) s.symmetry.push_back(plane_name(plane));
   for (const Surface& f : sim.state().surfaces)
     s.surface_faces += f.faces.size(), s.surface_edges += f.edges.size();
   s.stages = sim.profile().stages;
@@ -443,6 +445,9 @@ Json summary_json(const RunSummary& s) {
   mesh["tets"] = s.tets;
   mesh["surface_faces"] = s.surface_faces;
   mesh["surface_edges"] = s.surface_edges;
+  // A model cut along symmetry planes: the whole is `multiplicity` copies of it.
+  mesh["symmetry"] = s.symmetry;
+  mesh["multiplicity"] = 1 << s.symmetry.size();
   j["mesh"] = mesh;
   Json timings = Json::object();
   for (const auto& [name, seconds] : s.stages) timings[name] = seconds;

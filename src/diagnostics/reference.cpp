@@ -1,10 +1,14 @@
 #include "tetcontact/diagnostics/reference.hpp"
 
 #include <algorithm>
+#include <array>
+#include <bit>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
 #include <unordered_map>
+
+#include "tetcontact/mesh/symmetry.hpp"
 
 namespace tc {
 
@@ -38,29 +42,62 @@ bool ray_meets_triangle(const Vec3& o, const Vec3& d, const Vec3& a, const Vec3&
   return e2.dot(r) / det > 0.0;
 }
 
-// The debris beyond a reference's plane: particles (node indices) and cells of other bodies.
-// An item beyond the plane counts only where it is behind the plane's body as it stands: the
-// ray from it along the normal meets none of that body's surface faces (debris resting in the
-// dent of a bulged wall lies beyond the wall's original rear face, but in front of the wall).
+// The model's mirror images (mesh/symmetry.hpp): image k reflects across the planes whose bit
+// is set in k (image 0 is the model itself). A measure of the whole counts every image.
+struct Images {
+  const std::vector<SymmetryPlane>& planes;
+  int count() const { return multiplicity(planes); }
+  Vec3 point(Vec3 x, int k) const {
+    for (std::size_t i = 0; i < planes.size(); ++i)
+      if ((k >> i) & 1) x[planes[i].axis] = 2.0 * planes[i].at - x[planes[i].axis];
+    return x;
+  }
+  Vec3 direction(Vec3 d, int k) const {
+    for (std::size_t i = 0; i < planes.size(); ++i)
+      if ((k >> i) & 1) d[planes[i].axis] = -d[planes[i].axis];
+    return d;
+  }
+};
+
+// The debris beyond a reference's plane: particles (node indices) and cells of other bodies,
+// each with the mask of its mirror images that lie beyond (bit k: image k). An item beyond the
+// plane counts only where it is behind the plane's body as it stands: the ray from it along the
+// normal meets none of that body's surface faces, nor their images (debris resting in the dent
+// of a bulged wall lies beyond the wall's original rear face, but in front of the wall).
 struct Debris {
   std::vector<Index> cells, particles;
+  std::vector<unsigned> cell_images, particle_images;
 };
 Debris debris_beyond(const ReferenceSpec& r, const Model& model, const State& st) {
+  const Images images{model.mesh.symmetry};
   const std::vector<Surface>& surfaces = st.surfaces.empty() ? model.surfaces : st.surfaces;
   std::vector<const Face*> own_faces;
   for (const Surface& s : surfaces)
     if (model.mesh.bodies[s.body].name == r.body)
       for (const Face& f : s.faces) own_faces.push_back(&f);
+  // The ray from x along n meets the image k of face f where the ray from image k of x along
+  // image k of n meets f.
   const auto behind_body = [&](const Vec3& x) {
-    return std::none_of(own_faces.begin(), own_faces.end(), [&](const Face* f) {
-      return ray_meets_triangle(x, r.plane_normal, st.x[(*f)[0]], st.x[(*f)[1]], st.x[(*f)[2]]);
-    });
+    for (int k = 0; k < images.count(); ++k) {
+      const Vec3 o = images.point(x, k), d = images.direction(r.plane_normal, k);
+      if (std::any_of(own_faces.begin(), own_faces.end(), [&](const Face* f) {
+            return ray_meets_triangle(o, d, st.x[(*f)[0]], st.x[(*f)[1]], st.x[(*f)[2]]);
+          }))
+        return false;
+    }
+    return true;
   };
   const auto beyond = [&](const Vec3& x) {
     const Vec3 off = x - r.plane_point;
     const double along = off.dot(r.plane_normal);
     return along > 0.0 && (r.within == 0.0 || (off - along * r.plane_normal).norm() <= r.within) &&
            behind_body(x);
+  };
+  const auto images_beyond = [&](const Vec3& x) {
+    unsigned mask = 0;
+    for (int k = 0; k < images.count(); ++k)
+      if (beyond(images.point(x, k))) mask |= 1u << k;
+    return mask;
   };
   const auto counted = [&](Index t) {
     const std::string& name = model.mesh.bodies[model.mesh.tet_body[t]].name;
@@ -75,19 +112,27 @@ Debris debris_beyond(const ReferenceSpec& r, const Model& model, const State& st
     if (own || !counted(static_cast<Index>(t)) ||
         (!st.damage.empty() && st.damage[t] == Damage::particle))
       continue;
-    if (beyond(cell_centre(model, st, static_cast<Index>(t))))
+    if (const unsigned mask = images_beyond(cell_centre(model, st, static_cast<Index>(t)))) {
       d.cells.push_back(static_cast<Index>(t));
+      d.cell_images.push_back(mask);
+    }
   }
   if (!known)
     throw std::runtime_error("reference '" + r.name + "': no body named '" + r.body + "'");
   for (Index i = 0; i < st.particle_count(); ++i)
-    if (counted(st.particle_tet[i]) && beyond(st.x[st.first_particle + i]))
-      d.particles.push_back(st.first_particle + i);
+    if (counted(st.particle_tet[i]))
+      if (const unsigned mask = images_beyond(st.x[st.first_particle + i])) {
+        d.particles.push_back(st.first_particle + i);
+        d.particle_images.push_back(mask);
+      }
   return d;
 }
 
-// The largest fragment: cells joined through shared nodes (union–find), or one particle.
+// The largest fragment: cells joined through shared nodes (union–find), or one particle. A
+// fragment with a node on a symmetry plane is joined to its mirror image there: its mass
+// doubles for each plane it meets.
 double largest_fragment(const Model& model, const State& st, const Debris& d) {
+  const std::vector<SymmetryPlane>& planes = model.mesh.symmetry;
   std::vector<Index> parent(d.cells.size());
   for (std::size_t i = 0; i < parent.size(); ++i) parent[i] = static_cast<Index>(i);
   const auto find = [&](Index i) {
@@ -101,12 +146,17 @@ double largest_fragment(const Model& model, const State& st, const Debris& d) {
       if (!fresh) parent[find(static_cast<Index>(i))] = find(it->second);
     }
   std::vector<double> mass(d.cells.size(), 0.0);
-  double best = 0.0;
+  std::vector<unsigned> meets(d.cells.size(), 0);  // the planes each fragment has a node on
   for (std::size_t i = 0; i < d.cells.size(); ++i) {
-    double& m = mass[find(static_cast<Index>(i))];
-    m += cell_mass(model, st, d.cells[i]);
-    best = std::max(best, m);
+    const Index root = find(static_cast<Index>(i));
+    mass[root] += cell_mass(model, st, d.cells[i]);
+    for (Index k : model.mesh.tets[d.cells[i]])
+      for (std::size_t p = 0; p < planes.size(); ++p)
+        if (on_plane(st.x[k], planes[p])) meets[root] |= 1u << p;
   }
+  double best = 0.0;
+  for (std::size_t i = 0; i < d.cells.size(); ++i)
+    best = std::max(best, mass[i] * static_cast<double>(1 << std::popcount(meets[i])));
   for (Index n : d.particles) best = std::max(best, st.m[n]);
   return best;
 }
@@ -115,19 +165,27 @@ double debris_measure(const ReferenceSpec& r, const Model& model, const State& s
   using M = ReferenceSpec::Measure;
   const Debris d = debris_beyond(r, model, st);
   if (r.measure == M::largest_fragment) return largest_fragment(model, st, d);
-  // Each item: mass, position, velocity.
+  // Each item beyond the plane, with every image of it there: mass, position, velocity.
+  const Images images{model.mesh.symmetry};
   struct Item {
     double m;
     Vec3 x, v;
   };
   std::vector<Item> items;
-  for (Index t : d.cells)
-    items.push_back(
-        {cell_mass(model, st, t), cell_centre(model, st, t), cell_velocity(model, st, t)});
+  const auto add = [&](double m, const Vec3& x, const Vec3& v, unsigned mask) {
+    for (int k = 0; k < images.count(); ++k)
+      if ((mask >> k) & 1) items.push_back({m, images.point(x, k), images.direction(v, k)});
+  };
+  for (std::size_t i = 0; i < d.cells.size(); ++i) {
+    const Index t = d.cells[i];
+    add(cell_mass(model, st, t), cell_centre(model, st, t), cell_velocity(model, st, t),
+        d.cell_images[i]);
+  }
   double particle_mass = 0.0;
-  for (Index n : d.particles) {
-    items.push_back({st.m[n], st.x[n], st.v[n]});
-    particle_mass += st.m[n];
+  for (std::size_t i = 0; i < d.particles.size(); ++i) {
+    const Index n = d.particles[i];
+    add(st.m[n], st.x[n], st.v[n], d.particle_images[i]);
+    particle_mass += st.m[n] * std::popcount(d.particle_images[i]);
   }
   if (r.measure == M::debris_particle_mass) return particle_mass;
   double mass = 0.0, momentum = 0.0;
@@ -173,6 +231,20 @@ double debris_measure(const ReferenceSpec& r, const Model& model, const State& s
   return by_angle.back().first;
 }
 
+// The sign of a stress component (Sym6 order xx, yy, zz, xy, yz, xz) in image k: a shear
+// component with one index along a plane's normal changes sign across it.
+double image_sign(const Images& images, int k, int component) {
+  static constexpr std::array<std::array<int, 2>, 6> k_indices{
+      {{0, 0}, {1, 1}, {2, 2}, {0, 1}, {1, 2}, {0, 2}}};
+  double sign = 1.0;
+  for (std::size_t i = 0; i < images.planes.size(); ++i) {
+    const int a = images.planes[i].axis;
+    const auto& ij = k_indices[component];
+    if (((k >> i) & 1) && ((ij[0] == a) != (ij[1] == a))) sign = -sign;
+  }
+  return sign;
+}
+
 double measure(const ReferenceSpec& r, const Model& model, const State& st, const RunFigures& run) {
   using M = ReferenceSpec::Measure;
   const bool contact_measure = r.measure == M::contact_duration ||
@@ -180,24 +252,34 @@ double measure(const ReferenceSpec& r, const Model& model, const State& st, cons
                                r.measure == M::contact_mean_pressure;
   if (contact_measure && run.contact_first_time < 0.0)
     throw std::runtime_error("reference '" + r.name + "': the run had no contact");
+  // The whole is the model and its mirror images: forces add up over them, a body's mean
+  // velocity across a symmetry plane cancels with its image's.
+  const Images images{model.mesh.symmetry};
+  const double whole = images.count();
   const double duration = run.contact_last_time - run.contact_first_time;
   if (r.measure == M::contact_duration) return duration;
-  if (r.measure == M::contact_max_force) return run.contact_max_force;
-  if (r.measure == M::contact_mean_pressure) return run.contact_impulse / (duration * r.area);
+  if (r.measure == M::contact_max_force) return whole * run.contact_max_force;
+  if (r.measure == M::contact_mean_pressure)
+    return whole * run.contact_impulse / (duration * r.area);
   if (r.measure == M::velocity) {
     for (std::size_t b = 0; b < model.mesh.bodies.size(); ++b)
       if (model.mesh.bodies[b].name == r.body && b < run.body_velocity.size())
-        return run.body_velocity[b][r.axis];
+        return std::any_of(images.planes.begin(), images.planes.end(),
+                           [&](const SymmetryPlane& p) { return p.axis == r.axis; })
+                   ? 0.0
+                   : run.body_velocity[b][r.axis];
     throw std::runtime_error("reference '" + r.name + "': no velocity of body '" + r.body + "'");
   }
   if (r.measure == M::length || r.measure == M::radius) {
     for (const BodyRange& b : model.mesh.bodies) {
       if (b.name != r.body) continue;
       Vec3 lo = st.x[b.node_begin], hi = lo;
-      for (Index i = b.node_begin; i < b.node_end; ++i) {
-        lo = lo.cwiseMin(st.x[i]);
-        hi = hi.cwiseMax(st.x[i]);
-      }
+      for (Index i = b.node_begin; i < b.node_end; ++i)
+        for (int k = 0; k < images.count(); ++k) {
+          const Vec3 x = images.point(st.x[i], k);
+          lo = lo.cwiseMin(x);
+          hi = hi.cwiseMax(x);
+        }
       const Vec3 extent = hi - lo;
       if (r.measure == M::length) return extent[r.axis];
       double across = 0.0;
@@ -219,12 +301,14 @@ double measure(const ReferenceSpec& r, const Model& model, const State& st, cons
       if (model.mesh.bodies[model.mesh.tet_body[t]].name != r.body) continue;
       if (!st.damage.empty() && st.damage[t] == Damage::particle) continue;  // gone
       const Tet& k = model.mesh.tets[t];
-      const Vec3 c = 0.25 * (st.x[k[0]] + st.x[k[1]] + st.x[k[2]] + st.x[k[3]]);
-      if ((c.array() < r.region_min.array()).any() || (c.array() > r.region_max.array()).any())
-        continue;
-      Vec3 off = c - centre;
-      off[r.axis] = 0.0;
-      nearest = std::min(nearest, off.norm());
+      for (int m = 0; m < images.count(); ++m) {
+        const Vec3 c = images.point(0.25 * (st.x[k[0]] + st.x[k[1]] + st.x[k[2]] + st.x[k[3]]), m);
+        if ((c.array() < r.region_min.array()).any() || (c.array() > r.region_max.array()).any())
+          continue;
+        Vec3 off = c - centre;
+        off[r.axis] = 0.0;
+        nearest = std::min(nearest, off.norm());
+      }
     }
     if (!std::isfinite(nearest))
       throw std::runtime_error("reference '" + r.name + "': no cell of body '" + r.body +
@@ -235,16 +319,18 @@ double measure(const ReferenceSpec& r, const Model& model, const State& st, cons
   long count = 0;
   for (std::size_t t = 0; t < model.mesh.tets.size(); ++t) {
     const Tet& k = model.mesh.tets[t];
-    const Vec3 c = 0.25 * (st.x[k[0]] + st.x[k[1]] + st.x[k[2]] + st.x[k[3]]);
-    if ((c.array() < r.region_min.array()).any() || (c.array() > r.region_max.array()).any())
-      continue;
-    if (r.measure == M::mean_pressure) {
-      sum += st.p[t];
-    } else {
-      const double normal = r.component < 3 ? st.p[t] + st.q[t] : 0.0;
-      sum -= st.s[t][r.component] - normal;
+    for (int m = 0; m < images.count(); ++m) {
+      const Vec3 c = images.point(0.25 * (st.x[k[0]] + st.x[k[1]] + st.x[k[2]] + st.x[k[3]]), m);
+      if ((c.array() < r.region_min.array()).any() || (c.array() > r.region_max.array()).any())
+        continue;
+      if (r.measure == M::mean_pressure) {
+        sum += st.p[t];
+      } else {
+        const double normal = r.component < 3 ? st.p[t] + st.q[t] : 0.0;
+        sum -= image_sign(images, m, r.component) * (st.s[t][r.component] - normal);
+      }
+      ++count;
     }
-    ++count;
   }
   if (count == 0)
     throw std::runtime_error("reference '" + r.name + "': no tet centred in its region");

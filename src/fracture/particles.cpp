@@ -47,7 +47,7 @@ long Fragmentation::convert(const Mesh& mesh, const std::vector<Material>& mater
   for (Index t = 0; t < mesh.tet_count(); ++t) {
     if (st.damage[t] != Damage::destroyed) continue;
     for (Index other : neighbours_[t])
-      if (other < 0 || removed_[other]) {
+      if (other == k_no_tet || (other >= 0 && removed_[other])) {
         cells.push_back(t);
         break;
       }

@@ -102,8 +102,8 @@ Case load_case(const std::string& path, const std::vector<std::string>& override
   c.file = path;
   r.keys(root, "",
          {"name", "description", "parameters", "end_time", "solver", "material_library",
-          "materials", "bodies", "boundary_conditions", "walls", "output", "reference", "contact",
-          "fracture", "expect", "diagnostics"});
+          "materials", "bodies", "boundary_conditions", "walls", "symmetry", "output", "reference",
+          "contact", "fracture", "expect", "diagnostics"});
   c.parameters = substitute_parameters(r, root);
   c.name = root["name"] ? r.string(root["name"], "name") : fs::path(path).stem().string();
   if (root["description"]) c.description = r.string(root["description"], "description");
@@ -114,6 +114,7 @@ Case load_case(const std::string& path, const std::vector<std::string>& override
   read_bodies(r, root, c, case_dir);
   read_boundary_conditions(r, root, c);
   read_walls(r, root, c);
+  read_symmetry(r, root, c);
   read_references(r, root, c);
   read_output(r, root, c);
   read_contact(r, root, c);

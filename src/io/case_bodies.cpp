@@ -267,6 +267,33 @@ void read_walls(const Reader& r, const YAML::Node& root, Case& c) {
   }
 }
 
+// The case's symmetry planes: `symmetry: [x, y]` (the planes x = 0 and y = 0) or entries
+// `{axis: x, at: 0.01}`; the model is the part on each plane's positive side.
+void read_symmetry(const Reader& r, const YAML::Node& root, Case& c) {
+  const YAML::Node planes = root["symmetry"];
+  if (!planes) return;
+  r.each(planes, "symmetry", "planes (x, y, z or {axis, at})",
+         [&](const YAML::Node& n, const std::string& p) {
+           SymmetryPlane plane;
+           if (n.IsMap()) {
+             r.keys(n, p, {"axis", "at"});
+             if (n["at"]) plane.at = r.number(n["at"], join(p, "at"));
+           }
+           // (A yaml-cpp node assigned to another takes its value: a new node, not a rebinding.)
+           const YAML::Node axis = n.IsMap() ? r.require(n, p, "axis") : n;
+           const std::string axis_path = n.IsMap() ? join(p, "axis") : p;
+           const std::string a = r.string(axis, axis_path);
+           if (a != "x" && a != "y" && a != "z")
+             r.fail(axis, axis_path,
+                    "a symmetry plane is x, y or z (the plane's normal axis), got '" + a + "'");
+           plane.axis = a[0] - 'x';
+           for (const SymmetryPlane& other : c.symmetry)
+             if (other.axis == plane.axis)
+               r.fail(axis, p, "a second symmetry plane normal to " + a);
+           c.symmetry.push_back(plane);
+         });
+}
+
 }  // namespace case_file
 
 }  // namespace tc

@@ -193,6 +193,7 @@ void read_bodies(const Reader& r, const YAML::Node& root, Case& c,
                  const fs::path& case_dir);                                       // case_bodies
 void read_boundary_conditions(const Reader& r, const YAML::Node& root, Case& c);  // case_bodies
 void read_walls(const Reader& r, const YAML::Node& root, Case& c);                // case_bodies
+void read_symmetry(const Reader& r, const YAML::Node& root, Case& c);             // case_bodies
 void read_references(const Reader& r, const YAML::Node& root, Case& c);           // case_references
 void read_output(const Reader& r, const YAML::Node& root, Case& c);               // case_solver
 void read_contact(const Reader& r, const YAML::Node& root, Case& c);              // case_contact

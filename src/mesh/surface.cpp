@@ -4,6 +4,8 @@
 #include <cmath>
 #include <sstream>
 
+#include "tetcontact/mesh/symmetry.hpp"
+
 namespace tc {
 namespace {
 
@@ -21,10 +23,17 @@ Face sorted_face(Face f) {
   return f;
 }
 
+// A face with every node on one of the mesh's symmetry planes.
+bool on_symmetry_plane(const Mesh& mesh, const Face& f) {
+  return std::any_of(mesh.symmetry.begin(), mesh.symmetry.end(), [&](const SymmetryPlane& p) {
+    return on_plane(mesh.x[f[0]], p) && on_plane(mesh.x[f[1]], p) && on_plane(mesh.x[f[2]], p);
+  });
+}
+
 }  // namespace
 
 TetNeighbours tet_neighbours(const Mesh& mesh) {
-  TetNeighbours nb(mesh.tets.size(), {-1, -1, -1, -1});
+  TetNeighbours nb(mesh.tets.size(), {k_no_tet, k_no_tet, k_no_tet, k_no_tet});
   for (Index b = 0; b < static_cast<Index>(mesh.bodies.size()); ++b) {
     const BodyRange& r = mesh.bodies[b];
     // Faces shared by two tets appear twice among the faces of the body's tets.
@@ -41,7 +50,9 @@ TetNeighbours tet_neighbours(const Mesh& mesh) {
     for (std::size_t i = 0; i < keys.size();) {
       std::size_t j = i + 1;
       while (j < keys.size() && keys[j].sorted == keys[i].sorted) ++j;
-      if (j - i == 2) {
+      if (j - i == 1 && on_symmetry_plane(mesh, keys[i].sorted)) {
+        nb[keys[i].tet][keys[i].oriented[0]] = k_mirror_tet;
+      } else if (j - i == 2) {
         nb[keys[i].tet][keys[i].oriented[0]] = keys[i + 1].tet;
         nb[keys[i + 1].tet][keys[i + 1].oriented[0]] = keys[i].tet;
       } else if (j - i > 2) {
@@ -110,7 +121,7 @@ std::vector<Surface> build_surfaces(const Mesh& mesh, const TetNeighbours& neigh
       const Tet& k = mesh.tets[t];
       for (int i = 0; i < 4; ++i) {
         const Index other = neighbours[t][i];
-        if (other >= 0 && !gone(other)) continue;
+        if (other == k_mirror_tet || (other >= 0 && !gone(other))) continue;
         const auto& lf = k_tet_faces[i];
         const Face f{k[lf[0]], k[lf[1]], k[lf[2]]};
         keys.push_back({sorted_face(f), f, t});

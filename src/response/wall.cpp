@@ -7,21 +7,28 @@ namespace tc {
 std::vector<ContactPoint> wall_contacts(const std::vector<RigidWall>& walls,
                                         const std::vector<Index>& nodes, const State& st) {
   std::vector<ContactPoint> out;
-  for (const RigidWall& wall : walls)
-    for (Index i : nodes) {
-      const double d = (st.x[i] - wall.point).dot(wall.normal);
-      // A node that would reach the plane within the step (or is behind it and approaching).
-      if (d + st.dt * st.v_star[i].dot(wall.normal) > 0.0) continue;
-      ContactPoint c;
-      c.a_nodes[0] = i;
-      c.a_w[0] = 1.0;
-      c.a_count = 1;
-      c.normal = wall.normal;
-      c.gap = d;
-      c.friction = wall.friction;
-      c.mode = wall.friction > 0.0 ? FrictionMode::coulomb : FrictionMode::slip;
-      out.push_back(c);
+  // Node i at gap d from the wall: a contact when it would reach the plane within the step (or
+  // is behind it and approaching).
+  const auto meet = [&](const RigidWall& wall, Index i, double d) {
+    if (d + st.dt * st.v_star[i].dot(wall.normal) > 0.0) return;
+    ContactPoint c;
+    c.a_nodes[0] = i;
+    c.a_w[0] = 1.0;
+    c.a_count = 1;
+    c.normal = wall.normal;
+    c.gap = d;
+    c.friction = wall.friction;
+    c.mode = wall.friction > 0.0 ? FrictionMode::coulomb : FrictionMode::slip;
+    out.push_back(c);
+  };
+  for (const RigidWall& wall : walls) {
+    for (Index i : nodes) meet(wall, i, (st.x[i] - wall.point).dot(wall.normal));
+    // A particle, a sphere of its radius, meets the plane when its centre is that far from it.
+    for (Index p = 0; p < st.particle_count(); ++p) {
+      const Index i = st.first_particle + p;
+      meet(wall, i, (st.x[i] - wall.point).dot(wall.normal) - st.particle_radius[p]);
     }
+  }
   return out;
 }
 

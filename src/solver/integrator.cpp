@@ -15,6 +15,13 @@ void predict(State& st, const std::vector<VelocityConstraint>& constraints) {
         st.bc_impulse[i].setZero();
       },
       parallel::k_light_block);
+  hold_constraints(st, constraints);
+  parallel::for_each(
+      n, [&](std::size_t i) { st.x_star[i] = st.x[i] + st.dt * st.v_star[i]; },
+      parallel::k_light_block);
+}
+
+void hold_constraints(State& st, const std::vector<VelocityConstraint>& constraints) {
   for (const VelocityConstraint& c : constraints)
     for (Index node : c.nodes)
       for (int d = 0; d < 3; ++d)
@@ -22,9 +29,6 @@ void predict(State& st, const std::vector<VelocityConstraint>& constraints) {
           st.bc_impulse[node][d] += st.m[node] * (c.velocity[d] - st.v_star[node][d]);
           st.v_star[node][d] = c.velocity[d];
         }
-  parallel::for_each(
-      n, [&](std::size_t i) { st.x_star[i] = st.x[i] + st.dt * st.v_star[i]; },
-      parallel::k_light_block);
 }
 
 void commit(State& st) {

@@ -104,6 +104,7 @@ Simulation::Simulation(Model model, SolverSettings settings)
     modules_.push_back("fracture:particles");
     modules_.push_back("response:particles");
   }
+  if (!model_.mesh.symmetry.empty()) modules_.push_back("symmetry");
   if (!model_.constraints.empty()) modules_.push_back("boundary_conditions");
   if (!model_.walls.empty()) {
     modules_.push_back("response:rigid_walls");
@@ -191,6 +192,7 @@ void Simulation::step() {
   timed(Stage::predict, [&] { predict_stage(); });  // U*, x* (eqs. 2, 3)
   detect_stage();   // contact points: walls, bodies (broadphase, narrowphase), particles
   respond_stage();  // the sequential passes over them, island by island
+  timed(Stage::predict, [&] { hold_constraints(state_, model_.constraints); });
   if (resolver_) timed(Stage::verify, [&] { resolve_stage(); });  // the verified step
   timed(Stage::balance, [&] { sample_stage(); });                 // energy, momentum at tⁿ
   timed(Stage::output, [&] { output_stage(); });                  // observers see tⁿ
@@ -204,6 +206,7 @@ void Simulation::finish() {
   timed(Stage::predict, [&] { predict_stage(); });
   detect_stage();
   respond_stage();
+  timed(Stage::predict, [&] { hold_constraints(state_, model_.constraints); });
   timed(Stage::balance, [&] { sample_stage(); });
   timed(Stage::output, [&] { output_stage(); });
 }

@@ -72,3 +72,45 @@ TEST(Setup, RegimeNotesStateTheHydrodynamicRange) {
   ASSERT_EQ(both.size(), 1u);
   EXPECT_NE(both[0].find("bodies 'target' and 'impactor'"), std::string::npos) << both[0];
 }
+
+// Symmetry planes at setup: a body cut along a plane without a node layer there, a motion
+// across a plane, a body wholly behind a plane, and a malformed plane each stop the setup with
+// the file and key; a valid quarter holds its plane nodes and gets a wall per plane.
+TEST(Setup, SymmetryPlanesAreCheckedAndBecomeAConstraintAndAWall) {
+  test::TempDir dir("setup-symmetry");
+  test::write_text(dir / "c.yaml", k_two_bodies);
+  const auto error = [&](const std::vector<std::string>& overrides) {
+    try {
+      const Case c = load_case(dir / "c.yaml", overrides);
+      build_model(c);
+    } catch (const std::exception& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  const std::string even = "bodies.0.mesh.box.cells=[2, 2, 1]";
+  const std::string even1 = "bodies.1.mesh.box.cells=[2, 2, 1]";
+  EXPECT_NE(error({"symmetry=[x]"}).find("straddles the symmetry plane x = 0"), std::string::npos);
+  EXPECT_NE(error({"symmetry=[x]", even, even1, "bodies.1.velocity=[5, 0, -1000]"})
+                .find("key 'symmetry': body 'impactor' starts with a velocity of 5 m/s across"),
+            std::string::npos);
+  EXPECT_NE(
+      error({"symmetry=[{axis: x, at: 1.0}]"})
+          .find("body 'target': no tet lies on the positive side of the symmetry plane x = 1"),
+      std::string::npos);
+  EXPECT_NE(error({"symmetry=[w]"}).find("key 'symmetry.0': a symmetry plane is x, y or z"),
+            std::string::npos);
+  EXPECT_NE(error({"symmetry=[x, x]"}).find("a second symmetry plane normal to x"),
+            std::string::npos);
+
+  const Case c = load_case(dir / "c.yaml", {"symmetry=[x, y]", even, even1});
+  const Model m = build_model(c);
+  ASSERT_EQ(m.walls.size(), 2u);
+  EXPECT_EQ(m.walls[0].name, "symmetry-x");
+  EXPECT_EQ(m.walls[1].normal, Vec3(0, 1, 0));
+  ASSERT_EQ(m.constraints.size(), 2u);
+  // Each box of 2 × 2 × 1 cells keeps one cell: its nodes at x = 0 are 2 × 2 of its 8.
+  EXPECT_EQ(m.constraints[0].nodes.size(), 8u);
+  EXPECT_EQ(m.constraints[0].components, (std::array<bool, 3>{true, false, false}));
+  for (const Index n : m.constraints[0].nodes) EXPECT_EQ(m.mesh.x[n].x(), 0.0);
+}

@@ -44,6 +44,26 @@ TEST(Wall, NodeLandsOnThePlaneAndWallsNeverPull) {
   EXPECT_EQ(st.v_star[0].z(), -0.5);
 }
 
+TEST(Wall, AParticleStopsItsRadiusFromThePlane) {
+  RigidWall wall;
+  wall.normal = Vec3(0, 0, 1);
+  // A body node (index 0) far above, and a particle of radius 0.4 mm (node 1) whose centre is
+  // 1 mm above the plane at −10 m/s: its sphere would cross; it stops 0.4 mm above the plane.
+  State st = one_node(Vec3(0, 0, 1.0), Vec3(0, 0, -10), 1.0, 1e-3);
+  st.x.push_back(Vec3(0, 0, 1e-3));
+  st.v.push_back(Vec3(0, 0, -10));
+  st.v_star.push_back(Vec3(0, 0, -10));
+  st.m.push_back(3.0);
+  st.wall_impulse.push_back(Vec3::Zero());
+  st.first_particle = 1;
+  st.particle_radius = {0.4e-3};
+  const auto r = apply_walls({wall}, {0}, st);
+  EXPECT_NEAR(st.x[1].z() + st.dt * st.v_star[1].z(), 0.4e-3, 1e-15);
+  EXPECT_NEAR(r[0].impulse.z(), 3.0 * (10.0 - 0.6), 1e-12);
+  EXPECT_EQ(r[0].contacts, 1);
+  EXPECT_EQ(st.v_star[0].z(), -10.0);  // the body node does not reach the plane
+}
+
 TEST(Wall, CoulombFrictionSticksOrSlips) {
   RigidWall wall;
   wall.normal = Vec3(0, 0, 1);

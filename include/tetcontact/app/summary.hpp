@@ -33,6 +33,7 @@ struct RunSummary {
   double time = 0.0, end_time = 0.0, wall = 0.0;
   std::vector<std::string> modules, warnings, regimes;
   std::size_t nodes = 0, tets = 0, surface_faces = 0, surface_edges = 0, frames = 0;
+  std::vector<std::string> symmetry;  // the symmetry planes' names (the whole: 2^size copies)
   std::vector<std::pair<std::string, double>> stages;  // seconds per stage (StepProfile)
   std::optional<double> probe_seconds;  // the part of `output` the penetration probe took
   int threads = 1;

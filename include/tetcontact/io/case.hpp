@@ -113,6 +113,9 @@ struct Case {
   std::vector<std::pair<std::string, double>> parameters;
   std::vector<Material> materials;
   std::vector<RigidWall> walls;
+  /// `symmetry`: the planes the bodies are cut along (the model is the part on their positive
+  /// side; mesh/symmetry.hpp).
+  std::vector<SymmetryPlane> symmetry;
   std::vector<BodySpec> bodies;
   std::vector<BoundarySpec> boundary_conditions;
   OutputSpec output;

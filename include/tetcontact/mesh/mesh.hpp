@@ -39,12 +39,21 @@ struct BodyRange {
   Index tet_count() const { return tet_end - tet_begin; }
 };
 
+/// A symmetry plane x[axis] = at (mesh/symmetry.hpp): the modelled part lies at x[axis] ≥ at.
+struct SymmetryPlane {
+  int axis = 0;  // 0, 1, 2: x, y, z
+  double at = 0.0;
+};
+
 struct Mesh {
   std::vector<Vec3> x;            // N×3 reference positions
   std::vector<Tet> tets;          // M×4, positive orientation
   std::vector<BodyRange> bodies;  // per-body ranges
   std::vector<Index> tet_body;    // M: body of each tet
   std::vector<Index> node_body;   // N: body of each node
+  /// The planes the bodies were cut along: the mesh is part of a whole mirrored across them
+  /// (empty: the mesh is the whole).
+  std::vector<SymmetryPlane> symmetry;
 
   Index node_count() const { return static_cast<Index>(x.size()); }
   Index tet_count() const { return static_cast<Index>(tets.size()); }

@@ -41,10 +41,13 @@ struct Surface {
   }
 };
 
-/// The tet across each face of every tet (face i opposite node i, as in k_tet_faces), −1 on
-/// the boundary. Throws MeshError when a face is shared by more than two tets (non-conforming
-/// mesh).
+/// The tet across each face of every tet (face i opposite node i, as in k_tet_faces):
+/// k_no_tet on the boundary, k_mirror_tet on a symmetry plane (the tet's own mirror image lies
+/// across: the face is interior to the whole). Throws MeshError when a face is shared by more
+/// than two tets (non-conforming mesh).
 using TetNeighbours = std::vector<std::array<Index, 4>>;
+inline constexpr Index k_no_tet = -1;
+inline constexpr Index k_mirror_tet = -2;
 TetNeighbours tet_neighbours(const Mesh& mesh);
 
 /// Builds the surface of every body from the tet connectivity at reference positions.

@@ -17,9 +17,9 @@ struct WallResult {
 
 struct ContactPoint;
 
-/// Contacts of `nodes` with the walls: each node that would reach or cross a plane within the
-/// step, as a contact of weight 1 against a side of infinite mass (no nodes), with the gap
-/// d = (xⁿ − p)·n.
+/// Contacts of `nodes` and of every particle with the walls: each that would reach or cross a
+/// plane within the step, as a contact of weight 1 against a side of infinite mass (no
+/// nodes), with the gap d = (xⁿ − p)·n (a particle's less its radius).
 std::vector<ContactPoint> wall_contacts(const std::vector<RigidWall>& walls,
                                         const std::vector<Index>& nodes, const State& st);
 

@@ -17,6 +17,11 @@ namespace tc {
 /// U*, and the impulse that took is recorded in st.bc_impulse.
 void predict(State& st, const std::vector<VelocityConstraint>& constraints);
 
+/// The prescribed components again after the corrections (walls and contacts act on every
+/// node; a prescribed component is not theirs to change): each one set back, the impulse that
+/// took added to st.bc_impulse. x* is not moved (the corrections do not move it either).
+void hold_constraints(State& st, const std::vector<VelocityConstraint>& constraints);
+
 /// Committed update, Dobritsa et al. eq. (1) with the contact reactions already folded into U*:
 ///   U^{n+1} = U*,   x^{n+1} = x^n + U^{n+1} τ.
 void commit(State& st);
