@@ -21,6 +21,9 @@ TetMesh make_body_mesh(const BodySpec& b, std::vector<std::string>* notes) {
     case MeshSpec::Kind::box:
       return make_box(m.size, m.cells, split);
     case MeshSpec::Kind::plate:
+      if (m.core > 0.0)
+        return make_plate(m.size, m.cells_through_thickness, split,
+                          PlateGrading{m.core, m.core_growth});
       return make_plate(m.size, m.cells_through_thickness, split);
     case MeshSpec::Kind::cylinder:
       return make_cylinder(m.radius, m.height, m.cells_across, m.cells_axial, split);

@@ -46,11 +46,23 @@ MeshSpec parse_mesh(const Reader& r, const YAML::Node& n, const std::string& pat
     m.split = parse_split(r, g, gp);
   } else if (kind == "plate") {
     m.kind = MeshSpec::Kind::plate;
-    r.keys(g, gp, {"size", "cells_through_thickness", "split"});
+    r.keys(g, gp, {"size", "cells_through_thickness", "split", "core", "growth"});
     m.size = size3(r.require(g, gp, "size"), join(gp, "size"));
     m.cells_through_thickness = r.count(r.require(g, gp, "cells_through_thickness"),
                                         join(gp, "cells_through_thickness"), 1, 4096);
     m.split = parse_split(r, g, gp);
+    if (g["growth"] && !g["core"])
+      r.fail(g["growth"], join(gp, "growth"), "grades the cells outside a `core`: give its width");
+    if (g["core"]) {
+      m.core = r.positive(g["core"], join(gp, "core"), "m");
+      if (g["growth"]) {
+        m.core_growth = r.number(g["growth"], join(gp, "growth"));
+        if (!(m.core_growth > 1.0 && m.core_growth <= 2.0))
+          r.fail(
+              g["growth"], join(gp, "growth"),
+              "must be in (1, 2] (the ratio of neighbouring cells), got " + g["growth"].Scalar());
+      }
+    }
   } else if (kind == "cylinder" || kind == "sphere") {
     const bool cyl = kind == "cylinder";
     m.kind = cyl ? MeshSpec::Kind::cylinder : MeshSpec::Kind::sphere;

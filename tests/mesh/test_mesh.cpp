@@ -164,6 +164,47 @@ TEST(Generators, PlateKeepsCellsNearCubic) {
   EXPECT_NEAR(total_volume(m), 0.1 * 0.05 * 0.002, 1e-15);
 }
 
+// The graded axis: symmetric about 0 with a node there, core cells of exactly h, each cell
+// outside the core growth times the one before it, the rim reached exactly.
+TEST(Generators, GradedAxisKeepsTheCoreAndGrowsToTheRim) {
+  const double width = 0.12, h = 0.635e-3, core = 20e-3, growth = 1.15;
+  const std::vector<double> x = graded_axis(width, h, core, growth);
+  const std::size_t n = x.size() - 1;
+  ASSERT_EQ(n % 2, 0u);
+  EXPECT_EQ(x.front(), -0.06);
+  EXPECT_EQ(x.back(), 0.06);
+  EXPECT_EQ(x[n / 2], 0.0);
+  for (std::size_t i = 0; i <= n; ++i) EXPECT_EQ(x[i], -x[n - i]);
+  const long core_cells = std::lround(0.5 * core / h);  // 16 each side
+  for (long i = 0; i < core_cells; ++i) EXPECT_NEAR(x[n / 2 + i + 1] - x[n / 2 + i], h, 1e-15);
+  for (std::size_t i = n / 2 + core_cells + 1; i < n; ++i) {
+    const double before = x[i] - x[i - 1], after = x[i + 1] - x[i];
+    EXPECT_NEAR(after / before, growth, 1e-9) << i;
+    EXPECT_GE(before, h * (1.0 - 1e-12));
+  }
+  // 16 core cells and the graded ones: far fewer than the 189 uniform cells of h per side.
+  EXPECT_LT(n / 2, 40u);
+  EXPECT_THROW(graded_axis(width, h, core, 1.0), std::invalid_argument);
+  EXPECT_THROW(graded_axis(width, h, 0.0, 1.2), std::invalid_argument);
+  // A core wider than the plate less a cell: uniform, an even count of cells of about h.
+  const std::vector<double> u = graded_axis(10e-3, 1e-3, 9.5e-3, 1.2);
+  ASSERT_EQ(u.size(), 11u);
+  for (std::size_t i = 1; i < u.size(); ++i) EXPECT_NEAR(u[i] - u[i - 1], 1e-3, 1e-15);
+}
+
+TEST(Generators, GradedPlateIsExactPositiveAndConforming) {
+  const Vec3 size(0.12, 0.08, 2.54e-3);
+  const TetMesh m = make_plate(size, 4, HexSplit::six, PlateGrading{20e-3, 1.2});
+  EXPECT_NEAR(total_volume(m), size.prod(), 1e-15);
+  EXPECT_GT(min_volume(m), 0.0);
+  const TetMesh uniform = make_plate(size, 4, HexSplit::six);
+  EXPECT_LT(5 * m.tets.size(), uniform.tets.size());
+  Mesh mesh;
+  add_body(mesh, "plate", m);
+  const Surface s = build_surfaces(mesh)[0];  // conforming: throws on a face shared thrice
+  EXPECT_EQ(s.euler_characteristic(), 2);
+}
+
 TEST(Generators, CylinderVolumeConvergesToPiR2H) {
   const double r = 0.01, h = 0.02;
   double prev_err = 1.0;

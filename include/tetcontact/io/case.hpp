@@ -29,6 +29,8 @@ struct MeshSpec {
   Vec3 size = Vec3::Zero();           // box, plate
   std::array<int, 3> cells{1, 1, 1};  // box
   int cells_through_thickness = 0;    // plate
+  double core = 0.0;                  // plate: > 0, graded outside a core this wide (m)
+  double core_growth = 1.2;           // plate: the graded cells' ratio (the key `growth`)
   double radius = 0.0;                // cylinder, sphere
   double height = 0.0;                // cylinder
   int cells_across = 0;               // cylinder, sphere

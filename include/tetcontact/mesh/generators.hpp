@@ -16,6 +16,7 @@
 #pragma once
 
 #include <array>
+#include <vector>
 
 #include "tetcontact/mesh/mesh.hpp"
 
@@ -29,6 +30,23 @@ TetMesh make_box(const Vec3& size, std::array<int, 3> cells, HexSplit split);
 /// Plate of size (lx, ly, thickness), thickness along z, `cells_through_thickness` layers and
 /// in-plane cells chosen to keep the hexes near cubic.
 TetMesh make_plate(const Vec3& size, int cells_through_thickness, HexSplit split);
+
+/// A plate fine under the shot and coarse towards its rim: in each in-plane direction, cells
+/// of the through-thickness size h across a centred core `core` wide, then each `growth` times
+/// the one before it out to the rim.
+struct PlateGrading {
+  double core = 0.0;    // m, the width of the uniform square at the plate's centre
+  double growth = 1.2;  // > 1: the ratio of neighbouring cells outside the core
+};
+TetMesh make_plate(const Vec3& size, int cells_through_thickness, HexSplit split,
+                   const PlateGrading& grading);
+
+/// The node coordinates of one graded direction of a plate `width` wide, centred on 0 and
+/// symmetric about it (a node at 0): 2·n_c cells of size h in the core (n_c = round(core / 2h),
+/// at least 1), then on each side m cells of sizes f·h·growth^k, k = 1..m, with m and the
+/// factor f chosen so that the last ends on the rim and f is nearest 1 (no graded cell below
+/// h). Less than a cell h outside the core gives uniform cells of about h (an even count).
+std::vector<double> graded_axis(double width, double h, double core, double growth);
 
 /// Cylinder along z: `cells_across` cells across the diameter, `cells_axial` along the axis;
 /// split must be 6.
