@@ -450,7 +450,7 @@ TEST(Validation, WhippleCoarsePerforatesAboveTheLimitAndNotBelow) {
   EXPECT_LT(above.balance_error_max, 1e-3);  // 5.1e-5 measured
 
   // The shipped shield (a 2 mm wall 30 mm behind: 1.5× Christiansen's d_c) perforates because
-  // the wall tears: without the wall's ductile failure it holds (28.8 mg through, and none).
+  // the wall tears: without the wall's ductile failure it holds (100.9 mg through, and none).
   EXPECT_EQ(measured(run({}), "wall perforated"), 1.0);
   EXPECT_EQ(measured(run({"materials.wall.ductile_failure=false"}), "wall perforated"), 0.0);
   const std::vector<std::string> thick{"parameters.S=30e-3", "parameters.tw=8e-3"};

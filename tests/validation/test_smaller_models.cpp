@@ -67,6 +67,15 @@ void record(const std::string& name, const ShotRun& full, const ShotRun& part) {
       name + "_seconds", std::to_string(part.seconds) + " of " + std::to_string(full.seconds));
 }
 
+// The coarse shield of the tests (a 4 mm sphere 6 cells across, 1 mm cells through the 1 mm
+// bumper, 2 mm cells through the 2 mm wall 15 mm behind it, `ww` wide), with uniform plates
+// unless `cw` (the wall's uniform core) is narrower than the wall.
+std::vector<std::string> coarse_shot(const std::string& ww, const std::string& cw) {
+  return {"parameters.hb=1.0e-3",   "parameters.hw=2.0e-3", "parameters.np=6",
+          "parameters.tear=5.0e-6", "parameters.S=15e-3",   "parameters.cb=24e-3",
+          "parameters.ww=" + ww,    "parameters.cw=" + cw};
+}
+
 }  // namespace
 
 // The copper rod (6 × 18 cells) on its wall, whole and as a quarter (planes x = 0, y = 0): the
@@ -92,17 +101,16 @@ TEST(Validation, QuarterTaylorRodGivesTheWholeRodsLengthAndFootprint) {
   record("taylor", full, quarter);
 }
 
-// The coarse Whipple shield that perforates (a 2 mm wall 15 mm behind), whole and as a quarter:
-// the same verdict, and the measures within twice what was measured (hole 0.4 %, leading-edge
-// speed 2 %, cone angle 4 %, debris mass 1 %, momentum through the wall 2 %, mass through it
-// 12 %: the debris is a few hundred particles whose sequential contacts do not keep the
-// mirror symmetry particle by particle).
+// The coarse Whipple shield that perforates, whole and as a quarter: the same verdict, and the
+// measures within twice what was measured (hole 0.4 %, leading-edge speed 2 %, cone angle 4 %,
+// debris mass 1 %, momentum through the wall 2 %, mass through it 12 %: the debris is a few
+// hundred particles whose sequential contacts do not keep the mirror symmetry particle by
+// particle).
 TEST(Validation, QuarterWhippleShieldGivesTheWholeShieldsVerdictAndDebris) {
-  const std::vector<std::string> shot{"parameters.hb=1.0e-3", "parameters.hw=2.0e-3",
-                                      "parameters.np=6",      "parameters.tear=5.0e-6",
-                                      "parameters.S=15e-3",   "parameters.ww=30e-3"};
-  const ShotRun full = run_case("data/cases/whipple.yaml", shot);
+  const std::vector<std::string> shot = coarse_shot("30e-3", "30e-3");
+  const ShotRun full = run_case("data/cases/whipple.yaml", with(shot, {"symmetry=[]"}));
   const ShotRun quarter = run_case("data/cases/whipple.yaml", with(shot, {"symmetry=[x, y]"}));
+  EXPECT_EQ(4 * quarter.tets, full.tets);
   EXPECT_EQ(full.measured("wall perforated"), 1.0);
   EXPECT_EQ(quarter.measured("wall perforated"), 1.0);
   const auto near = [&](const std::string& name, double tolerance) {
@@ -121,18 +129,15 @@ TEST(Validation, QuarterWhippleShieldGivesTheWholeShieldsVerdictAndDebris) {
 
 // The coarse shield with a wide rear wall (60 mm, uniform 2 mm cells: 30 × 30) against the same
 // wall graded (2 mm cells across its central 20 mm, each cell outside 1.2 times the one
-// before: 7,152 tets against 10,152): the same verdict, the cloud's measures bit for bit (the
-// same bumper and projectile, measured before the debris reaches the wall), and the mass and
-// momentum through the wall within 5 % (measured: 1.0 % and 1.4 %).
+// before), whole shields: the same verdict, the cloud's measures bit for bit (the same bumper
+// and projectile, measured before the debris reaches the wall), and the mass and momentum
+// through the wall within 5 % (measured: 1.0 % and 1.4 %; as quarters the mass differed by
+// 8.7 %, the quarter's few hundred particles through the wall being the noisier sample).
 TEST(Validation, GradedRearWallGivesTheUniformWallsAnswers) {
-  const std::vector<std::string> shot{"parameters.hb=1.0e-3", "parameters.hw=2.0e-3",
-                                      "parameters.np=6",      "parameters.tear=5.0e-6",
-                                      "parameters.S=15e-3",   "parameters.ww=60e-3"};
-  const ShotRun uniform = run_case("data/cases/whipple.yaml", shot);
-  const ShotRun graded = run_case(
-      "data/cases/whipple.yaml",
-      with(shot, {"bodies.2.mesh={plate: {size: [0.06, 0.06, 0.002], cells_through_thickness: 1, "
-                  "core: 0.02, growth: 1.2}}"}));
+  const ShotRun uniform =
+      run_case("data/cases/whipple.yaml", with(coarse_shot("60e-3", "60e-3"), {"symmetry=[]"}));
+  const ShotRun graded =
+      run_case("data/cases/whipple.yaml", with(coarse_shot("60e-3", "20e-3"), {"symmetry=[]"}));
   EXPECT_LT(graded.tets, uniform.tets);
   EXPECT_EQ(uniform.measured("wall perforated"), 1.0);
   EXPECT_EQ(graded.measured("wall perforated"), 1.0);

@@ -19,8 +19,9 @@ NAME, the table:
                   on 2 ranks of 1 thread; weak scaling of the Taylor rod
     whipple       the Whipple shield's coarse runs (the test's) beside Christiansen's critical
                   diameter
-    whipple-mesh  the shipped Whipple shield on three meshes on 2 threads: measures, run times
-    whipple-hole  the bumper's hole at 8 µs on four meshes (the fourth: 3 cells through the
+    whipple-mesh  the shipped Whipple shield on two meshes, and its default cells as the whole
+                  shield with uniform plates, on 2 threads: measures, run times
+    whipple-hole  the bumper's hole at 8 µs on those and a fourth (3 cells through the
                   bumper), 2 threads
     strength      the strength laws side by side: the aluminium Taylor rod and the 6061-T6 plate
                   impact's precursor (HEL) under each law, one thread
@@ -572,14 +573,15 @@ def whipple(binary, work, opts):
 
 
 WHIPPLE_MESHES = [  # (what, --set values): the shipped shield on three meshes, the same geometry
-    ("coarse: bumper 1 mm, wall 2 mm, sphere 6 across", ["parameters.hb=1.0e-3",
-                                                         "parameters.hw=2.0e-3", "parameters.np=6"]),
-    ("medium: 0.7 mm, 1.4 mm, 7 across", ["parameters.hb=0.7e-3", "parameters.hw=1.4e-3",
-                                          "parameters.np=7"]),
-    ("default: 0.5 mm, 1 mm, 8 across", []),
+    ("coarse: 1 cell through each plate, sphere 6 across",
+     ["parameters.hb=1.0e-3", "parameters.hw=2.0e-3", "parameters.np=6"]),
+    ("default: 2 through each plate, 8 across (quarter, graded plates)", []),
+    ("the same cells, whole shield, uniform plates",
+     ["symmetry=[]", "parameters.cb=24e-3", "parameters.cw=60e-3"]),
 ]
 WHIPPLE_HOLE_MESHES = WHIPPLE_MESHES + [  # and a fourth: three cells through the bumper
-    ("fine: 0.33 mm (wall 1 mm), 12 across", ["parameters.hb=0.333e-3", "parameters.np=12"]),
+    ("fine: 3 through the bumper (2 through the wall), 12 across",
+     ["parameters.hb=0.333e-3", "parameters.np=12"]),
 ]
 WHIPPLE_MESH_HEADER = [
     "| mesh | tets | steps, wall time (2 threads) | hole | leading edge | cone half-angle | "
