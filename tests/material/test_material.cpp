@@ -429,6 +429,41 @@ TEST(Material, SteinbergGuinanMeltsByTheLindemannLaw) {
   EXPECT_NEAR(von_mises(shear(hot, 1e4, 1e-7, 2000, p, eta).s), 0.29e9 * factor, 1e-9 * 0.29e9);
 }
 
+// The return's two shortcuts change no answer. The melt point's lower bound (no exp, no pow)
+// lies below T_m(η) at every compression and meets it at η = 1; an elastic step is decided
+// against min(Y0, Ymax) G/G0 before the hardening is computed. Oracle: the elastic/plastic
+// decision from the full yield σy(0) = Y(ε̄p) G(P, T)/G0 over trial stresses on both sides of
+// the bound and of σy(0), and the melt just above and below T_m(η).
+TEST(Material, SteinbergGuinanShortcutsAgreeWithTheFullComputation) {
+  const Material m = steinberg(125.0, 0.1, 0.68e9, 6.52e-11, 6.16e-4, 1220.0);
+  const SteinbergGuinan& sg = m.steinberg_guinan;
+  for (double eta = 0.5; eta <= 2.0; eta += 0.01)
+    EXPECT_LE(steinberg_melt_lower_bound(sg, eta), steinberg_melt_temperature(sg, eta)) << eta;
+  EXPECT_NEAR(steinberg_melt_lower_bound(sg, 1.0), 1220.0, 1e-8 * 1220.0);
+
+  const double eps = 0.05, temperature = 400.0, p = 2e9, eta = 1.02, rho = eta * m.density;
+  const StrengthState ss = strength_state(m, p, temperature, eta);
+  double slope = 0.0;
+  const double y_full =
+      steinberg_hardening(sg, eps, slope) *
+      (ss.pressure_factor - sg.b_temperature * (temperature - sg.reference_temperature));
+  const double bound = sg.y0 * y_full / steinberg_hardening(sg, eps, slope);
+  ASSERT_LT(bound, 0.85 * y_full);  // trial stresses between the two: elastic by the full yield
+  for (double f = 0.5; f <= 1.5; f += 0.01) {
+    const double eq = f * y_full;
+    const PlasticIncrement r = plastic_increment(m, eq, eps, 1e-8, temperature, rho, p);
+    EXPECT_EQ(r.dplastic > 0.0, eq > y_full) << f;
+    EXPECT_GE(r.yield, r.dplastic > 0.0 ? 0.0 : eq) << f;  // an elastic step scales nothing
+  }
+  // Molten above T_m(η), not just below it, whether or not the bound decided.
+  for (double e : {0.97, 1.0, 1.1}) {
+    const double tm = steinberg_melt_temperature(sg, e);
+    EXPECT_EQ(strength_state(m, p, tm * (1.0 + 1e-12), e).g, 0.0) << e;
+    EXPECT_GT(strength_state(m, p, tm * (1.0 - 1e-9), e).g, 0.0) << e;
+    EXPECT_GT(strength_state(m, p, 300.0, e).g, 0.0) << e;
+  }
+}
+
 // Adiabatic heating, β = 0: dY/dε̄p = −Y0 B χ Y / (ρ c_v), so Y = Y0 exp(−k ε̄p) with
 // k = Y0 B χ / (ρ c_v) (the heat is solved within each step's return).
 TEST(Material, SteinbergGuinanAdiabaticSofteningFollowsTheExponential) {

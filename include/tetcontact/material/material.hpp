@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <string>
 
 #include "tetcontact/mesh/mesh.hpp"
@@ -204,23 +205,38 @@ inline double steinberg_melt_temperature(const SteinbergGuinan& sg, double eta) 
   return sg.melt_temperature * std::exp(2.0 * sg.a * (1.0 - 1.0 / eta)) *
          std::pow(eta, 2.0 * (sg.gamma0 - sg.a - 1.0 / 3.0));
 }
+/// A lower bound of Steinberg–Guinan's melt temperature without its exp and pow: with
+/// e = 2 (γ0 − a − 1/3) ≥ 0 and a ≥ 0, ln η ≥ 1 − 1/η gives
+///   ln T_m ≥ ln T_m0 + (2a + e)(1 − 1/η),  and exp(x) ≥ 1 + x,
+/// so T_m ≥ T_m0 [1 + (2a + e)(1 − 1/η)] (less 1e-9 of it for round-off). 0 where the law's
+/// constants do not allow the bound.
+inline double steinberg_melt_lower_bound(const SteinbergGuinan& sg, double eta) {
+  const double e = 2.0 * (sg.gamma0 - sg.a - 1.0 / 3.0);
+  if (!(e >= 0.0 && sg.a >= 0.0)) return 0.0;
+  return sg.melt_temperature * (1.0 + (2.0 * sg.a + e) * (1.0 - 1.0 / eta)) * (1.0 - 1e-9);
+}
 /// The state-dependent part of a step's strength: the shear modulus G (G0 but for
-/// Steinberg–Guinan), and for Steinberg–Guinan the melt temperature T_m(η) (0: no melt law) and
-/// the pressure factor 1 + A max(P, 0) η^(−1/3), so that G = G0 [factor − B (T − T_ref)], 0 at or
-/// above melt and never negative.
+/// Steinberg–Guinan), and for Steinberg–Guinan the melt temperature T_m(η) (0: no melt law;
+/// NaN: not computed, T lies below its lower bound) and the pressure factor
+/// 1 + A max(P, 0) η^(−1/3), so that G = G0 [factor − B (T − T_ref)], 0 at or above melt and
+/// never negative.
 struct StrengthState {
   double g = 0.0;
   double melt = 0.0;
   double pressure_factor = 1.0;
+  double eta = 1.0;  // the compression ρ/ρ0 it was computed at
 };
 inline StrengthState strength_state(const Material& m, double p, double T, double eta) {
   StrengthState st;
   st.g = m.shear_modulus;
+  st.eta = eta;
   if (m.strength != StrengthModel::steinberg_guinan) return st;
   const SteinbergGuinan& sg = m.steinberg_guinan;
   st.pressure_factor = 1.0 + sg.a_pressure * std::max(p, 0.0) / std::cbrt(eta);
-  if (sg.melt_temperature > 0.0) st.melt = steinberg_melt_temperature(sg, eta);
-  const bool molten = st.melt > 0.0 && T >= st.melt;
+  if (sg.melt_temperature > 0.0)
+    st.melt = T < steinberg_melt_lower_bound(sg, eta) ? std::numeric_limits<double>::quiet_NaN()
+                                                      : steinberg_melt_temperature(sg, eta);
+  const bool molten = st.melt > 0.0 && T >= st.melt;  // false for NaN
   st.g = molten ? 0.0
                 : m.shear_modulus * std::max(st.pressure_factor -
                                                  sg.b_temperature * (T - sg.reference_temperature),
@@ -261,7 +277,9 @@ inline double shear_modulus_at(const Material& m, double p, double T, double eta
 /// the start of the step (Steinberg–Guinan).
 struct PlasticIncrement {
   double dplastic = 0.0;
-  double yield = 0.0;  // σy at the end of the step; below eq: the deviator is scaled to it
+  /// σy at the end of the step; below eq: the deviator is scaled to it. An elastic step
+  /// (dplastic 0) may return a lower bound of σy instead, never below eq.
+  double yield = 0.0;
 };
 
 /// The bracketed Newton solve of f(Δ) = eq − g3 Δ − σy(Δ) = 0 described above; yield(Δ, slope)
@@ -310,8 +328,17 @@ inline PlasticIncrement plastic_increment(const Material& m, const StrengthState
   if (m.strength == StrengthModel::steinberg_guinan) {
     const SteinbergGuinan& sg = m.steinberg_guinan;
     if (g == 0.0) return r;  // molten (σy = 0): no deviator, no plastic strain to speak of
+    // Elastic below a lower bound of σy(0) = Y(ε̄p) G(P, T)/G0 (G > 0 here, so the factor is
+    // positive and T below melt): Y ≥ min(Y0, Ymax) while β, εi, n ≥ 0. The solver, and the
+    // hardening's pow, only where the trial stress reaches it.
+    const double cp = ss.pressure_factor;
+    const double factor0 = cp - sg.b_temperature * (temperature - sg.reference_temperature);
+    if (sg.beta >= 0.0 && sg.initial_strain >= 0.0 && sg.n >= 0.0) {
+      r.yield = (sg.ymax > 0.0 ? std::min(sg.y0, sg.ymax) : sg.y0) * factor0;
+      if (!(eq > r.yield)) return r;  // r.yield ≥ eq: a bound, not σy (nothing is scaled)
+    }
     // σy(Δ) = Y(ε̄p + Δ) G(P, T(Δ)) / G0 with T(Δ) = T + heat (eq − 3G Δ) Δ.
-    const double tm = ss.melt, cp = ss.pressure_factor;
+    const double tm = std::isnan(ss.melt) ? steinberg_melt_temperature(sg, ss.eta) : ss.melt;
     const auto yield = [&](double d, double& dy) {
       double dh = 0.0;
       const double y = steinberg_hardening(sg, eps_p + d, dh);
