@@ -232,7 +232,8 @@ inline StrengthState strength_state(const Material& m, double p, double T, doubl
   st.eta = eta;
   if (m.strength != StrengthModel::steinberg_guinan) return st;
   const SteinbergGuinan& sg = m.steinberg_guinan;
-  st.pressure_factor = 1.0 + sg.a_pressure * std::max(p, 0.0) / std::cbrt(eta);
+  // No cube root where it is multiplied by zero (p ≤ 0: the factor is 1; a NaN goes through).
+  st.pressure_factor = p <= 0.0 ? 1.0 : 1.0 + sg.a_pressure * p / std::cbrt(eta);
   if (sg.melt_temperature > 0.0)
     st.melt = T < steinberg_melt_lower_bound(sg, eta) ? std::numeric_limits<double>::quiet_NaN()
                                                       : steinberg_melt_temperature(sg, eta);
