@@ -47,16 +47,8 @@ bool ray_meets_triangle(const Vec3& o, const Vec3& d, const Vec3& a, const Vec3&
 struct Images {
   const std::vector<SymmetryPlane>& planes;
   int count() const { return multiplicity(planes); }
-  Vec3 point(Vec3 x, int k) const {
-    for (std::size_t i = 0; i < planes.size(); ++i)
-      if ((k >> i) & 1) x[planes[i].axis] = 2.0 * planes[i].at - x[planes[i].axis];
-    return x;
-  }
-  Vec3 direction(Vec3 d, int k) const {
-    for (std::size_t i = 0; i < planes.size(); ++i)
-      if ((k >> i) & 1) d[planes[i].axis] = -d[planes[i].axis];
-    return d;
-  }
+  Vec3 point(const Vec3& x, int k) const { return mirror_image(x, planes, k); }
+  Vec3 direction(const Vec3& d, int k) const { return mirror_direction(d, planes, k); }
 };
 
 // The debris beyond a reference's plane: particles (node indices) and cells of other bodies,

@@ -46,16 +46,21 @@ void cut_at_plane(TetMesh& mesh, const SymmetryPlane& plane, const std::string& 
   compact_nodes(mesh);
 }
 
+Vec3 mirror_image(Vec3 x, const std::vector<SymmetryPlane>& planes, int k) {
+  for (std::size_t i = 0; i < planes.size(); ++i)
+    if ((k >> i) & 1) x[planes[i].axis] = 2.0 * planes[i].at - x[planes[i].axis];
+  return x;
+}
+
+Vec3 mirror_direction(Vec3 d, const std::vector<SymmetryPlane>& planes, int k) {
+  for (std::size_t i = 0; i < planes.size(); ++i)
+    if ((k >> i) & 1) d[planes[i].axis] = -d[planes[i].axis];
+  return d;
+}
+
 std::vector<Vec3> mirror_images(const Vec3& x, const std::vector<SymmetryPlane>& planes) {
-  std::vector<Vec3> images{x};
-  for (const SymmetryPlane& plane : planes) {
-    const std::size_t n = images.size();
-    for (std::size_t i = 0; i < n; ++i) {
-      Vec3 m = images[i];
-      m[plane.axis] = 2.0 * plane.at - m[plane.axis];
-      images.push_back(m);
-    }
-  }
+  std::vector<Vec3> images;
+  for (int k = 0; k < multiplicity(planes); ++k) images.push_back(mirror_image(x, planes, k));
   return images;
 }
 

@@ -7,6 +7,7 @@
 #include <memory>
 
 #include "../test_util.hpp"
+#include "case_run.hpp"
 #include "tetcontact/app/setup.hpp"
 #include "tetcontact/diagnostics/reference.hpp"
 #include "tetcontact/io/case.hpp"
@@ -17,27 +18,8 @@ using namespace tc;
 
 namespace {
 
-struct Outcome {
-  std::vector<ReferenceResult> refs;
-  double balance_error_max = 0.0;
-  double momentum_error = 0.0;
-};
-
-Outcome run_case(const std::string& file, const std::vector<std::string>& overrides = {}) {
-  static std::vector<Case> keep;  // the references point into the case
-  keep.push_back(load_case(test::source_path(file), overrides));
-  const Case& c = keep.back();
-  Simulation sim(build_model(c), solver_settings(c));
-  ReferenceRecorder references(c.references);  // the timed ones at their time
-  RunHooks hooks;
-  hooks.references = &references;
-  EXPECT_EQ(run_to_end(sim, hooks), "ok") << file;
-  Outcome o;
-  o.refs = references.finish(sim.model(), sim.state(), sim.run_figures());
-  o.balance_error_max = sim.balance_error_max();
-  o.momentum_error = momentum_error(sim.first_sample(), sim.last_sample());
-  return o;
-}
+using test::CaseRun;
+using test::run_case;
 
 // The aluminium rod whose step collapsed, on a coarse mesh (6 × 18 cells) to `end_time` with
 // `overrides`, run to its end; `each_step` sees the simulation after every step.
@@ -58,7 +40,7 @@ std::unique_ptr<Simulation> coarse_aluminium_rod(
 
 // Every declared reference passes; the energy balance holds to `energy` (about 10x what the
 // case measured) and momentum to round-off.
-void expect_all_pass(const Outcome& o, double energy) {
+void expect_all_pass(const CaseRun& o, double energy) {
   ASSERT_FALSE(o.refs.empty());
   for (const ReferenceResult& r : o.refs) {
     EXPECT_TRUE(r.pass) << r.spec->name << ": measured " << r.measured << ", reference "
@@ -219,7 +201,7 @@ TEST(Validation, PlateImpact) {
 // The bilinear law at Y0 against its closed form σ_HEL = Y0 (K + 4G/3) / (2G) = 0.583 GPa
 // (K = ρ0 c0²): within 8 % (the precursor's overshoot at this mesh is +4.4 %).
 TEST(Validation, PlateImpactBilinearPrecursorIsItsClosedForm) {
-  const Outcome o = run_case("data/cases/plate-impact-1d.yaml", {"materials.al.strength=bilinear"});
+  const CaseRun o = run_case("data/cases/plate-impact-1d.yaml", {"materials.al.strength=bilinear"});
   ASSERT_EQ(o.refs.size(), 2u);
   const double k = 2703.0 * 5240.0 * 5240.0, g = 27.6e9;
   const double hel = 0.29e9 * (k + 4.0 / 3.0 * g) / (2.0 * g);
@@ -229,7 +211,7 @@ TEST(Validation, PlateImpactBilinearPrecursorIsItsClosedForm) {
 // The plate-impact references must tell a solid from a fluid: with a yield stress of 1 kPa the
 // shock stress still passes (−0.26 %), the elastic precursor does not (no precursor: −99 %).
 TEST(Validation, PlateImpactFailsForAFluid) {
-  const Outcome o =
+  const CaseRun o =
       run_case("data/cases/plate-impact-1d.yaml", {"materials.al.yield_stress=1.0e3"});
   ASSERT_EQ(o.refs.size(), 2u);
   EXPECT_EQ(o.refs[1].spec->name, "elastic precursor (HEL)");
@@ -334,7 +316,7 @@ TEST(Validation, HertzSpheresContactTimeAndPeakForce) {
     coarser.push_back(std::string(b) + ".mesh.sphere.growth=0.2");
     coarser.push_back(std::string(b) + ".mesh.sphere.cell_size=1.0e-3");
   }
-  const Outcome o = run_case("data/cases/hertz-spheres.yaml", coarser);
+  const CaseRun o = run_case("data/cases/hertz-spheres.yaml", coarser);
   ASSERT_EQ(o.refs.size(), 2u);
   for (const auto& r : o.refs)
     EXPECT_TRUE(r.pass) << r.spec->name << ": " << r.measured << ", error "
@@ -425,39 +407,30 @@ TEST(Validation, WhippleCoarsePerforatesAboveTheLimitAndNotBelow) {
     sets.insert(sets.end(), coarse.begin(), coarse.end());
     return run_case("data/cases/whipple.yaml", sets);
   };
-  const auto measured = [](const Outcome& o, const std::string& name) {
-    for (const ReferenceResult& r : o.refs)
-      if (r.spec->name == name) {
-        EXPECT_TRUE(r.error.empty()) << r.error;
-        return r.measured;
-      }
-    ADD_FAILURE() << "no measure '" << name << "'";
-    return std::numeric_limits<double>::quiet_NaN();
-  };
-  const Outcome above = run({"parameters.S=15e-3", "parameters.tw=2e-3", "parameters.ww=30e-3"});
-  EXPECT_EQ(measured(above, "wall perforated"), 1.0);
-  EXPECT_GT(measured(above, "mass through the wall"), 0.0);
-  EXPECT_GT(measured(above, "momentum through the wall"), 0.0);  // along the shot
-  const double lead = measured(above, "debris leading-edge speed");
+  const CaseRun above = run({"parameters.S=15e-3", "parameters.tw=2e-3", "parameters.ww=30e-3"});
+  EXPECT_EQ(above.measured("wall perforated"), 1.0);
+  EXPECT_GT(above.measured("mass through the wall"), 0.0);
+  EXPECT_GT(above.measured("momentum through the wall"), 0.0);  // along the shot
+  const double lead = above.measured("debris leading-edge speed");
   EXPECT_GT(lead, 0.8 * 6500.0);  // 6,326 m/s measured
   EXPECT_LT(lead, 1.1 * 6500.0);
-  const double cone = measured(above, "debris cone half-angle");  // 44° measured
+  const double cone = above.measured("debris cone half-angle");  // 44° measured
   EXPECT_GT(cone, 10.0);
   EXPECT_LT(cone, 80.0);
-  EXPECT_GT(measured(above, "debris mass in particles"), 0.0);
-  EXPECT_GT(measured(above, "bumper hole diameter"), 4.0e-3);  // wider than the sphere
+  EXPECT_GT(above.measured("debris mass in particles"), 0.0);
+  EXPECT_GT(above.measured("bumper hole diameter"), 4.0e-3);  // wider than the sphere
   EXPECT_LT(above.momentum_error, 1e-12);
   EXPECT_LT(above.balance_error_max, 1e-3);  // 5.1e-5 measured
 
   // The shipped shield (a 2 mm wall 30 mm behind: 1.5× Christiansen's d_c) perforates because
   // the wall tears: without the wall's ductile failure it holds (100.9 mg through, and none).
-  EXPECT_EQ(measured(run({}), "wall perforated"), 1.0);
-  EXPECT_EQ(measured(run({"materials.wall.ductile_failure=false"}), "wall perforated"), 0.0);
+  EXPECT_EQ(run({}).measured("wall perforated"), 1.0);
+  EXPECT_EQ(run({"materials.wall.ductile_failure=false"}).measured("wall perforated"), 0.0);
   const std::vector<std::string> thick{"parameters.S=30e-3", "parameters.tw=8e-3"};
-  const Outcome below = run(thick);
-  EXPECT_EQ(measured(below, "wall perforated"), 0.0);
-  EXPECT_EQ(measured(below, "mass through the wall"), 0.0);
+  const CaseRun below = run(thick);
+  EXPECT_EQ(below.measured("wall perforated"), 0.0);
+  EXPECT_EQ(below.measured("mass through the wall"), 0.0);
   std::vector<std::string> off = thick;
   off.push_back("contact.enabled=false");
-  EXPECT_EQ(measured(run(off), "wall perforated"), 1.0);
+  EXPECT_EQ(run(off).measured("wall perforated"), 1.0);
 }

@@ -5,62 +5,24 @@
 // uniform wall's answers.
 #include <gtest/gtest.h>
 
-#include <chrono>
-#include <cmath>
-#include <limits>
+#include <string>
+#include <vector>
 
-#include "../test_util.hpp"
-#include "tetcontact/app/setup.hpp"
-#include "tetcontact/diagnostics/reference.hpp"
-#include "tetcontact/io/case.hpp"
-#include "tetcontact/solver/run_loop.hpp"
-#include "tetcontact/solver/simulation.hpp"
+#include "case_run.hpp"
 
 using namespace tc;
 
 namespace {
 
-struct ShotRun {
-  std::vector<ReferenceResult> refs;
-  long tets = 0;
-  double seconds = 0.0;
-  double momentum_error = 0.0, balance_error_max = 0.0;
-  double measured(const std::string& name) const {
-    for (const ReferenceResult& r : refs)
-      if (r.spec->name == name) {
-        EXPECT_TRUE(r.error.empty()) << name << ": " << r.error;
-        return r.measured;
-      }
-    ADD_FAILURE() << "no measure '" << name << "'";
-    return std::numeric_limits<double>::quiet_NaN();
-  }
-};
-
-ShotRun run_case(const std::string& file, const std::vector<std::string>& overrides) {
-  static std::vector<Case> keep;  // the references point into the case
-  keep.push_back(load_case(test::source_path(file), overrides));
-  const Case& c = keep.back();
-  const auto start = std::chrono::steady_clock::now();
-  Simulation sim(build_model(c), solver_settings(c));
-  ReferenceRecorder references(c.references);
-  RunHooks hooks;
-  hooks.references = &references;
-  EXPECT_EQ(run_to_end(sim, hooks), "ok") << file;
-  ShotRun r;
-  r.refs = references.finish(sim.model(), sim.state(), sim.run_figures());
-  r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  r.tets = sim.model().mesh.tet_count();
-  r.momentum_error = momentum_error(sim.first_sample(), sim.last_sample());
-  r.balance_error_max = sim.balance_error_max();
-  return r;
-}
+using test::CaseRun;
+using test::run_case;
 
 std::vector<std::string> with(std::vector<std::string> a, const std::vector<std::string>& b) {
   a.insert(a.end(), b.begin(), b.end());
   return a;
 }
 
-void record(const std::string& name, const ShotRun& full, const ShotRun& part) {
+void record(const std::string& name, const CaseRun& full, const CaseRun& part) {
   ::testing::Test::RecordProperty(name + "_tets",
                                   std::to_string(part.tets) + " of " + std::to_string(full.tets));
   ::testing::Test::RecordProperty(
@@ -86,15 +48,15 @@ std::vector<std::string> coarse_shot(const std::string& ww, const std::string& c
 TEST(Validation, QuarterTaylorRodGivesTheWholeRodsLengthAndFootprint) {
   const std::vector<std::string> coarse{"bodies.0.mesh.cylinder.cells_across=6",
                                         "bodies.0.mesh.cylinder.cells_axial=18"};
-  const ShotRun full = run_case("data/cases/taylor-copper.yaml", coarse);
-  const ShotRun quarter =
+  const CaseRun full = run_case("data/cases/taylor-copper.yaml", coarse);
+  const CaseRun quarter =
       run_case("data/cases/taylor-copper.yaml", with(coarse, {"symmetry=[x, y]"}));
   EXPECT_EQ(4 * quarter.tets, full.tets);
   for (const char* name : {"final length", "impact-face radius"}) {
     const double whole = full.measured(name), part = quarter.measured(name);
     EXPECT_NEAR(part / whole, 1.0, 1e-9) << name << ": " << part << " against " << whole;
   }
-  for (const ShotRun* r : {&full, &quarter}) {
+  for (const CaseRun* r : {&full, &quarter}) {
     EXPECT_LT(r->momentum_error, 1e-12);
     EXPECT_LT(r->balance_error_max, 1e-2);
   }
@@ -108,8 +70,8 @@ TEST(Validation, QuarterTaylorRodGivesTheWholeRodsLengthAndFootprint) {
 // particle).
 TEST(Validation, QuarterWhippleShieldGivesTheWholeShieldsVerdictAndDebris) {
   const std::vector<std::string> shot = coarse_shot("30e-3", "30e-3");
-  const ShotRun full = run_case("data/cases/whipple.yaml", with(shot, {"symmetry=[]"}));
-  const ShotRun quarter = run_case("data/cases/whipple.yaml", with(shot, {"symmetry=[x, y]"}));
+  const CaseRun full = run_case("data/cases/whipple.yaml", with(shot, {"symmetry=[]"}));
+  const CaseRun quarter = run_case("data/cases/whipple.yaml", with(shot, {"symmetry=[x, y]"}));
   EXPECT_EQ(4 * quarter.tets, full.tets);
   EXPECT_EQ(full.measured("wall perforated"), 1.0);
   EXPECT_EQ(quarter.measured("wall perforated"), 1.0);
@@ -123,7 +85,7 @@ TEST(Validation, QuarterWhippleShieldGivesTheWholeShieldsVerdictAndDebris) {
   near("debris mass", 0.02);
   near("momentum through the wall", 0.04);
   near("mass through the wall", 0.25);
-  for (const ShotRun* r : {&full, &quarter}) EXPECT_LT(r->momentum_error, 1e-12);
+  for (const CaseRun* r : {&full, &quarter}) EXPECT_LT(r->momentum_error, 1e-12);
   record("whipple", full, quarter);
 }
 
@@ -134,9 +96,9 @@ TEST(Validation, QuarterWhippleShieldGivesTheWholeShieldsVerdictAndDebris) {
 // through the wall within 5 % (measured: 1.0 % and 1.4 %; as quarters the mass differed by
 // 8.7 %, the quarter's few hundred particles through the wall being the noisier sample).
 TEST(Validation, GradedRearWallGivesTheUniformWallsAnswers) {
-  const ShotRun uniform =
+  const CaseRun uniform =
       run_case("data/cases/whipple.yaml", with(coarse_shot("60e-3", "60e-3"), {"symmetry=[]"}));
-  const ShotRun graded =
+  const CaseRun graded =
       run_case("data/cases/whipple.yaml", with(coarse_shot("60e-3", "20e-3"), {"symmetry=[]"}));
   EXPECT_LT(graded.tets, uniform.tets);
   EXPECT_EQ(uniform.measured("wall perforated"), 1.0);

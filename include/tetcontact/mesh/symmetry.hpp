@@ -31,8 +31,14 @@ inline bool on_plane(const Vec3& x, const SymmetryPlane& plane) {
   return x[plane.axis] == plane.at;
 }
 
+/// Image k of a point: reflected across the planes whose bit is set in k (image 0: the point).
+Vec3 mirror_image(Vec3 x, const std::vector<SymmetryPlane>& planes, int k);
+/// Image k of a direction (a velocity, a normal): its components along those planes' normals
+/// reversed.
+Vec3 mirror_direction(Vec3 d, const std::vector<SymmetryPlane>& planes, int k);
+
 /// The point and its mirror images across every plane and every combination of them
-/// (2^planes points, the point first).
+/// (2^planes points: mirror_image for k = 0, 1, …).
 std::vector<Vec3> mirror_images(const Vec3& x, const std::vector<SymmetryPlane>& planes);
 
 /// How many copies of the model make the whole: 2^planes.
