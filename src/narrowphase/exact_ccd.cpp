@@ -126,25 +126,26 @@ Poly operator+(const Poly& a, const Poly& b) {
   std::vector<Z> r(std::max(a.c.size(), b.c.size()));
   for (std::size_t k = 0; k < a.c.size(); ++k) r[k] += a.c[k];
   for (std::size_t k = 0; k < b.c.size(); ++k) r[k] += b.c[k];
-  return Poly(r);
+  return Poly(std::move(r));
 }
 Poly operator-(const Poly& a, const Poly& b) {
   std::vector<Z> r(std::max(a.c.size(), b.c.size()));
   for (std::size_t k = 0; k < a.c.size(); ++k) r[k] += a.c[k];
   for (std::size_t k = 0; k < b.c.size(); ++k) r[k] -= b.c[k];
-  return Poly(r);
+  return Poly(std::move(r));
 }
 Poly operator*(const Poly& a, const Poly& b) {
   if (a.zero() || b.zero()) return Poly();
   std::vector<Z> r(a.c.size() + b.c.size() - 1);
   for (std::size_t i = 0; i < a.c.size(); ++i)
-    for (std::size_t j = 0; j < b.c.size(); ++j) r[i + j] += a.c[i] * b.c[j];
-  return Poly(r);
+    for (std::size_t j = 0; j < b.c.size(); ++j)
+      mpz_addmul(r[i + j].get_mpz_t(), a.c[i].get_mpz_t(), b.c[j].get_mpz_t());
+  return Poly(std::move(r));
 }
 Poly derivative(const Poly& a) {
   std::vector<Z> r;
   for (std::size_t k = 1; k < a.c.size(); ++k) r.push_back(a.c[k] * static_cast<long>(k));
-  return Poly(r);
+  return Poly(std::move(r));
 }
 // a divided by the gcd of its coefficients (a positive number: signs and roots unchanged).
 Poly primitive(Poly a) {
@@ -243,6 +244,77 @@ void bisect(Point& pt) {
   }
 }
 
+// A double as a dyadic rational, exactly (x ≥ 0).
+Q dyadic(double x) {
+  if (x == 0.0) return Q(0);
+  int e = 0;
+  const double m = std::frexp(x, &e);  // x = m 2^e, 0.5 ≤ m < 1
+  Z k(static_cast<long>(std::ldexp(m, 53)));
+  const long j = 53L - e;
+  if (j >= 0) return Q(k, static_cast<unsigned long>(j));
+  mpz_mul_2exp(k.get_mpz_t(), k.get_mpz_t(), static_cast<unsigned long>(-j));
+  return Q(k, 0);
+}
+
+// Narrows an irrational point's interval to two neighbouring doubles where it can, guided by
+// floating point and decided exactly: the root is found by bisection in doubles on the
+// polynomial scaled to doubles (a guess: rounding may put it a few ulps off), and the guess
+// [a, b] is kept only when q's exact signs at a and b enclose the root (each a dyadic rational,
+// two exact evaluations instead of the fifty or so halvings of the interval that reaching
+// double resolution takes). Tries [a, b] widened by 2⁴ and 2⁸ ulps before giving up; the
+// interval then stays as it was. Returns true when the interval's ends are neighbouring doubles
+// (or the point became rational).
+bool narrow(Point& pt) {
+  if (pt.rational) return true;
+  const int n = pt.q.degree();
+  long top = 0;
+  std::array<double, 8> c{};
+  std::array<long, 8> e{};
+  if (n < 1 || n >= 8) return false;
+  for (int k = 0; k <= n; ++k) {
+    c[k] = mpz_get_d_2exp(&e[k], pt.q.c[k].get_mpz_t());
+    top = k == 0 ? e[k] : std::max(top, e[k]);
+  }
+  for (int k = 0; k <= n; ++k)
+    c[k] = std::ldexp(c[k], static_cast<int>(std::max(e[k] - top, -1100L)));
+  const auto value = [&](double t) {
+    double r = c[n];
+    for (int k = n - 1; k >= 0; --k) r = r * t + c[k];
+    return r;
+  };
+  const int s_lo = sign_of(pt.q, pt.lo);  // nonzero: the root is inside (lo, hi)
+  double a = pt.lo.get_d(), b = std::nextafter(pt.hi.get_d(), 2.0);
+  while (std::nextafter(a, 2.0) < b) {
+    const double m = a + 0.5 * (b - a);
+    if (m <= a || m >= b) break;
+    const double v = value(m);
+    if ((v > 0) == (s_lo > 0) && v != 0)
+      a = m;
+    else
+      b = m;
+  }
+  for (const double widen : {0.0, 16.0, 256.0}) {
+    double lo = a, hi = b;
+    for (int k = 0; k < widen; ++k) lo = std::nextafter(lo, -1.0), hi = std::nextafter(hi, 2.0);
+    Q qlo = dyadic(std::max(lo, 0.0)), qhi = dyadic(std::min(hi, 1.0));
+    const bool inside = pt.lo < qlo && qhi < pt.hi;  // else clamped to the interval
+    if (!(pt.lo < qlo)) qlo = pt.lo;
+    if (!(qhi < pt.hi)) qhi = pt.hi;
+    const int sl = sign_of(pt.q, qlo), sh = sign_of(pt.q, qhi);
+    if (sl == 0 || sh == 0) {  // a rational root, the point's own (it is the only one inside)
+      pt.rational = true;
+      pt.t = sl == 0 ? qlo : qhi;
+      return true;
+    }
+    if (sl == s_lo && sh == -s_lo) {
+      pt.lo = qlo;
+      pt.hi = qhi;
+      return widen == 0.0 && inside;
+    }
+  }
+  return false;
+}
+
 // L = Σ k |c_k| ≥ max |g'| on [0, 1]: on [lo, hi] ⊂ [0, 1], |g(lo)| > (hi − lo) L means g has
 // no root there and keeps g(lo)'s sign.
 Z slope_bound(const Poly& g) {
@@ -278,10 +350,15 @@ int sign_at(const Poly& g, Point& pt) {
   if (g.zero()) return 0;
   if (pt.rational) return sign_of(g, pt.t);
   const Z lip = slope_bound(g);
-  bool shared_checked = false;
+  bool shared_checked = false, narrowed = false;
   for (int it = 0;; ++it) {
     if (pt.rational) return sign_of(g, pt.t);
     if (const int s = lipschitz_sign(g, lip, pt.lo, pt.hi)) return s;
+    if (!narrowed) {  // once: to double resolution by a guess checked exactly
+      narrowed = true;
+      narrow(pt);
+      continue;
+    }
     if (it >= 24 && !shared_checked) {
       const Poly h = gcd(pt.q, g);
       if (h.degree() >= 1 && sign_of(h, pt.lo) * sign_of(h, pt.hi) < 0) return 0;
@@ -404,6 +481,8 @@ bool point_in_triangle(const PVec& p, const PVec& a, const PVec& b, const PVec& 
 // The time of a point as a double: a rational's nearest-below double, an irrational root's
 // interval refined until both ends round to the same double (its lower end is returned).
 double time_of(Point pt) {
+  // Between neighbouring doubles a < root < b, the root rounds down to a: the lower end.
+  if (narrow(pt) && !pt.rational) return pt.lo.get_d();
   for (int i = 0; i < 2000 && !pt.rational && pt.lo.get_d() != pt.hi.get_d(); ++i) bisect(pt);
   return pt.rational ? pt.t.get_d() : pt.lo.get_d();
 }
@@ -556,17 +635,37 @@ double coplanar_motion(const std::function<bool(Point&)>& meet,
 }
 
 // Exact filter: the boxes of the two primitives over the step (their points at both ends) are
-// disjoint. The coordinates are doubles and comparisons of doubles are exact.
-bool boxes_apart(const std::array<Vec3, 8>& q, const std::array<int, 8>& side) {
+// disjoint. Points 0 … B − 1 (and 4 … 3 + B at the end) are the first primitive's, the rest the
+// second's. The coordinates are doubles and comparisons of doubles are exact.
+template <int B>
+bool boxes_apart(const std::array<Vec3, 8>& q) {
   for (int d = 0; d < 3; ++d) {
-    double lo[2] = {1e308, 1e308}, hi[2] = {-1e308, -1e308};
-    for (int k = 0; k < 8; ++k) {
-      lo[side[k]] = std::min(lo[side[k]], q[k][d]);
-      hi[side[k]] = std::max(hi[side[k]], q[k][d]);
+    double lo0 = q[0][d], hi0 = lo0, lo1 = q[B][d], hi1 = lo1;
+    for (int s = 0; s < 8; s += 4) {
+      for (int k = s; k < s + B; ++k) lo0 = std::min(lo0, q[k][d]), hi0 = std::max(hi0, q[k][d]);
+      for (int k = s + B; k < s + 4; ++k)
+        lo1 = std::min(lo1, q[k][d]), hi1 = std::max(hi1, q[k][d]);
     }
-    if (hi[0] < lo[1] || hi[1] < lo[0]) return true;
+    if (hi0 < lo1 || hi1 < lo0) return true;
   }
   return false;
+}
+
+// det[x, y, z] in doubles, and its permanent (the same sum of products with every term's
+// absolute value), from which the error bounds below are taken.
+struct Det {
+  double value, permanent;
+};
+Det det3(const Vec3& x, const Vec3& y, const Vec3& z) {
+  const double t1 = x[0] * (y[1] * z[2]), t2 = x[0] * (y[2] * z[1]), t3 = x[1] * (y[2] * z[0]),
+               t4 = x[1] * (y[0] * z[2]), t5 = x[2] * (y[0] * z[1]), t6 = x[2] * (y[1] * z[0]);
+  return {((t1 - t2) + (t3 - t4)) + (t5 - t6),
+          ((std::abs(t1) + std::abs(t2)) + (std::abs(t3) + std::abs(t4))) +
+              (std::abs(t5) + std::abs(t6))};
+}
+// An error bound e is usable when it is neither overflowed nor in the subnormal range.
+bool usable_bound(double e) {
+  return e < 1e300 && (e == 0 || e >= 1e-280);
 }
 
 // Certified floating-point filter: the coplanarity determinant (Dobritsa et al. eq. 13)
@@ -586,35 +685,63 @@ bool coplanarity_never_zero(const std::array<Vec3, 8>& q, int o, int i, int j, i
     v[s] = q[4 * s + j] - q[4 * s + o];
     w[s] = q[4 * s + k] - q[4 * s + o];
   }
+  // det[x, y, z] = x · (y × z) in the form of Shewchuk's orient3d, each cross product shared by
+  // both u's: rounding in the products, the differences and the sums errs by at most 5 ε times
+  // the permanent |x| · (|y₁z₂| + |y₂z₁|, …), the rounded differences u, v, w by 3 ε.
   double S[4] = {0, 0, 0, 0}, E[4] = {0, 0, 0, 0};
-  for (int a = 0; a < 2; ++a)
-    for (int b = 0; b < 2; ++b)
-      for (int c = 0; c < 2; ++c) {
-        const Vec3 &x = u[a], &y = v[b], &z = w[c];
-        const double t1 = x[0] * (y[1] * z[2]), t2 = x[0] * (y[2] * z[1]),
-                     t3 = x[1] * (y[2] * z[0]), t4 = x[1] * (y[0] * z[2]),
-                     t5 = x[2] * (y[0] * z[1]), t6 = x[2] * (y[1] * z[0]);
-        const double det = ((t1 - t2) + (t3 - t4)) + (t5 - t6);
-        const double perm = ((std::abs(t1) + std::abs(t2)) + (std::abs(t3) + std::abs(t4))) +
-                            (std::abs(t5) + std::abs(t6));
-        S[a + b + c] += det;
-        E[a + b + c] += 16 * eps * perm;
+  for (int b = 0; b < 2; ++b)
+    for (int c = 0; c < 2; ++c) {
+      const Vec3 &y = v[b], &z = w[c];
+      const double p12 = y[1] * z[2], p21 = y[2] * z[1], p20 = y[2] * z[0], p02 = y[0] * z[2],
+                   p01 = y[0] * z[1], p10 = y[1] * z[0];
+      const Vec3 cr(p12 - p21, p20 - p02, p01 - p10);
+      const Vec3 ac(std::abs(p12) + std::abs(p21), std::abs(p20) + std::abs(p02),
+                    std::abs(p01) + std::abs(p10));
+      for (int a = 0; a < 2; ++a) {
+        const Vec3& x = u[a];
+        S[a + b + c] += (x[0] * cr[0] + x[1] * cr[1]) + x[2] * cr[2];
+        E[a + b + c] +=
+            16 * eps * ((std::abs(x[0]) * ac[0] + std::abs(x[1]) * ac[1]) + std::abs(x[2]) * ac[2]);
       }
+    }
   for (int n = 0; n < 4; ++n)
-    if (!(E[n] < 1e300) || (E[n] != 0 && E[n] < 1e-280)) return false;  // overflow, underflow
+    if (!usable_bound(E[n])) return false;
   const bool pos = S[0] > E[0] && S[1] > E[1] && S[2] > E[2] && S[3] > E[3];
   const bool neg = S[0] < -E[0] && S[1] < -E[1] && S[2] < -E[2] && S[3] < -E[3];
   return pos || neg;
 }
 
-// The filters in front of the exact path: the exact box test (`side` tells the primitives'
-// points apart), the certified Bernstein test of the coplanarity determinant
+// No motion (every point where it was: the verification's "touching at the start").
+bool no_motion(const std::array<Vec3, 8>& q) {
+  for (int k = 0; k < 4; ++k)
+    if (q[k] != q[k + 4]) return false;
+  return true;
+}
+
+// Without motion the determinant is one number, det[p_i − p_o, p_j − p_o, p_k − p_o] at t = 0,
+// with the same error bound: a certain nonzero sign means the primitives are not coplanar and
+// cannot meet.
+bool certainly_not_coplanar(const std::array<Vec3, 8>& q, int o, int i, int j, int k) {
+  const Det d = det3(q[i] - q[o], q[j] - q[o], q[k] - q[o]);
+  const double e = 16 * 0x1p-53 * d.permanent;
+  return usable_bound(e) && std::abs(d.value) > e;
+}
+
+// The filters in front of the exact path: the exact box test (the first primitive has B of
+// the four points), the certified Bernstein test of the coplanarity determinant
 // det[p_i − p_o, p_j − p_o, p_k − p_o] and the interval subdivision. −1: no contact; 0:
-// contact (when no time is asked: a time is always exact); NaN: undecided.
-double filters(const std::array<Vec3, 8>& q, const std::array<int, 8>& side,
-               const std::array<int, 4>& det, Certain (*interval)(const std::array<Vec3, 8>&),
-               bool earliest, const CcdFilters& use) {
-  if (use.boxes && boxes_apart(q, side)) return -1.0;
+// contact (when no time is asked: a time is always exact); NaN: undecided. A query without
+// motion gets the determinant's one value and no subdivision (the exact static predicates are
+// cheaper than subdividing a constant).
+template <int B>
+double filters(const std::array<Vec3, 8>& q, const std::array<int, 4>& det,
+               Certain (*interval)(const std::array<Vec3, 8>&), bool earliest,
+               const CcdFilters& use) {
+  if (use.boxes && boxes_apart<B>(q)) return -1.0;
+  if (no_motion(q)) {
+    if (use.coplanarity && certainly_not_coplanar(q, det[0], det[1], det[2], det[3])) return -1.0;
+    return std::nan("");
+  }
   if (use.coplanarity && coplanarity_never_zero(q, det[0], det[1], det[2], det[3])) return -1.0;
   if (!use.interval) return std::nan("");
   const Certain sure = interval(q);
@@ -630,14 +757,9 @@ std::array<PVec, 4> moving_points(const std::array<Vec3, 8>& q) {
           moving(q[3], q[7], E)};
 }
 
-// No motion (every point where it was: the verification's "touching at the start"): the same
-// predicates at the one time, on the integer coordinates directly, with no polynomial.
+// Without motion: the same predicates at the one time, on the integer coordinates directly,
+// with no polynomial.
 using ZVec = std::array<Z, 3>;
-bool no_motion(const std::array<Vec3, 8>& q) {
-  for (int k = 0; k < 4; ++k)
-    if (q[k] != q[k + 4]) return false;
-  return true;
-}
 std::array<ZVec, 4> static_points(const std::array<Vec3, 8>& q) {
   const long E = integer_exponent(q);
   std::array<ZVec, 4> out;
@@ -685,12 +807,31 @@ bool static_vertex_in_face(const std::array<Vec3, 8>& q) {
          dot_sign(cross(sub(a, c), sub(p, c)), n) >= 0;
 }
 
+// Touching at the start (resting contact) is a collision at t = 0, and touching at the end
+// one at t = 1: the static predicates decide both at a fraction of the cost of the motion's
+// roots (behind the determinant's certified sign, when the filters are on). With a time asked,
+// only t = 0 answers at once (it is the earliest).
+bool meet_at_an_end(const std::array<Vec3, 8>& q, bool (*meet)(const std::array<Vec3, 8>&),
+                    const std::array<int, 4>& det, bool earliest, const CcdFilters& use) {
+  const auto meet_at = [&](const std::array<Vec3, 8>& at) {
+    if (use.coplanarity && certainly_not_coplanar(at, det[0], det[1], det[2], det[3])) return false;
+    return meet(at);
+  };
+  std::array<Vec3, 8> at = q;
+  for (int k = 0; k < 4; ++k) at[k + 4] = q[k];
+  if (meet_at(at)) return true;
+  if (earliest) return false;
+  for (int k = 0; k < 4; ++k) at[k] = at[k + 4] = q[k + 4];
+  return meet_at(at);
+}
+
 double vertex_face_query(const std::array<Vec3, 8>& q, bool earliest, const CcdFilters& use) {
   // det[b − a, c − a, p − a] for q = p, a, b, c.
-  const double f =
-      filters(q, {0, 1, 1, 1, 0, 1, 1, 1}, {1, 2, 3, 0}, interval_vertex_face_ccd, earliest, use);
+  const std::array<int, 4> det{1, 2, 3, 0};
+  const double f = filters<1>(q, det, interval_vertex_face_ccd, earliest, use);
   if (!std::isnan(f)) return f;
   if (no_motion(q)) return static_vertex_in_face(q) ? 0.0 : -1.0;
+  if (meet_at_an_end(q, static_vertex_in_face, det, earliest, use)) return 0.0;
   const auto [p, a, b, c] = moving_points(q);
   const Poly coplanar = dot(cross(sub(b, a), sub(c, a)), sub(p, a));
   const auto meet = [&](Point& pt) { return point_in_triangle(p, a, b, c, pt); };
@@ -701,10 +842,11 @@ double vertex_face_query(const std::array<Vec3, 8>& q, bool earliest, const CcdF
 
 double edge_edge_query(const std::array<Vec3, 8>& q, bool earliest, const CcdFilters& use) {
   // det[b − a, c − a, d − a] for q = a, b, c, d.
-  const double f =
-      filters(q, {0, 0, 1, 1, 0, 0, 1, 1}, {0, 1, 2, 3}, interval_edge_edge_ccd, earliest, use);
+  const std::array<int, 4> det{0, 1, 2, 3};
+  const double f = filters<2>(q, det, interval_edge_edge_ccd, earliest, use);
   if (!std::isnan(f)) return f;
   if (no_motion(q)) return static_edges_meet(q) ? 0.0 : -1.0;
+  if (meet_at_an_end(q, static_edges_meet, det, earliest, use)) return 0.0;
   const auto [a, b, c, d] = moving_points(q);
   const Poly coplanar = dot(cross(sub(b, a), sub(c, a)), sub(d, a));
   const auto meet = [&](Point& pt) { return segments_meet(a, b, c, d, pt); };

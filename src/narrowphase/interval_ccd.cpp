@@ -99,8 +99,15 @@ Iv over(const IPoly& p, double t0, double t1) {
   const double m = 0.5 * (t0 + t1);
   const double r = up(std::max(t1 - m, m - t0));
   std::array<Iv, 5> g = p.c;
+  // g_k + m g_(k+1) with m ≥ 0, each end rounded twice (the product, the sum) and widened
+  // once by the bound of both, 2⁻⁵¹ (|m g| + |sum|) + 2⁻¹⁰²².
+  const auto step = [m](double a, double b, double side) {
+    const double prod = m * b, sum = a + prod;
+    return sum + side * ((std::abs(prod) + std::abs(sum)) * kRel + kAbs);
+  };
   for (int i = 0; i + 1 < p.n; ++i)
-    for (int k = p.n - 2; k >= i; --k) g[k] = g[k] + scaled(m, g[k + 1]);
+    for (int k = p.n - 2; k >= i; --k)
+      g[k] = {step(g[k].lo, g[k + 1].lo, -1.0), step(g[k].hi, g[k + 1].hi, 1.0)};
   double spread = 0.0, rk = 1.0;
   for (int k = 1; k < p.n; ++k) {
     rk = up(rk * r);
@@ -123,34 +130,45 @@ IPoly dot(const IVec& a, const IVec& b) {
 }
 
 using Points = std::array<IVec, 4>;
-// The polynomials whose signs decide the inside test at a coplanar time, and the rule.
+// The polynomials whose signs decide the inside test at a coplanar time, and which rule.
 struct Inside {
   std::array<IPoly, 4> polys;
   int count = 0;
-  Certain (*rule)(const std::array<Iv, 4>&) = nullptr;
+  bool edges = false;  // edges_rule, else face_rule
 };
 
 // Edges [a, b] and [c, d], coplanar at the times asked about. With m = (b − a) × (d − c) ≠ 0
 // they meet iff c, d are not strictly on one side of line ab, nor a, b of line cd (the
 // orientations o = ((b − a) × (c − a))·m and so on): `no` when one pair is strictly on one
 // side over all of T, `yes` when both pairs are strictly on opposite sides over all of T.
-Certain edges_rule(const std::array<Iv, 4>& o) {
-  if (same(o[0], o[1]) || same(o[2], o[3])) return Certain::no;
-  return opposite(o[0], o[1]) && opposite(o[2], o[3]) ? Certain::yes : Certain::unknown;
+// `o(n)` encloses the n-th orientation over T; each is formed only when the rule needs it.
+template <class Value>
+Certain edges_rule(const Value& o) {
+  const Iv o0 = o(0), o1 = o(1);
+  if (same(o0, o1)) return Certain::no;
+  const Iv o2 = o(2), o3 = o(3);
+  if (same(o2, o3)) return Certain::no;
+  return opposite(o0, o1) && opposite(o2, o3) ? Certain::yes : Certain::unknown;
 }
 Inside edges_meet(const Points& p) {
   const IVec u = p[1] - p[0], v = p[3] - p[2], m = cross(u, v);
   return {{dot(cross(u, p[2] - p[0]), m), dot(cross(u, p[3] - p[0]), m),
            dot(cross(v, p[0] - p[2]), m), dot(cross(v, p[1] - p[2]), m)},
           4,
-          edges_rule};
+          true};
 }
 
 // Vertex p[0] and triangle p[1..3], coplanar at the times asked about: inside iff on the inner
 // side of each edge, measured along the triangle's normal n.
-Certain face_rule(const std::array<Iv, 4>& s) {
-  if (negative(s[0]) || negative(s[1]) || negative(s[2])) return Certain::no;
-  return positive(s[0]) && positive(s[1]) && positive(s[2]) ? Certain::yes : Certain::unknown;
+template <class Value>
+Certain face_rule(const Value& side) {
+  bool all_positive = true;
+  for (int n = 0; n < 3; ++n) {
+    const Iv s = side(n);
+    if (negative(s)) return Certain::no;
+    all_positive = all_positive && positive(s);
+  }
+  return all_positive ? Certain::yes : Certain::unknown;
 }
 Inside vertex_in_face(const Points& p) {
   const IVec &v = p[0], &a = p[1], &b = p[2], &c = p[3];
@@ -158,37 +176,50 @@ Inside vertex_in_face(const Points& p) {
   return {{dot(cross(b - a, v - a), n), dot(cross(c - b, v - b), n), dot(cross(a - c, v - c), n),
            IPoly{}},
           3,
-          face_rule};
+          false};
 }
 
-// Separating axes (the inside test's fallback, where its orientations are too close to 0 to
-// sign, as for parallel or nearly parallel coplanar edges): over T each point's projection on a
-// fixed direction s lies in an interval (its coordinates' enclosures over T, combined in
-// interval arithmetic), and a segment's or a triangle's projection at each time lies between
-// its vertices'. Disjoint hulls: the primitives do not meet anywhere in T. Any s will do for
-// soundness; it is chosen at T's middle, in doubles: the primitives' directions, and the
-// directions across each edge towards the other primitive (in-plane normals when coplanar).
-bool separated_over(const Points& p, int first_b, double t0, double t1) {
-  std::array<std::array<Iv, 3>, 4> box;
+// Separating axes, in doubles with certified error bounds: over a time span T = [t0, t1] each
+// point x(t) = x0 + t (x1 − x0) projects on a fixed direction s linearly in t, so over T its
+// projection lies between its projections at t0 and t1, and a segment's or a triangle's
+// between its vertices'. The primitives cannot meet in T when the hulls of their points'
+// projections at both ends are disjoint. Used over the whole step first (most pairs of a
+// contact interface, sliding past each other), then as the inside test's fallback on a span,
+// where its orientations are too close to 0 to sign (parallel or nearly parallel coplanar
+// edges). Errors: x(t) computed in doubles errs by at most 3 ε (|x0| + t |x1 − x0|) per
+// coordinate (the difference, the product, the sum; ε = 2⁻⁵³), and x·s by 3 ε Σ|x_d s_d| more;
+// each projection is widened by 4 ε of both and by 2⁻¹⁰⁰⁰ against underflow. Any direction
+// will do for soundness; they are chosen at T's middle: the primitives' directions, and the
+// directions across each edge towards the other primitive.
+bool separated_over(const std::array<Vec3, 8>& q, int first_b, double t0, double t1) {
+  constexpr double k4eps = 0x1p-51;
+  // The points at both ends of T, with a bound on each coordinate's rounding error.
+  std::array<Vec3, 8> x, err;
   std::array<Vec3, 4> mid;
-  const double m = 0.5 * (t0 + t1);
+  const double tm = 0.5 * (t0 + t1);
   for (int n = 0; n < 4; ++n) {
-    const IPoly* c[3] = {&p[n].x, &p[n].y, &p[n].z};
-    for (int d = 0; d < 3; ++d) {
-      box[n][d] = t0 == t1 ? at(*c[d], t0) : over(*c[d], t0, t1);
-      const Iv v = at(*c[d], m);
-      mid[n][d] = 0.5 * (v.lo + v.hi);
+    const Vec3 d = q[4 + n] - q[n];
+    for (int end = 0; end < 2; ++end) {
+      const double t = end == 0 ? t0 : t1;
+      x[4 * end + n] = q[n] + t * d;
+      err[4 * end + n] = k4eps * (q[n].cwiseAbs() + t * d.cwiseAbs());
     }
+    mid[n] = q[n] + tm * d;
   }
   const auto apart = [&](const Vec3& s) {
     if (!(s.squaredNorm() > 0.0) || !s.allFinite()) return false;
+    const Vec3 as = s.cwiseAbs();
     double lo[2] = {1e308, 1e308}, hi[2] = {-1e308, -1e308};
-    for (int n = 0; n < 4; ++n) {
-      Iv x{0.0, 0.0};
-      for (int d = 0; d < 3; ++d) x = x + scaled(s[d], box[n][d]);
-      const int side = n < first_b ? 0 : 1;
-      lo[side] = std::min(lo[side], x.lo);
-      hi[side] = std::max(hi[side], x.hi);
+    for (int k = 0; k < 8; ++k) {
+      const Vec3& p = x[k];
+      const double v = p[0] * s[0] + p[1] * s[1] + p[2] * s[2];
+      const double e =
+          k4eps * (std::abs(p[0] * s[0]) + std::abs(p[1] * s[1]) + std::abs(p[2] * s[2])) +
+          (1 + k4eps) * (err[k][0] * as[0] + err[k][1] * as[1] + err[k][2] * as[2]) + 0x1p-1000;
+      if (!std::isfinite(v - e) || !std::isfinite(v + e)) return false;  // overflow: undecided
+      const int side = (k & 3) < first_b ? 0 : 1;
+      lo[side] = std::min(lo[side], v - e);
+      hi[side] = std::max(hi[side], v + e);
     }
     return hi[0] < lo[1] || hi[1] < lo[0];
   };
@@ -217,6 +248,9 @@ Certain subdivide(const std::array<Vec3, 8>& q, int o, int i, int j, int k,
                   Inside (*make_inside)(const Points&), int first_b) {
   constexpr double kLimit = 0x1p100;
   constexpr int kMaxDepth = 30, kMaxSpans = 48;
+  // Apart along a direction over the whole step (most pairs of a contact interface: sliding
+  // past each other, often coplanar at some time): no polynomial needed.
+  if (separated_over(q, first_b, 0.0, 1.0)) return Certain::no;
   Points p;
   for (int n = 0; n < 4; ++n) {
     IPoly* coord[3] = {&p[n].x, &p[n].y, &p[n].z};
@@ -228,18 +262,15 @@ Certain subdivide(const std::array<Vec3, 8>& q, int o, int i, int j, int k,
       coord[d]->c[1] = Iv{x1, x1} - Iv{x0, x0};
     }
   }
-  // Apart along a direction over the whole step (most pairs of a contact interface: sliding
-  // past each other, often coplanar at some time): no polynomial needed.
-  if (separated_over(p, first_b, 0.0, 1.0)) return Certain::no;
   const IPoly f = dot(p[i] - p[o], cross(p[j] - p[o], p[k] - p[o]));
   Inside inside;
   const auto inside_over = [&](double t0, double t1) {
     if (inside.count == 0) inside = make_inside(p);
-    std::array<Iv, 4> v{};
-    for (int n = 0; n < inside.count; ++n)
-      v[n] = t0 == t1 ? at(inside.polys[n], t0) : over(inside.polys[n], t0, t1);
-    const Certain c = inside.rule(v);
-    if (c == Certain::unknown && separated_over(p, first_b, t0, t1)) return Certain::no;
+    const auto value = [&](int n) {
+      return t0 == t1 ? at(inside.polys[n], t0) : over(inside.polys[n], t0, t1);
+    };
+    const Certain c = inside.edges ? edges_rule(value) : face_rule(value);
+    if (c == Certain::unknown && separated_over(q, first_b, t0, t1)) return Certain::no;
     return c;
   };
   // Coplanar and possibly meeting at t = 0 or 1 (touching at the start, as resting contact

@@ -100,8 +100,8 @@ def test_command_line_refuses_before_running(tmp_path):
 
 
 def test_every_table_has_a_command():
-    assert T.NAMES == ["stability", "micro", "profile", "verify", "verify-full", "threads", "mpi",
-                       "whipple", "whipple-mesh", "whipple-hole", "strength"]
+    assert T.NAMES == ["stability", "micro", "profile", "ccd", "verify", "verify-full", "threads",
+                       "mpi", "whipple", "whipple-mesh", "whipple-hole", "strength"]
     assert list(T.TABLES) == T.NAMES
 
 
@@ -202,6 +202,23 @@ def test_profile_row():
          "broadphase_share": 0.3, "contact_share": 0.45}
     assert cells(T.profile_row(m)) == ["grid", "12,345", "10.2", "2.0", "1.0e-4", "0.100",
                                        "0.200", "1.000", "30.0 %", "45.0 %"]
+
+
+def test_ccd_rows():
+    fcl = {"collisions": 9, "false_positives": 3, "false_negatives": 1, "mean_ns": 40.2}
+    truth = {"ee": {"queries": 1234, "collisions": 7, "mean_ns": 812.6, "false_positives": 0,
+                    "false_negatives": 0, "fcl": fcl},
+             "vf": {"queries": 10, "collisions": 2, "mean_ns": 99.4, "false_positives": 1,
+                    "false_negatives": 2, "fcl": fcl}}
+    ee, vf = (cells(r) for r in T.ccd_rows("set", truth))
+    assert ee == ["set", "edge–edge", "1,234", "7", "**0 / 0**", "**813 ns**", "9, 3 / 1, 40 ns"]
+    assert vf[4] == "**1 / 2**"
+    blind = {k: {"queries": 5, "collisions": 1, "mean_ns": 50.0,
+                 "fcl": {"collisions": 0, "mean_ns": 16.0}} for k in ("ee", "vf")}
+    ee, _ = (cells(r) for r in T.ccd_rows("steps", blind))
+    assert ee[4] == "– (no ground truth)" and ee[6] == "0, 16 ns"
+    with pytest.raises(KeyError):
+        list(T.ccd_rows("broken", {"ee": {}}))
 
 
 def test_threads_row_and_stage_shares():

@@ -163,6 +163,15 @@ PROFILE_BUILD, PROFILE_QUERY, PROFILE_STEP = "build", "query", "step"
 PROFILE_BROADPHASE_SHARE = "broadphase_share"
 PROFILE_CONTACT_SHARE = "contact_share"
 
+# `ccd --json`: {"ee": {...}, "vf": {...}}, each with these (false positives and negatives with
+# ground truth only; "fcl" with --fcl: its collisions, errors and mean time).
+CCD_QUERIES = "queries"
+CCD_COLLISIONS = "collisions"
+CCD_MEAN_NS = "mean_ns"
+CCD_FALSE_POSITIVES = "false_positives"
+CCD_FALSE_NEGATIVES = "false_negatives"
+CCD_FCL = "fcl"
+
 # The paths every run's summary.json holds (tests/tools/test_summary_keys.py checks them).
 ALWAYS = [CASE, CASE_FILE, STATUS, STEPS, TIME, WALL_SECONDS, MODULES, MESH_NODES, MESH_TETS,
           TIMINGS, ENERGY_BALANCE_ERROR, ENERGY_BALANCE_ERROR_MAX, MOMENTUM_ERROR, MASS_ERROR,

@@ -10,6 +10,9 @@ NAME, the table:
                   and with contact off
     micro         the micro-scenes (`stress --json`): contact on, verified, off
     profile       the broadphase profile (bars-impact, 300 steps, every method)
+    ccd           the exact CCD's answers and mean time a query on the shared degenerate set
+                  (FCL's beside them) and on the queries of real steps (the paper's cylinders,
+                  edge–edge and the verification on, every query of their first 40 steps)
     verify        the step verification on small cases, each row with --check
     verify-full   the shipped contact cases at full size with the verification, every step
                   (long: ~30 min on 2 cores)
@@ -57,8 +60,8 @@ from tools.common import summary_keys as K  # noqa: E402
 from tools.common.summary_keys import get  # noqa: E402
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-NAMES = ["stability", "micro", "profile", "verify", "verify-full", "threads", "mpi", "whipple",
-         "whipple-mesh", "whipple-hole", "strength"]
+NAMES = ["stability", "micro", "profile", "ccd", "verify", "verify-full", "threads", "mpi",
+         "whipple", "whipple-mesh", "whipple-hole", "strength"]
 
 
 def g(x):
@@ -224,6 +227,56 @@ def profile(binary, work, opts):
     yield from PROFILE_HEADER
     for m in json.loads(r.stdout):
         yield profile_row(m)
+
+
+# ccd ---------------------------------------------------------------------------------------------
+CCD_HEADER = [
+    "| query set | type | queries | collisions | false positives / negatives | mean time a "
+    "query | FCL 0.7: collisions, false positives / negatives, mean time |",
+    "|---|---|---|---|---|---|---|"]
+CCD_REAL_STEPS = 40  # steps of the cylinders whose queries are timed
+
+
+def ccd_rows(what, result):
+    """The two rows (edge–edge, vertex–face) of one `ccd --json --fcl` result."""
+    for kind, label in (("ee", "edge–edge"), ("vf", "vertex–face")):
+        r = result[kind]
+        f = r[K.CCD_FCL]
+        truth = K.CCD_FALSE_POSITIVES in r
+        ours = (f"**{r[K.CCD_FALSE_POSITIVES]} / {r[K.CCD_FALSE_NEGATIVES]}**" if truth
+                else "– (no ground truth)")
+        theirs = (f"{f[K.CCD_COLLISIONS]:,}, "
+                  + (f"{f[K.CCD_FALSE_POSITIVES]} / {f[K.CCD_FALSE_NEGATIVES]}, " if truth else "")
+                  + f"{f[K.CCD_MEAN_NS]:.0f} ns")
+        yield (f"| {what} | {label} | {r[K.CCD_QUERIES]:,} | {r[K.CCD_COLLISIONS]:,} | {ours} | "
+               f"**{r[K.CCD_MEAN_NS]:.0f} ns** | {theirs} |")
+
+
+def ccd_json(binary, path):
+    r = subprocess.run([binary, "ccd", path, "--fcl", "--quiet", "--json"], capture_output=True,
+                       text=True)
+    if r.returncode != 0:
+        sys.exit(f"ccd {path}: exit {r.returncode}: {r.stderr.strip()}")
+    return json.loads(r.stdout)
+
+
+def ccd(binary, work, opts):
+    """The shared set, then the queries of the cylinders' first steps (recorded by `profile
+    --ccd-queries`)."""
+    os.makedirs(work, exist_ok=True)
+    yield from CCD_HEADER
+    yield from ccd_rows("shared degenerate set (`data/ccd/handcrafted.txt`)",
+                        ccd_json(binary, os.path.join(ROOT, "data/ccd/handcrafted.txt")))
+    queries = os.path.join(work, "cylinders-queries.txt")
+    r = subprocess.run([binary, "profile", os.path.join(ROOT, "data/cases/cylinders.yaml"),
+                        "--broadphase", "grid", "--steps", str(CCD_REAL_STEPS), "--set",
+                        "contact.edge_edge=true", "--set", "contact.verify=true",
+                        "--ccd-queries", queries, "--json"], capture_output=True, text=True)
+    if r.returncode != 0:
+        sys.exit(f"profile: exit {r.returncode}: {r.stderr.strip()}")
+    yield from ccd_rows(f"the cylinders' first {CCD_REAL_STEPS} steps (contact detection and "
+                        "the verification)", ccd_json(binary, queries))
+    os.remove(queries)
 
 
 # threads -----------------------------------------------------------------------------------------
@@ -633,7 +686,7 @@ def whipple_hole(binary, work, opts):
         yield whipple_hole_row(what, s)
 
 
-TABLES = {"stability": stability, "micro": micro, "profile": profile, "verify": verify,
+TABLES = {"stability": stability, "micro": micro, "profile": profile, "ccd": ccd, "verify": verify,
           "verify-full": verify_full, "threads": threads, "mpi": mpi, "whipple": whipple,
           "whipple-mesh": whipple_mesh, "whipple-hole": whipple_hole, "strength": strength}
 assert list(TABLES) == NAMES

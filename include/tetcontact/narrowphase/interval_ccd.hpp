@@ -3,7 +3,9 @@
 //
 // The coplanarity determinant (Dobritsa et al. eq. 13) and the inside test's orientation
 // polynomials are formed once as polynomials in t with interval coefficients (every rounding
-// widened outward). The step [0, 1] is cut into time intervals T, on which each polynomial is
+// widened outward), unless a separating axis over the whole step, in doubles with a certified
+// error bound, already tells the primitives apart (most pairs of a contact interface, sliding
+// past each other). The step [0, 1] is cut into time intervals T, on which each polynomial is
 // enclosed by its centred form (Taylor coefficients at T's middle), so that
 //   - T is dropped when the determinant is nonzero on all of T, or the inside test fails at
 //     every time of T (by its orientations, or, where those are too close to 0 to sign, as for
