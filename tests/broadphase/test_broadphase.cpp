@@ -86,6 +86,35 @@ INSTANTIATE_TEST_SUITE_P(Broadphase, Methods,
                          ::testing::Values("sweep", "grid", "fcl_tree", "fcl_sap"),
                          [](const auto& info) { return info.param; });
 
+// A particle cloud: hundreds of point-like edges (each its own body) crowded into a few of the
+// grid's cubes (hundreds of entries a bucket), with exactly touching boxes and boxes sharing a
+// lower x.
+TEST(Broadphase, CrowdedCubesGiveTheOraclesPairs) {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> pos(0.0, 3.0), size(0.5, 1.5);
+  BroadphaseInput in;
+  for (int k = 0; k < 600; ++k) {
+    Box b;
+    b.lo = Vec3(pos(rng), pos(rng), pos(rng));
+    if (k % 5 == 0 && k > 0) b.lo.x() = in.edge_box[k - 1].lo.x();  // the same lower x
+    b.hi = b.lo + Vec3(size(rng), size(rng), size(rng));
+    if (k % 9 == 0 && k > 0) b.lo.x() = in.edge_box[k - 1].hi.x();  // touching along x
+    b.hi.x() = std::max(b.hi.x(), b.lo.x());
+    in.edge_box.push_back(b);
+    in.edge_nodes.push_back({1000 + k, 1000 + k});
+    in.edge_body.push_back(-2 - k);
+  }
+  const Candidates oracle = make_broadphase("brute_force")->find(in);
+  ASSERT_GT(oracle.edge_edge.size(), 20000u);
+  for (const char* m : {"grid", "sweep"}) {
+    const Candidates got = make_broadphase(m)->find(in);
+    EXPECT_EQ(got.edge_edge, oracle.edge_edge) << m;
+  }
+  // A cell of 1: about 27 cubes, each crowded.
+  const Candidates fine = make_broadphase("grid", 1.0)->find(in);
+  EXPECT_EQ(fine.edge_edge, oracle.edge_edge);
+}
+
 TEST(Broadphase, TouchingBoxesCountAndSharedVerticesAreSkipped) {
   BroadphaseInput in;
   in.node_box = {{Vec3(0, 0, 0), Vec3(1, 1, 1)}};
