@@ -283,6 +283,7 @@ bool narrow(Point& pt) {
     return r;
   };
   const int s_lo = sign_of(pt.q, pt.lo);  // nonzero: the root is inside (lo, hi)
+  if (s_lo == 0) return false;
   double a = pt.lo.get_d(), b = std::nextafter(pt.hi.get_d(), 2.0);
   while (std::nextafter(a, 2.0) < b) {
     const double m = a + 0.5 * (b - a);
