@@ -4,6 +4,7 @@
 #include <array>
 #include <bit>
 #include <cmath>
+#include <deque>
 #include <limits>
 #include <stdexcept>
 #include <unordered_map>
@@ -153,9 +154,33 @@ double largest_fragment(const Model& model, const State& st, const Debris& d) {
   return best;
 }
 
-double debris_measure(const ReferenceSpec& r, const Model& model, const State& st) {
+// The debris beyond each plane asked about, for one state: the references measured together
+// (the shields' five at the cloud's time share a plane, a body and its debris) find it once.
+class DebrisCache {
+ public:
+  const Debris& beyond(const ReferenceSpec& r, const Model& model, const State& st) {
+    for (const Entry& e : entries_)
+      if (e.spec->body == r.body && e.spec->plane_point == r.plane_point &&
+          e.spec->plane_normal == r.plane_normal && e.spec->within == r.within &&
+          e.spec->debris_of == r.debris_of)
+        return e.debris;
+    Debris d = debris_beyond(r, model, st);
+    entries_.push_back({&r, std::move(d)});
+    return entries_.back().debris;
+  }
+
+ private:
+  struct Entry {
+    const ReferenceSpec* spec;
+    Debris debris;
+  };
+  std::deque<Entry> entries_;  // references into it stay valid as it grows
+};
+
+double debris_measure(const ReferenceSpec& r, const Model& model, const State& st,
+                      DebrisCache& cache) {
   using M = ReferenceSpec::Measure;
-  const Debris d = debris_beyond(r, model, st);
+  const Debris& d = cache.beyond(r, model, st);
   if (r.measure == M::largest_fragment) return largest_fragment(model, st, d);
   // Each item beyond the plane, with every image of it there: mass, position, velocity.
   const Images images{model.mesh.symmetry};
@@ -237,7 +262,8 @@ double image_sign(const Images& images, int k, int component) {
   return sign;
 }
 
-double measure(const ReferenceSpec& r, const Model& model, const State& st, const RunFigures& run) {
+double measure(const ReferenceSpec& r, const Model& model, const State& st, const RunFigures& run,
+               DebrisCache& cache) {
   using M = ReferenceSpec::Measure;
   const bool contact_measure = r.measure == M::contact_duration ||
                                r.measure == M::contact_max_force ||
@@ -285,7 +311,7 @@ double measure(const ReferenceSpec& r, const Model& model, const State& st, cons
       r.measure == M::perforated || r.measure == M::debris_speed ||
       r.measure == M::debris_cone_angle || r.measure == M::debris_particle_mass ||
       r.measure == M::largest_fragment)
-    return debris_measure(r, model, st);
+    return debris_measure(r, model, st, cache);
   if (r.measure == M::hole_diameter) {
     const Vec3 centre = 0.5 * (r.region_min + r.region_max);
     double nearest = std::numeric_limits<double>::infinity();
@@ -330,11 +356,11 @@ double measure(const ReferenceSpec& r, const Model& model, const State& st, cons
 }
 
 ReferenceResult evaluate_reference(const ReferenceSpec& r, const Model& model, const State& st,
-                                   const RunFigures& run) {
+                                   const RunFigures& run, DebrisCache& cache) {
   ReferenceResult res;
   res.spec = &r;
   try {
-    res.measured = measure(r, model, st, run);
+    res.measured = measure(r, model, st, run, cache);
     res.judged = !std::isnan(r.value);
     res.relative_error = (res.measured - r.value) / std::abs(r.value);
     res.pass = !res.judged || std::abs(res.relative_error) <= r.tolerance;
@@ -351,7 +377,8 @@ std::vector<ReferenceResult> evaluate_references(const std::vector<ReferenceSpec
                                                  const Model& model, const State& st,
                                                  const RunFigures& run) {
   std::vector<ReferenceResult> out;
-  for (const ReferenceSpec& r : refs) out.push_back(evaluate_reference(r, model, st, run));
+  DebrisCache cache;
+  for (const ReferenceSpec& r : refs) out.push_back(evaluate_reference(r, model, st, run, cache));
   return out;
 }
 
@@ -366,20 +393,22 @@ bool ReferenceRecorder::due(double t) const {
 
 void ReferenceRecorder::measure_due(double t, const Model& model, const State& st,
                                     const RunFigures& run) {
+  DebrisCache cache;
   for (std::size_t i = 0; i < refs_.size(); ++i)
     if (refs_[i].time > 0.0 && !done_[i] && t >= refs_[i].time)
-      done_[i] = evaluate_reference(refs_[i], model, st, run);
+      done_[i] = evaluate_reference(refs_[i], model, st, run, cache);
 }
 
 std::vector<ReferenceResult> ReferenceRecorder::finish(const Model& model, const State& st,
                                                        const RunFigures& run) {
   std::vector<ReferenceResult> out;
+  DebrisCache cache;
   for (std::size_t i = 0; i < refs_.size(); ++i) {
     if (done_[i]) {
       out.push_back(*done_[i]);
       continue;
     }
-    ReferenceResult res = evaluate_reference(refs_[i], model, st, run);
+    ReferenceResult res = evaluate_reference(refs_[i], model, st, run, cache);
     if (refs_[i].time > 0.0) {  // the run ended before its time: not measured
       res.measured = res.relative_error = std::numeric_limits<double>::quiet_NaN();
       res.pass = false;
