@@ -262,10 +262,12 @@ Q dyadic(double x) {
 // [a, b] is kept only when q's exact signs at a and b enclose the root (each a dyadic rational,
 // two exact evaluations instead of the fifty or so halvings of the interval that reaching
 // double resolution takes). Tries [a, b] widened by 2⁴ and 2⁸ ulps before giving up; the
-// interval then stays as it was. Returns true when the interval's ends are neighbouring doubles
-// (or the point became rational).
+// interval then stays as it was. Returns true when the root rounds down to the interval's lower
+// end as a double: the ends are neighbouring doubles or round down to the same one (or the
+// point became rational).
 bool narrow(Point& pt) {
   if (pt.rational) return true;
+  if (pt.lo.get_d() == pt.hi.get_d()) return true;  // narrowed already: the root rounds to it
   const int n = pt.q.degree();
   long top = 0;
   std::array<double, 8> c{};
@@ -652,17 +654,24 @@ bool boxes_apart(const std::array<Vec3, 8>& q) {
   return false;
 }
 
-// det[x, y, z] in doubles, and its permanent (the same sum of products with every term's
-// absolute value), from which the error bounds below are taken.
-struct Det {
-  double value, permanent;
+// y × z in doubles, in the form of Shewchuk's orient3d, with the absolute products beside it,
+// so that det[x, y, z] = x · (y × z) comes with its permanent |x| · (|y₁z₂| + |y₂z₁|, …): rounding
+// in the products, the differences and the sums errs by at most 5 ε times the permanent, the
+// rounded differences that make x, y, z by 3 ε more (ε = 2⁻⁵³).
+struct Cross {
+  Vec3 value, magnitude;
+  double dot(const Vec3& x) const { return (x[0] * value[0] + x[1] * value[1]) + x[2] * value[2]; }
+  double permanent(const Vec3& x) const {
+    return (std::abs(x[0]) * magnitude[0] + std::abs(x[1]) * magnitude[1]) +
+           std::abs(x[2]) * magnitude[2];
+  }
 };
-Det det3(const Vec3& x, const Vec3& y, const Vec3& z) {
-  const double t1 = x[0] * (y[1] * z[2]), t2 = x[0] * (y[2] * z[1]), t3 = x[1] * (y[2] * z[0]),
-               t4 = x[1] * (y[0] * z[2]), t5 = x[2] * (y[0] * z[1]), t6 = x[2] * (y[1] * z[0]);
-  return {((t1 - t2) + (t3 - t4)) + (t5 - t6),
-          ((std::abs(t1) + std::abs(t2)) + (std::abs(t3) + std::abs(t4))) +
-              (std::abs(t5) + std::abs(t6))};
+Cross cross_bounded(const Vec3& y, const Vec3& z) {
+  const double p12 = y[1] * z[2], p21 = y[2] * z[1], p20 = y[2] * z[0], p02 = y[0] * z[2],
+               p01 = y[0] * z[1], p10 = y[1] * z[0];
+  return {Vec3(p12 - p21, p20 - p02, p01 - p10),
+          Vec3(std::abs(p12) + std::abs(p21), std::abs(p20) + std::abs(p02),
+               std::abs(p01) + std::abs(p10))};
 }
 // An error bound e is usable when it is neither overflowed nor in the subnormal range.
 bool usable_bound(double e) {
@@ -686,23 +695,14 @@ bool coplanarity_never_zero(const std::array<Vec3, 8>& q, int o, int i, int j, i
     v[s] = q[4 * s + j] - q[4 * s + o];
     w[s] = q[4 * s + k] - q[4 * s + o];
   }
-  // det[x, y, z] = x · (y × z) in the form of Shewchuk's orient3d, each cross product shared by
-  // both u's: rounding in the products, the differences and the sums errs by at most 5 ε times
-  // the permanent |x| · (|y₁z₂| + |y₂z₁|, …), the rounded differences u, v, w by 3 ε.
+  // Each cross product v_b × w_c serves both u's.
   double S[4] = {0, 0, 0, 0}, E[4] = {0, 0, 0, 0};
   for (int b = 0; b < 2; ++b)
     for (int c = 0; c < 2; ++c) {
-      const Vec3 &y = v[b], &z = w[c];
-      const double p12 = y[1] * z[2], p21 = y[2] * z[1], p20 = y[2] * z[0], p02 = y[0] * z[2],
-                   p01 = y[0] * z[1], p10 = y[1] * z[0];
-      const Vec3 cr(p12 - p21, p20 - p02, p01 - p10);
-      const Vec3 ac(std::abs(p12) + std::abs(p21), std::abs(p20) + std::abs(p02),
-                    std::abs(p01) + std::abs(p10));
+      const Cross cr = cross_bounded(v[b], w[c]);
       for (int a = 0; a < 2; ++a) {
-        const Vec3& x = u[a];
-        S[a + b + c] += (x[0] * cr[0] + x[1] * cr[1]) + x[2] * cr[2];
-        E[a + b + c] +=
-            16 * eps * ((std::abs(x[0]) * ac[0] + std::abs(x[1]) * ac[1]) + std::abs(x[2]) * ac[2]);
+        S[a + b + c] += cr.dot(u[a]);
+        E[a + b + c] += 16 * eps * cr.permanent(u[a]);
       }
     }
   for (int n = 0; n < 4; ++n)
@@ -723,9 +723,10 @@ bool no_motion(const std::array<Vec3, 8>& q) {
 // with the same error bound: a certain nonzero sign means the primitives are not coplanar and
 // cannot meet.
 bool certainly_not_coplanar(const std::array<Vec3, 8>& q, int o, int i, int j, int k) {
-  const Det d = det3(q[i] - q[o], q[j] - q[o], q[k] - q[o]);
-  const double e = 16 * 0x1p-53 * d.permanent;
-  return usable_bound(e) && std::abs(d.value) > e;
+  const Vec3 x = q[i] - q[o];
+  const Cross cr = cross_bounded(q[j] - q[o], q[k] - q[o]);
+  const double e = 16 * 0x1p-53 * cr.permanent(x);
+  return usable_bound(e) && std::abs(cr.dot(x)) > e;
 }
 
 // The filters in front of the exact path: the exact box test (the first primitive has B of
