@@ -7,10 +7,6 @@
 // the width by J + 1.
 #include "tetcontact/app/limit.hpp"
 
-#include <fcntl.h>
-#include <sys/wait.h>
-#include <unistd.h>
-
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -22,6 +18,7 @@
 #include <sstream>
 #include <thread>
 
+#include "tetcontact/app/runs.hpp"
 #include "tetcontact/app/sweep.hpp"
 #include "tetcontact/diagnostics/reference.hpp"
 #include "tetcontact/io/case.hpp"
@@ -39,19 +36,11 @@ std::string fmt(double x) {
   return buf;
 }
 
-std::string self_exe() {
-  std::vector<char> buf(4096);
-  const ssize_t n = readlink("/proc/self/exe", buf.data(), buf.size() - 1);
-  if (n <= 0) throw std::runtime_error("cannot find this program's path (/proc/self/exe)");
-  return std::string(buf.data(), static_cast<std::size_t>(n));
-}
-
 // One run of the case: where it goes and what it found.
 struct Run {
   double x = 0.0;
-  std::string dir;
-  std::vector<std::string> args;  // `run` and its options
-  int value = -1;                 // the criterion: 1, 0; -1 unknown (failed)
+  ChildRun child;
+  int value = -1;  // the criterion: 1, 0; -1 unknown (failed)
   double wall = 0.0;
   bool reused = false;
   std::string error;
@@ -60,7 +49,7 @@ struct Run {
 // Reads a finished run's summary: the criterion's measure, its wall time. False when there is
 // no summary (the run has not finished).
 bool read_run(Run& r, const std::string& measure_name) {
-  const std::string path = r.dir + "/summary.json";
+  const std::string path = r.child.dir + "/summary.json";
   if (!fs::exists(path)) return false;
   std::ifstream in(path);
   std::stringstream text;
@@ -86,48 +75,6 @@ bool read_run(Run& r, const std::string& measure_name) {
   return true;
 }
 
-// Runs the runs that have no summary yet, `jobs` at a time, each as a child process writing its
-// own folder (its output to run.log there).
-void run_all(std::vector<Run*>& todo, int jobs, const std::string& exe,
-             const std::string& measure_name) {
-  std::map<pid_t, Run*> running;
-  std::size_t next = 0;
-  while (next < todo.size() || !running.empty()) {
-    while (next < todo.size() && static_cast<int>(running.size()) < jobs) {
-      Run* r = todo[next++];
-      fs::create_directories(r->dir);
-      std::vector<std::string> args{exe};
-      args.insert(args.end(), r->args.begin(), r->args.end());
-      const std::string log = r->dir + "/run.log";
-      const pid_t pid = fork();
-      if (pid == 0) {  // the child: its output to run.log, then the run
-        const int fd = open(log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-        const int in = open("/dev/null", O_RDONLY);
-        if (fd >= 0) dup2(fd, 1), dup2(fd, 2);
-        if (in >= 0) dup2(in, 0);
-        std::vector<char*> argv;
-        for (std::string& a : args) argv.push_back(a.data());
-        argv.push_back(nullptr);
-        execv(exe.c_str(), argv.data());
-        _exit(127);
-      }
-      if (pid < 0) throw std::runtime_error("cannot start a run (fork)");
-      running[pid] = r;
-    }
-    int status = 0;
-    const pid_t done = waitpid(-1, &status, 0);
-    if (done < 0) break;
-    const auto it = running.find(done);
-    if (it == running.end()) continue;
-    Run* r = it->second;
-    running.erase(it);
-    if (!read_run(*r, measure_name))
-      r->error = "the run wrote no summary (exit status " +
-                 std::to_string(WIFEXITED(status) ? WEXITSTATUS(status) : -1) + "; see " + r->dir +
-                 "/run.log)";
-  }
-}
-
 struct Bracket {
   std::string vary_value;  // "" without --vary
   double a = 0.0, b = 0.0;
@@ -142,7 +89,7 @@ struct Bracket {
 // ("" without --vary), by rounds of `jobs` runs at once between the ends, each run kept under
 // DIR/runs/ and read back, not run again, when its summary is there.
 Bracket search_bracket(const LimitOptions& o, const std::string& w, const std::string& dir,
-                       const std::string& exe, int jobs, const std::string& measure_name) {
+                       int jobs, const std::string& measure_name) {
   Bracket br;
   br.vary_value = w;
   const auto started = std::chrono::steady_clock::now();
@@ -156,14 +103,17 @@ Bracket search_bracket(const LimitOptions& o, const std::string& w, const std::s
       if (known.count(key)) continue;
       Run& r = known[key];
       r.x = x;
-      r.dir = group + "/" + o.find + "=" + key;
+      // Every override of the run, in the order `run` applies them: the run's key.
+      std::vector<std::string> sets = o.overrides;
+      if (!o.vary.empty()) sets.push_back(o.vary.front().first + "=" + w);
+      sets.push_back(o.find + "=" + key);
+      r.child.key = run_key(o.case_path, sets);
+      r.child.dir = group + "/" + run_folder_name(o.find + "=" + key, r.child.key);
       // Not quiet: run.log keeps the run's table, notes and warnings (no progress bar: the
       // log is not a terminal).
-      r.args = {"run", o.case_path, "--out",           r.dir, "--force", "--threads",
-                "1",   "--set",     o.find + "=" + key};
-      if (!o.vary.empty()) r.args.insert(r.args.end(), {"--set", o.vary.front().first + "=" + w});
-      for (const std::string& s : o.overrides) r.args.insert(r.args.end(), {"--set", s});
-      if (read_run(r, measure_name)) {
+      r.child.args = {"run", o.case_path, "--out", r.child.dir, "--force", "--threads", "1"};
+      for (const std::string& s : sets) r.child.args.insert(r.child.args.end(), {"--set", s});
+      if (finished_run(r.child) && read_run(r, measure_name)) {
         r.reused = true;
         ++br.reused;
       } else {
@@ -171,7 +121,14 @@ Bracket search_bracket(const LimitOptions& o, const std::string& w, const std::s
       }
       ++br.runs;
     }
-    run_all(todo, jobs, exe, measure_name);
+    std::vector<ChildRun*> children;
+    for (Run* r : todo) children.push_back(&r->child);
+    run_children(children, jobs, [&](ChildRun& c) {
+      for (Run* r : todo)
+        if (&r->child == &c && !read_run(*r, measure_name))
+          r->error = "the run wrote no summary (exit status " + std::to_string(c.exit_code) +
+                     "; see " + c.dir + "/run.log)";
+    });
   };
   const auto value = [&](double x) -> Run& { return known[fmt(x)]; };
   const auto failed = [&](const std::vector<double>& xs) {
@@ -270,22 +227,18 @@ int limit_command(const LimitOptions& o) {
     return 2;
   }
   const std::string dir = o.out_dir.empty() ? "results/" + case_name + "-limit" : o.out_dir;
-  // A folder holding an earlier search's runs is resumed; any other non-empty one is refused.
-  if (!fs::exists(dir + "/runs")) {
-    try {
-      prepare_output_dir(dir, false);
-    } catch (const OutputError& e) {
-      std::cerr << "tetcontact: error: " << e.what() << "\n";
-      return 2;
-    }
+  try {
+    prepare_runs_folder(dir);
+  } catch (const OutputError& e) {
+    std::cerr << "tetcontact: error: " << e.what() << "\n";
+    return 2;
   }
-  const std::string exe = self_exe();
   const int jobs = o.jobs > 0 ? o.jobs : std::max(1u, std::thread::hardware_concurrency());
 
   std::vector<Bracket> brackets;
   int code = 0;
   for (const std::string& w : values) {
-    brackets.push_back(search_bracket(o, w, dir, exe, jobs, measure_name));
+    brackets.push_back(search_bracket(o, w, dir, jobs, measure_name));
     if (brackets.back().status != "ok") code = 1;
   }
 

@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "tetcontact/app/campaign.hpp"
 #include "tetcontact/app/ccd.hpp"
 #include "tetcontact/app/limit.hpp"
 #include "tetcontact/app/partition.hpp"
@@ -201,13 +202,41 @@ CLI::App* add_limit(CLI::App& app, tc::LimitOptions& l) {
   add_overrides(cmd, l.overrides);
   cmd->add_flag("--quiet", l.quiet, "no progress lines");
   cmd->footer(
-      "Each run is `tetcontact run` into DIR/runs/<KEY2=w>/<KEY=x>/ (summary.json, run.log);\n"
-      "a run whose summary.json is there is read, not run again, so an interrupted search\n"
-      "resumes. Writes DIR/limit.csv: per bracket the key, its ends, the criterion at each,\n"
+      "Each run is `tetcontact run` into DIR/runs/<KEY2=w>/<KEY=x>_<hash>/ (summary.json,\n"
+      "run.log, run.key: the case file and every override); a finished run of the same inputs\n"
+      "is read, not run again, so an interrupted search resumes. Writes DIR/limit.csv: per bracket "
+      "the key, its ends, the criterion at each,\n"
       "runs, reused runs, wall_seconds (the search's elapsed time), run_seconds (the runs'\n"
       "own times added up; they run side by side) and status. Each run.log holds that run's\n"
       "table, notes and warnings.\n"
       "Exit codes: 0 every bracket found, 1 one was not (its line says why), 2 bad input.");
+  return cmd;
+}
+
+CLI::App* add_campaign(CLI::App& app, tc::CampaignOptions& c) {
+  CLI::App* cmd = app.add_subcommand(
+      "campaign", "run a case once per row of a table of experiments and compare with them");
+  cmd->add_option("case", c.case_path, "the case file, with a `campaign:` block")->required();
+  cmd->add_option("table", c.table_path, "the table of experiments (CSV)")->required();
+  cmd->add_option("--rows", c.rows,
+                  "rows to run: clauses separated by ';', all met: row numbers and ranges "
+                  "(1-20,35) or conditions on a column (angle=0; v<7; material!=Cu OFHC)");
+  cmd->add_option("--jobs", c.jobs,
+                  "runs at once, each a process of one thread (default: the cores)")
+      ->check(CLI::Range(1, 1024));
+  cmd->add_option("--out", c.out_dir,
+                  "output directory (default results/<case name>-campaign); a folder holding an "
+                  "earlier campaign's runs/ is resumed");
+  add_overrides(cmd, c.overrides);
+  cmd->add_flag("--quiet", c.quiet, "no progress lines");
+  cmd->footer(
+      "Each row is `tetcontact run` into DIR/runs/row-<N>_<hash>/ (summary.json, run.log,\n"
+      "run.key: the case file and every override); a finished run of the same inputs is read,\n"
+      "not run again, so an interrupted campaign resumes and another --set runs anew. Writes\n"
+      "DIR/predictions.csv (per row: inputs, predicted, measured, error, status),\n"
+      "DIR/statistics.json (error percentiles, or confusion table and accuracy, per group) and\n"
+      "DIR/campaign.png (tools/post/plot_campaign.py). Exit codes: 0, 1 a run failed (its line\n"
+      "says why), 2 bad input: the case or the table (the row and column named), nothing run.");
   return cmd;
 }
 
@@ -316,6 +345,7 @@ int tetcontact_main(int argc, char** argv) {
   tc::ProfileOptions profile;
   tc::PartitionOptions partition;
   tc::LimitOptions limit;
+  tc::CampaignOptions campaign;
   CLI::App* run_cmd = add_run(app, run);
   CLI::App* check_cmd = add_check(app, check);
   CLI::App* ccd_cmd = add_ccd(app, ccd);
@@ -324,6 +354,7 @@ int tetcontact_main(int argc, char** argv) {
   CLI::App* profile_cmd = add_profile(app, profile);
   CLI::App* partition_cmd = add_partition(app, partition);
   CLI::App* limit_cmd = add_limit(app, limit);
+  CLI::App* campaign_cmd = add_campaign(app, campaign);
   int run_threads = 0, sweep_threads = 0, profile_threads = 0;
   add_threads(run_cmd, run_threads);
   add_threads(sweep_cmd, sweep_threads);
@@ -358,6 +389,7 @@ int tetcontact_main(int argc, char** argv) {
   if (profile_cmd->parsed()) return guarded([&] { return tc::profile_command(profile); });
   if (partition_cmd->parsed()) return guarded([&] { return tc::partition_command(partition); });
   if (limit_cmd->parsed()) return guarded([&] { return tc::limit_command(limit); });
+  if (campaign_cmd->parsed()) return guarded([&] { return tc::campaign_command(campaign); });
   return k_bad_usage;
 }
 

@@ -84,6 +84,43 @@ void check_particles_needed(const Reader& r, const YAML::Node& root, const Case&
     }
 }
 
+// An override of a parameter sets one the case declares: a misspelt name (`--set
+// parameters.V=3000` in a case of `v`) would otherwise add a parameter nothing reads and run the
+// case at its default, so it is refused, with the closest declared name.
+void check_parameter_overrides(const YAML::Node& root, const std::string& file,
+                               const std::vector<std::string>& overrides) {
+  std::vector<std::string> declared;
+  if (const YAML::Node p = root["parameters"]; p && p.IsMap())
+    for (auto it = p.begin(); it != p.end(); ++it) declared.push_back(it->first.Scalar());
+  const std::string prefix = "parameters.";
+  for (const std::string& o : overrides) {
+    if (o.rfind(prefix, 0) != 0) continue;
+    const std::string name =
+        o.substr(prefix.size(), o.find_first_of(".=", prefix.size()) - prefix.size());
+    if (std::find(declared.begin(), declared.end(), name) != declared.end()) continue;
+    std::string msg = file + ": --set " + o + ": the case declares no parameter '" + name + "'";
+    std::string best;
+    std::size_t best_d = 3;
+    for (const std::string& d : declared) {
+      std::string a = d, b = name;  // a change of case alone is the closest of all
+      std::transform(a.begin(), a.end(), a.begin(),
+                     [](unsigned char ch) { return std::tolower(ch); });
+      std::transform(b.begin(), b.end(), b.begin(),
+                     [](unsigned char ch) { return std::tolower(ch); });
+      const std::size_t dist = a == b ? 0 : edit_distance(name, d);
+      if (dist < best_d) best_d = dist, best = d;
+    }
+    if (!best.empty()) msg += " (did you mean '" + best + "'?)";
+    if (declared.empty()) {
+      msg += "; it has no `parameters:`";
+    } else {
+      msg += "; its parameters: ";
+      for (std::size_t i = 0; i < declared.size(); ++i) msg += (i ? ", " : "") + declared[i];
+    }
+    throw CaseError(msg);
+  }
+}
+
 }  // namespace case_file
 
 using namespace case_file;
@@ -93,6 +130,7 @@ Case load_case(const std::string& path, const std::vector<std::string>& override
   if (!fs::is_regular_file(path)) throw CaseError(path + ": not a regular file");
   YAML::Node root = load_yaml(path, "case file");
   if (!root || root.IsNull()) throw CaseError(path + ": empty case file");
+  check_parameter_overrides(root, path, overrides);
   std::set<std::string> overridden;
   for (const std::string& o : overrides) overridden.insert(apply_override(root, path, o));
 
@@ -103,7 +141,7 @@ Case load_case(const std::string& path, const std::vector<std::string>& override
   r.keys(root, "",
          {"name", "description", "parameters", "end_time", "solver", "material_library",
           "materials", "bodies", "boundary_conditions", "walls", "symmetry", "output", "reference",
-          "contact", "fracture", "expect", "diagnostics"});
+          "contact", "fracture", "expect", "diagnostics", "campaign"});
   c.parameters = substitute_parameters(r, root);
   c.name = root["name"] ? r.string(root["name"], "name") : fs::path(path).stem().string();
   if (root["description"]) c.description = r.string(root["description"], "description");
@@ -126,6 +164,7 @@ Case load_case(const std::string& path, const std::vector<std::string>& override
   read_fracture(r, root, c);
   check_particles_needed(r, root, c);
   read_expect(r, root, c);
+  read_campaign(r, root, c);
   if (c.fracture &&
       std::find(c.output.fields.begin(), c.output.fields.end(), "damage") == c.output.fields.end())
     c.output.fields.push_back("damage");  // what fracture adds is always shown

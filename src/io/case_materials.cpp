@@ -294,7 +294,7 @@ void read_materials(const Reader& r, const YAML::Node& root, Case& c, const fs::
       // select it over the entry's law unless the case names a law itself.
       if ((m["yield_stress"] || m["hardening_modulus"]) && !m["strength"])
         merged["strength"] = "bilinear";
-      m = merged;
+      m.reset(merged);  // rebinds m: the case's own entry stays as written
     }
     Material mat = parse_material(r, m, p, &it->second);
     mat.name = name;

@@ -199,5 +199,6 @@ void read_output(const Reader& r, const YAML::Node& root, Case& c);             
 void read_contact(const Reader& r, const YAML::Node& root, Case& c);              // case_contact
 void read_fracture(const Reader& r, const YAML::Node& root, Case& c);             // case_contact
 void read_expect(const Reader& r, const YAML::Node& root, Case& c);               // case_references
+void read_campaign(const Reader& r, const YAML::Node& root, Case& c);             // case_campaign
 
 }  // namespace tc::case_file

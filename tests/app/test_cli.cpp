@@ -99,6 +99,9 @@ TEST(Cli, BadInputExitsTwoAndWritesNothing) {
       {quote(dir / "absent.yaml"), "case file not found"},
       {quote(k_case) + " --set solver.cfl=0", "--set solver.cfl"},
       {quote(k_case) + " --set bodies.0.mesh.box.cells=[40,0,4]", "must be in [1, 4096]"},
+      // A misspelt parameter is refused, not added beside the one the case reads.
+      {quote(test::source_path("data/cases/whipple.yaml")) + " --set parameters.V=3000",
+       "--set parameters.V=3000: the case declares no parameter 'V' (did you mean 'v'?)"},
   };
   for (const Bad& b : cases) {
     const std::string out = dir / "out";

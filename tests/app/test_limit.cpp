@@ -89,6 +89,15 @@ std::vector<Line> read_limit(const std::string& path, bool vary) {
   return out;
 }
 
+// The folder of the run at LABEL (its name is the label and its inputs' hash).
+std::string run_folder(const std::string& group, const std::string& label) {
+  std::vector<std::string> found;
+  for (const auto& e : fs::directory_iterator(group))
+    if (e.path().filename().string().rfind(label + "_", 0) == 0) found.push_back(e.path());
+  EXPECT_EQ(found.size(), 1u) << label << " in " << group;
+  return found.empty() ? group + "/" + label : found.front();
+}
+
 const std::string k_search =
     "--find parameters.v --between 200 4000 --criterion perforated:plate --jobs 2 "
     "--tolerance 0.05";
@@ -114,7 +123,8 @@ TEST(Limit, BracketsThePerforationSpeed) {
     const double lo = std::stod(l.lo), hi = std::stod(l.hi);
     EXPECT_LT(lo, hi);
     EXPECT_LE(hi - lo, 0.05 * hi);
-    const std::string run = dir / ("out/runs/parameters.tb=" + l.vary + "/parameters.v=" + l.lo);
+    const std::string run =
+        run_folder(dir / ("out/runs/parameters.tb=" + l.vary), "parameters.v=" + l.lo);
     EXPECT_TRUE(fs::exists(run + "/summary.json"));
     // The run's log holds its table (the search runs it without --quiet).
     EXPECT_NE(test::read_text(run + "/run.log").find("status"), std::string::npos) << run;
@@ -175,4 +185,34 @@ TEST(Limit, ResumesAfterAKill) {
   EXPECT_EQ(l.runs, expected.runs);
   EXPECT_GE(l.reused, 3);  // the runs finished before the kill
   EXPECT_LT(l.reused, l.runs);
+}
+
+// A search run again into the same folder with another --set runs anew: its runs are keyed by
+// every input, so none of the 1 mm plate's runs stands for the 2 mm plate's (the bracket is the
+// 2 mm plate's, higher), and the first search's runs stay as they were.
+TEST(Limit, AnotherOverrideIsNeverReused) {
+  test::TempDir dir("limit-reuse");
+  test::write_text(dir / "plate.yaml", k_plate);
+  const std::string cmd =
+      "limit '" + dir / "plate.yaml" + "' " + k_search + " --quiet --out '" + dir / "out" + "'";
+  const auto first = test::run_cli(cmd, dir.str());
+  ASSERT_EQ(first.code, 0) << first.err;
+  const Line thin = read_limit(dir / "out/limit.csv", false).at(0);
+  const auto again = test::run_cli(cmd, dir.str());  // the same inputs: every run read back
+  ASSERT_EQ(again.code, 0) << again.err;
+  EXPECT_EQ(read_limit(dir / "out/limit.csv", false).at(0).reused, thin.runs);
+  const auto thick = test::run_cli(cmd + " --set parameters.tb=2.0e-3", dir.str());
+  ASSERT_EQ(thick.code, 0) << thick.err;
+  const Line l = read_limit(dir / "out/limit.csv", false).at(0);
+  EXPECT_EQ(l.reused, 0);
+  EXPECT_GT(std::stod(l.lo), std::stod(thin.hi));
+  // A misspelt parameter is refused before any run.
+  const auto typo = test::run_cli("limit '" + dir / "plate.yaml" +
+                                      "' --find parameters.V --between 200 4000 --criterion "
+                                      "perforated:plate --out '" +
+                                      dir / "typo" + "'",
+                                  dir.str());
+  EXPECT_EQ(typo.code, 2);
+  EXPECT_NE(typo.err.find("no parameter 'V' (did you mean 'v'?)"), std::string::npos) << typo.err;
+  EXPECT_FALSE(fs::exists(dir / "typo"));
 }

@@ -82,6 +82,21 @@ TEST(CaseFile, ParametersAndExpressions) {
   EXPECT_EQ(set.bodies[0].mesh.radius, 3.0e-3);
   EXPECT_EQ(set.bodies[0].velocity.x(), 0.0);
   EXPECT_EQ(set.bodies[0].velocity.z(), -6500.0);
+  // A parameter the case does not declare is refused with the closest name it does.
+  for (const auto& [set, expect] : std::vector<std::pair<std::string, std::string>>{
+           {"parameters.D=6.0e-3",
+            "no parameter 'D' (did you mean 'd'?); its parameters: d, r, v, theta"},
+           {"parameters.thetta=10", "no parameter 'thetta' (did you mean 'theta'?)"},
+           {"parameters.speed=1", "no parameter 'speed'; its parameters"}}) {
+    try {
+      load_case(dir / "p.yaml", {set});
+      ADD_FAILURE() << set << " accepted";
+    } catch (const CaseError& e) {
+      EXPECT_NE(std::string(e.what()).find("--set " + set + ": the case declares " + expect),
+                std::string::npos)
+          << e.what();
+    }
+  }
   // An error names the file's line, the key and the expression.
   test::write_text(
       dir / "bad.yaml",

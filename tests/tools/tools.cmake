@@ -20,6 +20,7 @@ tetcontact_tool_test(section_png_cubes test_section_png.py)     # exact areas, o
 tetcontact_tool_test(tools_sequence_png test_sequence_png.py)   # one extent, the debris slab
 tetcontact_tool_test(plot_sweep_bars test_plot_sweep.py)        # a real sweep plotted
 tetcontact_tool_test(tools_plot_limit test_plot_limit.py)
+tetcontact_tool_test(tools_plot_campaign test_plot_campaign.py)
 tetcontact_tool_test(tools_ball_plate_report test_ball_plate_report.py)
 tetcontact_tool_test(tools_check_vtu test_check_vtu.py)         # the arrays a run asked for
 # tools/docs/

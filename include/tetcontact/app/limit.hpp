@@ -24,8 +24,10 @@ struct LimitOptions {
   std::vector<std::string> overrides;  // --set, applied to every run
 };
 
-/// Runs DIR/runs/<KEY2=w>/<KEY=x>/ (each a `tetcontact run`, its summary.json kept; a run whose
-/// summary is there already is not run again: an interrupted search resumes) and writes
+/// Runs DIR/runs/<KEY2=w>/<KEY=x>_<hash>/ (each a `tetcontact run`, its summary.json kept; the
+/// folder's name and its run.key hold the run's complete inputs — the case file and every
+/// override —, and a finished run of the same inputs is read back, not run again: an interrupted
+/// search resumes, and a search with another --set runs anew beside it) and writes
 /// DIR/limit.csv, a line per bracket. Exit codes: 0 every bracket found, 1 one was not (both
 /// ends alike, or a run failed: its line says which), 2 bad input (nothing run).
 int limit_command(const LimitOptions& options);

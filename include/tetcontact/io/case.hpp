@@ -98,6 +98,40 @@ enum class AnpMode { automatic, on, off };
 inline constexpr NameTable<AnpMode, 3> k_anp_mode_names{
     {{AnpMode::automatic, "auto"}, {AnpMode::on, "true"}, {AnpMode::off, "false"}}};
 
+/// `campaign:`: how `tetcontact campaign` runs the case once per row of a table of experiments
+/// (app/campaign.hpp): which column sets which parameter, which columns name a library material
+/// for which material slot, and which summary measure is compared with which column.
+struct CampaignSpec {
+  struct Parameter {
+    std::string name;    // a parameter the case declares
+    std::string column;  // its value: the column's number times `factor`
+    double factor = 1.0;
+  };
+  struct MaterialSlot {
+    std::string slot;                  // a material of the case: its `from` is set
+    std::vector<std::string> columns;  // the key: these columns' values joined by " | "
+    /// Table key → library entry; a row's key is looked up whole, then without its last
+    /// column, and so on (so "Steel 4340 | Gust 1982" may have an entry of its own and
+    /// "Steel 4340" one for the rest).
+    std::vector<std::pair<std::string, std::string>> names;
+  };
+  struct Comparison {
+    std::string predicted;   // a `reference:` measure's name in the summary
+    std::string column;      // the measured value (absent from a table: predictions only)
+    double factor = 1.0;     // measured = column × factor (numbers)
+    double tolerance = 0.0;  // |predicted / measured − 1| counted as within it (0: not counted)
+    /// Categories (P: 1, NP: 0): the column holds a category, the prediction is the category
+    /// whose value is nearest the measure's. Empty: the column holds a number.
+    std::vector<std::pair<std::string, double>> categories;
+  };
+  bool declared = false;
+  bool units_row = false;  // a row of units under the header row
+  std::vector<Parameter> parameters;
+  std::vector<MaterialSlot> materials;
+  std::vector<Comparison> compare;
+  std::vector<std::string> group_by;  // columns whose values split the statistics
+};
+
 struct Case {
   std::string file;  // path as given
   std::string name;
@@ -135,6 +169,7 @@ struct Case {
   /// momentum_error, energy_balance (balance_error_max), max_depth_over_h, particles_inside
   /// (at the end), in the order given.
   std::vector<std::pair<std::string, double>> expect;
+  CampaignSpec campaign;
 
   const Material& material(const std::string& name) const;
 };

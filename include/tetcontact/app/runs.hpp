@@ -1,0 +1,48 @@
+// Runs of a case in child processes of this program, each in its own folder keyed by its complete
+// inputs: what `limit` and `campaign` run. A run is deterministic, so a finished run whose key is
+// the key of a wanted one is read back instead of run again (an interrupted search or campaign
+// resumes), and a run with any other input — another override, an edited case — never is.
+#pragma once
+
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace tc {
+
+/// The complete inputs of a run, as text: the case file (its absolute path and its bytes) and
+/// every override in the order given (a later one wins, so the order is part of the key).
+std::string run_key(const std::string& case_path, const std::vector<std::string>& overrides);
+
+/// A folder name for a run: `label` then 12 hex digits of its key's 64-bit FNV-1a hash, so runs
+/// of different inputs never share a folder.
+std::string run_folder_name(const std::string& label, const std::string& key);
+
+struct ChildRun {
+  std::string dir;                // run.key, run.log and the run's own output
+  std::string key;                // run_key of its inputs
+  std::vector<std::string> args;  // `run` and its options (after the program's path)
+  int exit_code = -1;             // the child's exit status once run; -1 killed or not run
+};
+
+/// Finished with these inputs: DIR/summary.json is there and DIR/run.key holds `key`. A folder
+/// that holds another key (a hash collision, or a folder written by hand) is an error naming it.
+bool finished_run(const ChildRun& r);
+
+/// Runs `todo`, `jobs` at a time, each `this program ARGS` in its folder (created, run.key written
+/// first, the run's output to run.log); `on_done` is called as each ends, in the order they end.
+void run_children(const std::vector<ChildRun*>& todo, int jobs,
+                  const std::function<void(ChildRun&)>& on_done = {});
+
+/// Starts `argv` (argv[0] a path) with its output to `log` and waits: its exit status, or -1
+/// when it could not start or was killed.
+int run_program(const std::vector<std::string>& argv, const std::string& log);
+
+/// Makes DIR ready for a search's or campaign's runs: a folder that holds earlier runs (DIR/runs)
+/// is kept as it is, to be resumed; any other non-empty folder is refused (OutputError).
+void prepare_runs_folder(const std::string& dir);
+
+/// This program's path (/proc/self/exe).
+std::string self_exe();
+
+}  // namespace tc

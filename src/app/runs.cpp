@@ -1,0 +1,122 @@
+// Runs of a case in child processes, keyed by their inputs (runs.hpp).
+#include "tetcontact/app/runs.hpp"
+
+#include <fcntl.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstdint>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <stdexcept>
+
+#include "tetcontact/io/files.hpp"
+
+namespace tc {
+
+namespace fs = std::filesystem;
+
+std::string run_key(const std::string& case_path, const std::vector<std::string>& overrides) {
+  std::ifstream in(case_path, std::ios::binary);
+  std::stringstream text;
+  text << in.rdbuf();
+  std::ostringstream key;
+  key << "case " << fs::absolute(case_path).lexically_normal().string() << "\n";
+  for (const std::string& o : overrides) key << "set " << o << "\n";
+  key << "text\n" << text.str();
+  return key.str();
+}
+
+std::string run_folder_name(const std::string& label, const std::string& key) {
+  std::uint64_t h = 14695981039346656037ull;  // FNV-1a, 64 bits
+  for (const unsigned char c : key) h = (h ^ c) * 1099511628211ull;
+  char hex[17];
+  std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(h));
+  return label + "_" + std::string(hex, 12);
+}
+
+bool finished_run(const ChildRun& r) {
+  if (!fs::exists(r.dir + "/summary.json")) return false;
+  std::ifstream in(r.dir + "/run.key", std::ios::binary);
+  std::stringstream text;
+  text << in.rdbuf();
+  if (text.str() != r.key)
+    throw std::runtime_error(r.dir +
+                             ": holds a finished run of other inputs than its name says "
+                             "(run.key differs); move the folder away");
+  return true;
+}
+
+namespace {
+
+// Forks and execs argv[0] (a path, or a name looked up in PATH) with its output to `log` and no
+// input: the child's pid, or -1.
+pid_t start_program(std::vector<std::string> args, const std::string& log) {
+  const pid_t pid = fork();
+  if (pid == 0) {  // the child: its output to the log, then the program
+    const int fd = open(log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    const int in = open("/dev/null", O_RDONLY);
+    if (fd >= 0) dup2(fd, 1), dup2(fd, 2);
+    if (in >= 0) dup2(in, 0);
+    std::vector<char*> argv;
+    for (std::string& a : args) argv.push_back(a.data());
+    argv.push_back(nullptr);
+    execvp(args[0].c_str(), argv.data());
+    _exit(127);
+  }
+  return pid;
+}
+
+}  // namespace
+
+int run_program(const std::vector<std::string>& argv, const std::string& log) {
+  const pid_t pid = start_program(argv, log);
+  if (pid < 0) return -1;
+  int status = 0;
+  if (waitpid(pid, &status, 0) != pid) return -1;
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+void run_children(const std::vector<ChildRun*>& todo, int jobs,
+                  const std::function<void(ChildRun&)>& on_done) {
+  const std::string exe = self_exe();
+  std::map<pid_t, ChildRun*> running;
+  std::size_t next = 0;
+  while (next < todo.size() || !running.empty()) {
+    while (next < todo.size() && static_cast<int>(running.size()) < std::max(1, jobs)) {
+      ChildRun* r = todo[next++];
+      fs::create_directories(r->dir);
+      write_file_atomic(r->dir + "/run.key", r->key);
+      std::vector<std::string> args{exe};
+      args.insert(args.end(), r->args.begin(), r->args.end());
+      const pid_t pid = start_program(args, r->dir + "/run.log");
+      if (pid < 0) throw std::runtime_error("cannot start a run (fork)");
+      running[pid] = r;
+    }
+    int status = 0;
+    const pid_t done = waitpid(-1, &status, 0);
+    if (done < 0) break;
+    const auto it = running.find(done);
+    if (it == running.end()) continue;
+    ChildRun* r = it->second;
+    running.erase(it);
+    r->exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    if (on_done) on_done(*r);
+  }
+}
+
+void prepare_runs_folder(const std::string& dir) {
+  if (!fs::exists(dir + "/runs")) prepare_output_dir(dir, false);
+}
+
+std::string self_exe() {
+  std::vector<char> buf(4096);
+  const ssize_t n = readlink("/proc/self/exe", buf.data(), buf.size() - 1);
+  if (n <= 0) throw std::runtime_error("cannot find this program's path (/proc/self/exe)");
+  return std::string(buf.data(), static_cast<std::size_t>(n));
+}
+
+}  // namespace tc

@@ -1,0 +1,276 @@
+// `tetcontact campaign`: a case run per row of a table, predictions against measurements.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <map>
+#include <sstream>
+
+#include "../test_util.hpp"
+
+using namespace tc;
+
+namespace {
+
+namespace fs = std::filesystem;
+
+// A cube of side L in free flight: its length along x stays L exactly, whatever its material
+// and speed; its mass is the material's density times L³. The table maps L (mm) and the metal.
+const char* k_box = R"yaml(name: campaign-box
+parameters:
+  L: 1.0e-3
+  v: 10
+end_time: 1.0e-7
+materials:
+  m: {from: al6061-t6}
+bodies:
+  - name: box
+    material: m
+    mesh: {box: {size: ["= L", "= L", "= L"], cells: [1, 1, 1]}}
+    velocity: [0, 0, "= -v"]
+output: {interval: 1.0e-7, fields: [velocity]}
+reference:
+  - {name: box length, measure: length, body: box, axis: x}
+campaign:
+  parameters:
+    L: {column: L_mm, factor: 1.0e-3}
+    v: speed
+  materials:
+    m: {column: metal, names: {Al: al6061-t6, Cu: ofhc-copper}}
+  compare:
+    - {predicted: box length, measured: Lf_mm, factor: 1.0e-3, tolerance: 0.05}
+  group_by: [metal]
+)yaml";
+
+// Row 3 is not measured; the errors of rows 1, 2 and 4 are 0, 2/2.5 − 1 and 1/0.8 − 1.
+const char* k_boxes = R"csv(# boxes in free flight
+metal,L_mm,speed,Lf_mm
+Al,1.0,10,1.0
+Cu,2.0,20,2.5
+Al,1.5,5,
+Cu,1.0,"10",0.8
+)csv";
+
+// predictions.csv as rows of column → value (no field of these tests holds a comma).
+std::vector<std::map<std::string, std::string>> read_csv(const std::string& path) {
+  std::istringstream in(test::read_text(path));
+  const auto fields = [](const std::string& row) {
+    std::vector<std::string> f;
+    std::stringstream ss(row);
+    for (std::string x; std::getline(ss, x, ',');) f.push_back(x);
+    if (!row.empty() && row.back() == ',') f.emplace_back();
+    return f;
+  };
+  std::string row;
+  std::getline(in, row);
+  const std::vector<std::string> header = fields(row);
+  std::vector<std::map<std::string, std::string>> out;
+  while (std::getline(in, row)) {
+    const std::vector<std::string> f = fields(row);
+    EXPECT_EQ(f.size(), header.size()) << row;
+    std::map<std::string, std::string> m;
+    for (std::size_t i = 0; i < std::min(f.size(), header.size()); ++i) m[header[i]] = f[i];
+    out.push_back(m);
+  }
+  return out;
+}
+
+std::size_t run_folders(const std::string& dir) {
+  std::size_t n = 0;
+  for ([[maybe_unused]] const auto& e : fs::directory_iterator(dir + "/runs")) ++n;
+  return n;
+}
+
+}  // namespace
+
+// Rows become runs (a parameter from a column with its unit factor, a material slot from a name
+// map), each prediction is compared with its row's measurement, and the statistics are the
+// exact ones of those errors, overall and per group.
+TEST(Campaign, RowsMapToParametersAndMaterialsAndTheErrorsAreExact) {
+  test::TempDir dir("campaign");
+  test::write_text(dir / "box.yaml", k_box);
+  test::write_text(dir / "boxes.csv", k_boxes);
+  const std::string out = dir / "out";
+  const auto r = test::run_cli("campaign '" + dir / "box.yaml" + "' '" + dir / "boxes.csv" +
+                                   "' --jobs 2 --out '" + out + "'",
+                               dir.str());
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto rows = read_csv(out + "/predictions.csv");
+  ASSERT_EQ(rows.size(), 4u);
+  const double L[] = {1.0e-3, 2.0e-3, 1.5e-3, 1.0e-3}, rho[] = {2703, 8930, 2703, 8930};
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    const auto& row = rows[i];
+    EXPECT_EQ(row.at("row"), std::to_string(i + 1));
+    EXPECT_EQ(row.at("status"), "ok");
+    EXPECT_EQ(row.at("materials.m"), i % 2 ? "ofhc-copper" : "al6061-t6");
+    EXPECT_NEAR(std::stod(row.at("predicted:box length")), L[i], 1e-12 * L[i]);
+    // The run used the row's material and size: its mass is density × L³.
+    const test::Json s = test::read_json(out + "/runs/" + row.at("folder") + "/summary.json");
+    EXPECT_NEAR(s["bodies"][0]["mass"].get<double>(), rho[i] * L[i] * L[i] * L[i],
+                1e-9 * rho[i] * L[i] * L[i] * L[i]);
+  }
+  EXPECT_EQ(rows[2].at("measured:box length"), "");  // not measured: predicted only
+  EXPECT_EQ(rows[2].at("error:box length"), "");
+  EXPECT_NEAR(std::stod(rows[1].at("error:box length")), 2.0 / 2.5 - 1.0, 1e-9);
+  EXPECT_NEAR(std::stod(rows[3].at("error:box length")), 1.0 / 0.8 - 1.0, 1e-9);
+  const test::Json stats = test::read_json(out + "/statistics.json");
+  const test::Json& all = stats["comparisons"][0]["all"];
+  EXPECT_EQ(all["compared"].get<int>(), 3);
+  EXPECT_NEAR(all["median_abs_error"].get<double>(), 0.2, 1e-9);  // |e| = 0, 0.2, 0.25
+  EXPECT_NEAR(all["p90_abs_error"].get<double>(), 0.25, 1e-9);    // nearest rank: the 3rd
+  EXPECT_NEAR(all["mean_error"].get<double>(), (0.0 - 0.2 + 0.25) / 3.0, 1e-9);
+  EXPECT_NEAR(all["within_tolerance"].get<double>(), 1.0 / 3.0, 1e-12);
+  const test::Json& cu = stats["comparisons"][0]["groups"]["Cu"];
+  EXPECT_EQ(cu["compared"].get<int>(), 2);
+  EXPECT_NEAR(cu["median_abs_error"].get<double>(), 0.225, 1e-9);
+  EXPECT_EQ(stats["comparisons"][0]["groups"]["Al"]["compared"].get<int>(), 1);
+  EXPECT_NE(r.out.find("box length against Lf_mm"), std::string::npos) << r.out;
+  EXPECT_TRUE(fs::exists(out + "/campaign.png")) << r.err;
+
+  // Run again: every row is read back, nothing runs, the predictions are the same.
+  const std::string first = test::read_text(out + "/predictions.csv");
+  const auto again = test::run_cli(
+      "campaign '" + dir / "box.yaml" + "' '" + dir / "boxes.csv" + "' --out '" + out + "'",
+      dir.str());
+  ASSERT_EQ(again.code, 0) << again.err;
+  EXPECT_NE(again.err.find("4 read from earlier runs, 0 to run"), std::string::npos) << again.err;
+  EXPECT_EQ(test::read_text(out + "/predictions.csv"), first);
+  // Another --set: its runs are new ones, beside the earlier (a run is keyed by every input).
+  const auto other = test::run_cli("campaign '" + dir / "box.yaml" + "' '" + dir / "boxes.csv" +
+                                       "' --out '" + out + "' --set end_time=2.0e-7",
+                                   dir.str());
+  ASSERT_EQ(other.code, 0) << other.err;
+  EXPECT_NE(other.err.find("0 read from earlier runs, 4 to run"), std::string::npos) << other.err;
+  EXPECT_EQ(run_folders(out), 8u);
+
+  // --rows: conditions on a column and row ranges, all met.
+  const auto some = test::run_cli("campaign '" + dir / "box.yaml" + "' '" + dir / "boxes.csv" +
+                                      "' --out '" + out + "' --rows 'metal=Cu;1-3'",
+                                  dir.str());
+  ASSERT_EQ(some.code, 0) << some.err;
+  const auto picked = read_csv(out + "/predictions.csv");
+  ASSERT_EQ(picked.size(), 1u);
+  EXPECT_EQ(picked[0].at("row"), "2");
+}
+
+// A table without the measured column still predicts (nothing compared); a bad table stops
+// before any run with exit 2, naming the row and the column.
+TEST(Campaign, BadTablesAreRefusedAndUnmeasuredTablesPredict) {
+  test::TempDir dir("campaign-bad");
+  test::write_text(dir / "box.yaml", k_box);
+  test::write_text(dir / "plain.csv", "metal,L_mm,speed\nCu,1.0,10\n");
+  const auto plain = test::run_cli("campaign '" + dir / "box.yaml" + "' '" + dir / "plain.csv" +
+                                       "' --out '" + dir / "plain" + "'",
+                                   dir.str());
+  ASSERT_EQ(plain.code, 0) << plain.err;
+  EXPECT_NE(plain.err.find("no column 'Lf_mm': box length is predicted, not compared"),
+            std::string::npos)
+      << plain.err;
+  const auto rows = read_csv(dir / "plain/predictions.csv");
+  ASSERT_EQ(rows.size(), 1u);
+  EXPECT_NEAR(std::stod(rows[0].at("predicted:box length")), 1.0e-3, 1e-15);
+  EXPECT_EQ(test::read_json(dir / "plain/statistics.json")["comparisons"][0]["all"]["compared"]
+                .get<int>(),
+            0);
+
+  struct Bad {
+    std::string table, expect;
+  };
+  const std::vector<Bad> bad = {
+      {"metal,L_mm,speed,Lf_mm\nAl,1,10,1\nAl,abc,10,1\n",
+       "row 2 (line 3), column L_mm: 'abc' is not a number (it sets the parameter L)"},
+      {"metal,L_mm,speed,Lf_mm\nAl,1,10,1\nFe,1,10,1\n",
+       "row 2 (line 3), column metal: 'Fe' has no entry in campaign.materials.m.names"},
+      {"metal,speed,Lf_mm\nAl,10,1\n", "no column 'L_mm', which the case's campaign reads"},
+      {"metal,L_mm,speed,Lf_mm\nAl,1,10\n", "row 1 (line 2): 3 fields, the header has 4"},
+      {"metal,L_mm,speed,Lf_mm\nAl,1,10,one\n",
+       "row 1 (line 2), column Lf_mm: 'one' is not a number"},
+      // A value the case refuses: the row, then the case's own message.
+      {"metal,L_mm,speed,Lf_mm\nAl,-1,10,1\n", "row 1 (line 2): "},
+  };
+  for (const Bad& b : bad) {
+    test::write_text(dir / "bad.csv", b.table);
+    const auto r = test::run_cli(
+        "campaign '" + dir / "box.yaml" + "' '" + dir / "bad.csv" + "' --out '" + dir / "bad" + "'",
+        dir.str());
+    EXPECT_EQ(r.code, 2) << b.table << r.err;
+    EXPECT_NE(r.err.find(b.expect), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(dir / "bad")) << "nothing written for " << b.table;
+  }
+  // A case without a campaign block, and a row filter on a column the table lacks.
+  const auto none = test::run_cli("campaign '" + test::source_path("data/cases/cubes-edge.yaml") +
+                                      "' '" + dir / "plain.csv" + "' --out '" + dir / "bad" + "'",
+                                  dir.str());
+  EXPECT_EQ(none.code, 2);
+  EXPECT_NE(none.err.find("no `campaign:` block"), std::string::npos) << none.err;
+  const auto filter = test::run_cli("campaign '" + dir / "box.yaml" + "' '" + dir / "plain.csv" +
+                                        "' --rows 'alloy=Cu' --out '" + dir / "bad" + "'",
+                                    dir.str());
+  EXPECT_EQ(filter.code, 2);
+  EXPECT_NE(filter.err.find("no column 'alloy'"), std::string::npos) << filter.err;
+  EXPECT_FALSE(fs::exists(dir / "bad"));
+}
+
+// Categories: the perforation of a plate (the measure's 1 or 0 is the category P or NP) against
+// a table's verdicts; the confusion table and the accuracy. The coarse 4 mm ball perforates the
+// 1 mm plate at 1,400 m/s and not at 1,000 (Limit.BracketsThePerforationSpeed); the third row's
+// verdict is wrong on purpose.
+TEST(Campaign, CategoriesGiveTheConfusionTable) {
+  test::TempDir dir("campaign-categories");
+  test::write_text(dir / "plate.yaml", R"yaml(name: campaign-plate
+parameters:
+  v: 1000
+end_time: 4.0e-6
+materials:
+  al: {from: al6061-t6}
+bodies:
+  - name: ball
+    material: al
+    mesh: {sphere: {radius: 2.0e-3, cells_across: 4}}
+    transform: [{translate: [0, 0, 2.0e-3]}]
+    velocity: [0, 0, "= -v"]
+  - name: plate
+    material: al
+    mesh: {box: {size: [12.0e-3, 12.0e-3, 1.0e-3], cells: [8, 8, 1]}}
+    transform: [{translate: [0, 0, -0.5e-3]}]
+contact: {enabled: true, broadphase: grid}
+fracture: {enabled: true}
+output: {interval: 4.0e-6, fields: [velocity]}
+reference:
+  - name: plate perforated
+    measure: perforated
+    body: plate
+    plane: {point: [0, 0, -1.0e-3], normal: [0, 0, -1]}
+    within: 6.0e-3
+campaign:
+  units_row: true
+  parameters: {v: {column: velocity, factor: 1000}}
+  compare:
+    - {predicted: plate perforated, measured: result, categories: {P: 1, NP: 0}}
+)yaml");
+  test::write_text(dir / "shots.csv", "velocity,result\nkm/s,-\n1.0,NP\n1.4,P\n1.4,NP\n");
+  const auto r = test::run_cli("campaign '" + dir / "plate.yaml" + "' '" + dir / "shots.csv" +
+                                   "' --jobs 2 --out '" + dir / "out" + "'",
+                               dir.str());
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto rows = read_csv(dir / "out/predictions.csv");
+  ASSERT_EQ(rows.size(), 3u);
+  EXPECT_EQ(rows[0].at("predicted:plate perforated"), "NP");
+  EXPECT_EQ(rows[1].at("predicted:plate perforated"), "P");
+  EXPECT_EQ(rows[2].at("right:plate perforated"), "0");
+  const test::Json all = test::read_json(dir / "out/statistics.json")["comparisons"][0]["all"];
+  EXPECT_NEAR(all["accuracy"].get<double>(), 2.0 / 3.0, 1e-12);
+  EXPECT_EQ(all["confusion"]["NP"]["NP"].get<int>(), 1);
+  EXPECT_EQ(all["confusion"]["NP"]["P"].get<int>(), 1);
+  EXPECT_EQ(all["confusion"]["P"]["P"].get<int>(), 1);
+  EXPECT_EQ(all["confusion"]["P"]["NP"].get<int>(), 0);
+  // A verdict that is no category: the row and the column.
+  test::write_text(dir / "odd.csv", "velocity,result\nkm/s,-\n1.0,maybe\n");
+  const auto odd = test::run_cli(
+      "campaign '" + dir / "plate.yaml" + "' '" + dir / "odd.csv" + "' --out '" + dir / "odd" + "'",
+      dir.str());
+  EXPECT_EQ(odd.code, 2);
+  EXPECT_NE(odd.err.find("row 1 (line 3), column result: 'maybe' is none of the categories P, NP"),
+            std::string::npos)
+      << odd.err;
+}
