@@ -212,6 +212,7 @@ struct RowRun {
   const Table::Row* row = nullptr;
   std::vector<std::string> inputs;  // the mapped parameters' values, the materials' entries
   std::vector<std::string> sets;    // every override of its run
+  std::string library;              // the material library its case reads
   ChildRun child;
   bool reused = false;
   std::string status = "not run";
@@ -548,7 +549,7 @@ int campaign_command(const CampaignOptions& o) {
     for (const Table::Row* row : rows) {
       RowRun r = plan_row(c, t, *row, o.overrides);
       try {
-        load_case(o.case_path, r.sets);
+        r.library = load_case(o.case_path, r.sets).material_library;
       } catch (const CaseError& e) {
         throw CaseError(t.where(*row) + ": " + e.what());
       }
@@ -557,6 +558,11 @@ int campaign_command(const CampaignOptions& o) {
   } catch (const CaseError& e) {
     std::cerr << "tetcontact: error: " << e.what() << "\n";
     return 2;
+  }
+  if (o.check) {
+    std::cout << "campaign: " << runs.size() << " of " << t.rows.size() << " rows of " << t.path
+              << " checked: each makes a valid case; nothing run\n";
+    return 0;
   }
   const std::string dir = o.out_dir.empty() ? "results/" + c.name + "-campaign" : o.out_dir;
   try {
@@ -568,7 +574,7 @@ int campaign_command(const CampaignOptions& o) {
 
   std::vector<ChildRun*> todo;
   for (RowRun& r : runs) {
-    r.child.key = run_key(o.case_path, r.sets);
+    r.child.key = run_key(o.case_path, r.sets, r.library);
     r.child.dir =
         dir + "/runs/" + run_folder_name("row-" + std::to_string(r.row->number), r.child.key);
     r.child.args = {"run", o.case_path, "--out", r.child.dir, "--force", "--threads", "1"};

@@ -89,7 +89,7 @@ struct Bracket {
 // ("" without --vary), by rounds of `jobs` runs at once between the ends, each run kept under
 // DIR/runs/ and read back, not run again, when its summary is there.
 Bracket search_bracket(const LimitOptions& o, const std::string& w, const std::string& dir,
-                       int jobs, const std::string& measure_name) {
+                       int jobs, const std::string& measure_name, const std::string& library) {
   Bracket br;
   br.vary_value = w;
   const auto started = std::chrono::steady_clock::now();
@@ -107,7 +107,7 @@ Bracket search_bracket(const LimitOptions& o, const std::string& w, const std::s
       std::vector<std::string> sets = o.overrides;
       if (!o.vary.empty()) sets.push_back(o.vary.front().first + "=" + w);
       sets.push_back(o.find + "=" + key);
-      r.child.key = run_key(o.case_path, sets);
+      r.child.key = run_key(o.case_path, sets, library);
       r.child.dir = group + "/" + run_folder_name(o.find + "=" + key, r.child.key);
       // Not quiet: run.log keeps the run's table, notes and warnings (no progress bar: the
       // log is not a terminal).
@@ -203,7 +203,7 @@ int limit_command(const LimitOptions& o) {
   const std::string body = o.criterion.substr(prefix.size());
   const std::vector<std::string> values =
       o.vary.empty() ? std::vector<std::string>{""} : o.vary.front().second;
-  std::string measure_name, case_name;
+  std::string measure_name, case_name, library;
   try {
     for (const std::string& w : values)
       for (const double x : {o.lo, o.hi}) {
@@ -212,6 +212,7 @@ int limit_command(const LimitOptions& o) {
         if (!o.vary.empty()) sets.push_back(o.vary.front().first + "=" + w);
         const Case c = load_case(o.case_path, sets);
         case_name = c.name;
+        library = c.material_library;  // a search varies numbers, not the library
         const auto it =
             std::find_if(c.references.begin(), c.references.end(), [&](const ReferenceSpec& r) {
               return r.measure == ReferenceSpec::Measure::perforated && r.body == body;
@@ -238,7 +239,7 @@ int limit_command(const LimitOptions& o) {
   std::vector<Bracket> brackets;
   int code = 0;
   for (const std::string& w : values) {
-    brackets.push_back(search_bracket(o, w, dir, jobs, measure_name));
+    brackets.push_back(search_bracket(o, w, dir, jobs, measure_name, library));
     if (brackets.back().status != "ok") code = 1;
   }
 

@@ -13,20 +13,20 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "tetcontact/io/case.hpp"
 #include "tetcontact/io/files.hpp"
 
 namespace tc {
 
 namespace fs = std::filesystem;
 
-std::string run_key(const std::string& case_path, const std::vector<std::string>& overrides) {
-  std::ifstream in(case_path, std::ios::binary);
-  std::stringstream text;
-  text << in.rdbuf();
+std::string run_key(const std::string& case_path, const std::vector<std::string>& overrides,
+                    const std::string& library) {
   std::ostringstream key;
   key << "case " << fs::absolute(case_path).lexically_normal().string() << "\n";
   for (const std::string& o : overrides) key << "set " << o << "\n";
-  key << "text\n" << text.str();
+  key << "text\n" << canonical_case_text(case_path) << "\n";
+  if (!library.empty()) key << "library\n" << canonical_case_text(library) << "\n";
   return key.str();
 }
 

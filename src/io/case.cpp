@@ -125,6 +125,12 @@ void check_parameter_overrides(const YAML::Node& root, const std::string& file,
 
 using namespace case_file;
 
+std::string canonical_case_text(const std::string& path) {
+  YAML::Emitter out;
+  out << load_yaml(path, "case file");
+  return out.c_str();
+}
+
 Case load_case(const std::string& path, const std::vector<std::string>& overrides) {
   if (!fs::exists(path)) throw CaseError(path + ": case file not found");
   if (!fs::is_regular_file(path)) throw CaseError(path + ": not a regular file");

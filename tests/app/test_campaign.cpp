@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <map>
 #include <sstream>
+#include <tuple>
 
 #include "../test_util.hpp"
 
@@ -273,4 +274,23 @@ campaign:
   EXPECT_NE(odd.err.find("row 1 (line 3), column result: 'maybe' is none of the categories P, NP"),
             std::string::npos)
       << odd.err;
+}
+
+// The shipped templates read every row of the shared tables: each names a library material
+// through the case's map (every alloy of the Whipple database, every rod metal) and makes a
+// valid case (`--check` runs nothing).
+TEST(Campaign, EveryRowOfTheSharedTablesMakesAValidCase) {
+  test::TempDir dir("campaign-check");
+  for (const auto& [c, table, rows] :
+       std::vector<std::tuple<std::string, std::string, std::string>>{
+           {"data/cases/taylor.yaml", "data/validation/taylor-tests.csv", "156 of 156 rows"},
+           {"data/cases/whipple.yaml", "data/validation/whipple-shots.csv", "932 of 932 rows"}}) {
+    const auto r =
+        test::run_cli("campaign '" + test::source_path(c) + "' '" + test::source_path(table) +
+                          "' --check --out '" + dir / "never" + "'",
+                      dir.str());
+    EXPECT_EQ(r.code, 0) << c << "\n" << r.err;
+    EXPECT_NE(r.out.find(rows + " of "), std::string::npos) << r.out;
+    EXPECT_FALSE(fs::exists(dir / "never"));
+  }
 }

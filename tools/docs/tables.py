@@ -28,6 +28,15 @@ NAME, the table:
                   bumper), 2 threads
     strength      the strength laws side by side: the aluminium Taylor rod and the 6061-T6 plate
                   impact's precursor (HEL) under each law, one thread
+    taylor-tests  every Taylor test of data/validation/taylor-tests.csv under each metal's
+                  default law, Johnson–Cook and perfectly plastic (`tetcontact campaign
+                  data/cases/taylor.yaml`, a campaign per law, the cores at once): per material
+                  and law the errors of the final length and the footprint; and the figure
+                  data/figures/taylor-lf.png (Lf/L0 against speed; ~30 min on 2 cores)
+    whipple-shots the normal-incidence shots of three shields of data/validation/whipple-shots.csv
+                  whose shots straddle the limit (`campaign data/cases/whipple.yaml`, the
+                  cores at once), the engine's verdicts and Christiansen's against the
+                  measured ones per configuration; data/figures/whipple-*.png
     all           every table above, in that order (hours on 2 cores)
 
 Without --write each table is printed, row by row as it is measured. With --write it also
@@ -44,6 +53,7 @@ marker is missing, or appears twice (in one file or in two), is refused with exi
 file named. Runs go to --work (default a temporary folder). Exit code 0, 1 when a run fails, 2
 on bad input."""
 import argparse
+import csv
 import glob
 import json
 import os
@@ -61,7 +71,8 @@ from tools.common.summary_keys import get  # noqa: E402
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 NAMES = ["stability", "micro", "profile", "ccd", "verify", "verify-full", "threads", "mpi",
-         "whipple", "whipple-mesh", "whipple-hole", "strength"]
+         "whipple", "whipple-mesh", "whipple-hole", "strength", "taylor-tests",
+         "whipple-shots"]
 
 
 def g(x):
@@ -584,6 +595,128 @@ def strength(binary, work, opts):
         yield strength_row(law, rod, plate)
 
 
+# taylor-tests ------------------------------------------------------------------------------------
+VALIDATION = os.path.join(ROOT, "data", "validation")
+TAYLOR_LAWS = [  # (the campaign's folder, its label, --set and --rows)
+    ("default", "the library's default law", [], None),
+    ("johnson_cook", "Johnson–Cook", ["materials.rod.strength=johnson_cook"], None),
+    ("bilinear", "perfectly plastic at Y0", ["materials.rod.strength=bilinear"], None),
+]
+TAYLOR_HEADER = [
+    "| material (default law) | law | tests | Lf: median, 90 % within, largest \\|ΔLf/Lf\\| | "
+    "within 5 % | below 400 K: tests, median, 90 % within | footprint: median \\|Δ\\| (tests) | "
+    "steps, most | run time (sum) |",
+    "|---|---|---|---|---|---|---|---|---|"]
+
+
+def abs_stats(errors):
+    """(median, 90th percentile by nearest rank) of |errors|, as campaign's statistics."""
+    a = sorted(abs(e) for e in errors)
+    n = len(a)
+    if n == 0:
+        return None, None
+    median = a[n // 2] if n % 2 else 0.5 * (a[n // 2 - 1] + a[n // 2])
+    return median, a[max(1, -(-9 * n // 10)) - 1]
+DEFAULT_LAW = {"Al 6061-T6": "Steinberg–Guinan", "Cu ETP": "Steinberg–Guinan",
+               "Cu OFHC": "Steinberg–Guinan", "Steel 4340": "Johnson–Cook"}
+
+
+def pct(x):
+    return "–" if x is None else f"{100 * x:.1f} %"
+
+
+def taylor_rows(folder, label):
+    """(material, row) per material of one campaign folder (its statistics.json and runs)."""
+    with open(os.path.join(folder, "statistics.json")) as f:
+        stats = json.load(f)
+    with open(os.path.join(folder, "predictions.csv")) as f:
+        rows = list(csv.DictReader(f))
+    length, foot = stats["comparisons"][0], stats["comparisons"][1]
+    for material, st in length["groups"].items():
+        mine = [r for r in rows if r["material"] == material]
+        steps = []
+        for r in mine:
+            with open(os.path.join(folder, "runs", r["folder"], "summary.json")) as f:
+                steps.append(get(json.load(f), K.STEPS))
+        seconds = sum(float(r["wall_seconds"] or 0) for r in mine)
+        cold = [float(r["error:final length"]) for r in mine
+                if r["error:final length"] and float(r["parameters.T0"]) < 400.0]
+        cold_median, cold_p90 = abs_stats(cold)
+        ft = foot["groups"][material]
+        yield material, (f"{label} | {st['compared']} | {pct(st['median_abs_error'])}, "
+                         f"{pct(st['p90_abs_error'])}, {pct(st['max_abs_error'])} | "
+                         f"{pct(st['within_tolerance'])} | {len(cold)}, {pct(cold_median)}, "
+                         f"{pct(cold_p90)} | {pct(ft['median_abs_error'])} "
+                         f"({ft['compared']}) | {max(steps):,} | {seconds:.0f} s |")
+
+
+def taylor_tests(binary, work, opts):
+    """Every shared Taylor test under each law (a campaign each), and the figure."""
+    table = os.path.join(VALIDATION, "taylor-tests.csv")
+    if not os.path.isfile(table):
+        raise SystemExit(f"tables.py: error: {table}: no such file (the shared Taylor tests)")
+    yield from TAYLOR_HEADER
+    folders = []
+    for name, label, keys, rows in TAYLOR_LAWS:
+        out = os.path.join(work, "taylor-" + name)
+        cmd = [binary, "campaign", os.path.join(ROOT, "data/cases/taylor.yaml"), table, "--quiet",
+               "--out", out] + sets(keys) + (["--rows", rows] if rows else [])
+        r = subprocess.run(cmd, capture_output=True, text=True)
+        if r.returncode != 0:
+            raise SystemExit(f"tables.py: error: {' '.join(cmd)}: exit {r.returncode}\n{r.stderr}")
+        folders.append((out, label))
+    by_material = {}
+    for out, label in folders:
+        for material, row in taylor_rows(out, label):
+            by_material.setdefault(material, []).append(row)
+    for material in sorted(by_material):
+        for k, row in enumerate(by_material[material]):
+            name = f"{material} ({DEFAULT_LAW.get(material, '?')})" if k == 0 else ""
+            yield f"| {name} | {row}"
+    figure = os.path.join(ROOT, "data", "figures", "taylor-lf.png")
+    subprocess.run(["/usr/bin/python3", os.path.join(ROOT, "tools/post/plot_taylor.py")]
+                   + [f for f, _ in folders[:2]] + ["--label", folders[0][1], "--label",
+                                                   folders[1][1], "--out", figure], check=True,
+                   capture_output=True)
+
+
+# whipple-shots -----------------------------------------------------------------------------------
+WHIPPLE_SHOTS = [  # (folder, --rows): normal shots of shields whose shots straddle the limit
+    ("al6061-0.79mm", "angle=0;standoff=5.08;bumper_mat=AA6061-T6;bumper_thick=0.07874;"
+                      "wall_mat=AA6061-T6"),
+    ("al2024-0.81mm", "angle=0;standoff=5.08;bumper_mat=AA2024-T3;bumper_thick=0.081;"
+                      "wall_mat=AA2024-T3;wall_thick=0.635"),
+    ("al1100-0.64mm", "angle=0;standoff=5.08;bumper_mat=AA1100-O;bumper_thick=0.064;"
+                      "wall_mat=AA7075-T6;wall_thick=1.27"),
+]
+
+
+def whipple_shots(binary, work, opts):
+    """The shots of WHIPPLE_SHOTS (a campaign each, the cores at once), scored against the
+    Christiansen equation per configuration; the figures into data/figures."""
+    table = os.path.join(VALIDATION, "whipple-shots.csv")
+    if not os.path.isfile(table):
+        raise SystemExit(f"tables.py: error: {table}: no such file (the shared Whipple shots)")
+    folders, seconds = [], 0.0
+    for name, rows in WHIPPLE_SHOTS:
+        out = os.path.join(work, "whipple-" + name)
+        cmd = [binary, "campaign", os.path.join(ROOT, "data/cases/whipple.yaml"), table,
+               "--quiet", "--out", out, "--rows", rows]
+        r = subprocess.run(cmd, capture_output=True, text=True)
+        if r.returncode != 0:
+            raise SystemExit(f"tables.py: error: {' '.join(cmd)}: exit {r.returncode}\n{r.stderr}")
+        with open(os.path.join(out, "predictions.csv")) as f:
+            seconds += sum(float(x["wall_seconds"] or 0) for x in csv.DictReader(f))
+        folders.append(out)
+    r = subprocess.run(["/usr/bin/python3", os.path.join(ROOT, "tools/post/whipple_scores.py"),
+                        table] + folders + ["--markdown", "--figures",
+                                            os.path.join(ROOT, "data", "figures")],
+                       capture_output=True, text=True, check=True)
+    yield from r.stdout.splitlines()
+    yield ""
+    yield f"The runs' own times added up: {seconds / 60:.0f} min (one thread each)."
+
+
 # whipple, whipple-mesh, whipple-hole -------------------------------------------------------------
 WHIPPLE_COARSE = ["parameters.hb=1.0e-3", "parameters.hw=2.0e-3", "parameters.np=6",
                   "parameters.tear=5.0e-6"]
@@ -688,7 +821,8 @@ def whipple_hole(binary, work, opts):
 
 TABLES = {"stability": stability, "micro": micro, "profile": profile, "ccd": ccd, "verify": verify,
           "verify-full": verify_full, "threads": threads, "mpi": mpi, "whipple": whipple,
-          "whipple-mesh": whipple_mesh, "whipple-hole": whipple_hole, "strength": strength}
+          "whipple-mesh": whipple_mesh, "whipple-hole": whipple_hole, "strength": strength,
+          "taylor-tests": taylor_tests, "whipple-shots": whipple_shots}
 assert list(TABLES) == NAMES
 
 

@@ -20,6 +20,7 @@ struct CampaignOptions {
   int jobs = 0;         // runs at once; 0: the machine's cores
   std::string out_dir;  // default results/<case name>-campaign
   bool quiet = false;
+  bool check = false;  // --check: read and check the case, the table and every row; run nothing
   std::vector<std::string> overrides;  // --set, applied to every run before the row's own
 };
 

@@ -10,9 +10,12 @@
 
 namespace tc {
 
-/// The complete inputs of a run, as text: the case file (its absolute path and its bytes) and
-/// every override in the order given (a later one wins, so the order is part of the key).
-std::string run_key(const std::string& case_path, const std::vector<std::string>& overrides);
+/// The complete inputs of a run, as text: the case file (its absolute path and its content,
+/// keys and values without comments: canonical_case_text), every override in the order given (a
+/// later one wins, so the order is part of the key) and the material library the case reads
+/// (`library`, Case::material_library; "" when it reads none), likewise.
+std::string run_key(const std::string& case_path, const std::vector<std::string>& overrides,
+                    const std::string& library);
 
 /// A folder name for a run: `label` then 12 hex digits of its key's 64-bit FNV-1a hash, so runs
 /// of different inputs never share a folder.

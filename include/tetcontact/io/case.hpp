@@ -184,6 +184,10 @@ std::string default_material_library();
 /// material (the message names the library file).
 std::vector<Material> load_material_library(const std::string& path);
 
+/// The case file's content re-emitted as YAML: its keys and values in order, without its
+/// comments and layout (what a run's key holds of the case: an edited comment changes no run).
+std::string canonical_case_text(const std::string& path);
+
 /// Reads and validates a case file, applying `overrides` ("path.to.key=value", the value in
 /// YAML syntax; list entries are addressed by index: bodies.0.velocity=[1,0,0]) first.
 Case load_case(const std::string& path, const std::vector<std::string>& overrides = {});

@@ -1,0 +1,61 @@
+"""tools/post/whipple_scores.py: the engine's and Christiansen's verdicts on the same shots,
+per configuration. The equation's verdicts are checked against tools/common/christiansen.py
+called directly; a folder that is not a campaign's, and a row outside the table, are refused."""
+import os
+
+from conftest import run_tool
+
+TABLE = """# two shots of one shield, one of another
+source,shotID,proj_mat,proj_density,proj_diam,angle,velocity,bumper_mat,bumper_density,bumper_thick,standoff,wall_mat,wall_density,wall_yield,wall_thick,result,perforated_class
+-,-,-,g/cm3,cm,deg,km/s,-,g/cm3,cm,cm,-,g/cm3,ksi,cm,-,-
+a,1,AA2017-T4,2.8,0.3175,0,6.5,AA6061-T6,2.7,0.07874,5.08,AA6061-T6,2.7,40,0.254,P,1
+a,2,AA2017-T4,2.8,0.1,0,6.5,AA6061-T6,2.7,0.07874,5.08,AA6061-T6,2.7,40,0.254,NP,0
+a,3,AA2017-T4,2.8,0.3175,0,3.0,AA6061-T6,2.7,0.07874,5.08,AA6061-T6,2.7,40,0.4064,NP,0
+"""
+
+
+def test_scores_and_figures(out):
+    table = os.path.join(out, "shots.csv")
+    open(table, "w").write(TABLE)
+    camp = os.path.join(out, "campaign")
+    os.makedirs(camp)
+    # The engine: right on row 1, wrong on row 2 (P for an NP), right on row 3.
+    open(os.path.join(camp, "predictions.csv"), "w").write(
+        "row,line,predicted:wall perforated,measured:wall perforated,right:wall perforated\n"
+        "1,4,P,P,1\n2,5,P,NP,0\n3,6,NP,NP,1\n")
+    r = run_tool("post/whipple_scores.py", table, camp, "--markdown", check=0)
+    # The equation's verdicts, from the function itself (rows 1 and 2: one shield at 6.5 km/s).
+    import sys
+    sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))))
+    from tools.common import christiansen
+
+    def says(d, v, tw):
+        d_c = christiansen.critical_diameter(v, 0.7874e-3, tw, 50.8e-3, rho_p=2800.0,
+                                             rho_b=2700.0, sigma_pa=40 * christiansen.KSI)
+        return "P" if d > d_c else "NP"
+    right = [says(3.175e-3, 6500.0, 2.54e-3) == "P", says(1.0e-3, 6500.0, 2.54e-3) == "NP",
+             says(3.175e-3, 3000.0, 4.064e-3) == "NP"]
+    assert says(1.0e-3, 6500.0, 2.54e-3) != says(8.0e-3, 6500.0, 2.54e-3)  # not one verdict
+    lines = r.stdout.splitlines()
+    q = right[0] + right[1]
+    assert (f"| AA6061-T6 0.7874 mm | 50.8 mm | AA6061-T6 2.54 mm | 2 (1 / 1) | 1 (50 %) | "
+            f"{q} ({100 * q / 2:.0f} %) |") in lines
+    q = sum(right)
+    assert lines[-1] == f"| all | | | 3 (1 / 2) | 2 (67 %) | {q} ({100 * q / 3:.0f} %) |"
+    pngs = sorted(f for f in os.listdir(camp) if f.endswith(".png"))
+    assert len(pngs) == 2
+    for p in pngs:
+        assert open(os.path.join(camp, p), "rb").read(8) == b"\x89PNG\r\n\x1a\n"
+
+
+def test_refusals(out):
+    table = os.path.join(out, "shots.csv")
+    open(table, "w").write(TABLE)
+    r = run_tool("post/whipple_scores.py", table, out, check=2)
+    assert "predictions.csv: no such file (not a campaign folder)" in r.stderr
+    open(os.path.join(out, "predictions.csv"), "w").write(
+        "row,line,predicted:wall perforated\n9,4,P\n")
+    r = run_tool("post/whipple_scores.py", table, out, check=2)
+    assert "row 9 is not a row of" in r.stderr
+    r = run_tool("post/whipple_scores.py", os.path.join(out, "none.csv"), out, check=2)
+    assert "none.csv: no such file" in r.stderr

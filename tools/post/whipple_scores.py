@@ -1,0 +1,177 @@
+#!/usr/bin/python3
+"""Scores a campaign of Whipple-shield shots against the Christiansen equation on the same
+shots, per shield configuration, and draws each configuration's shots in diameter–speed.
+
+    whipple_scores.py TABLE.csv DIR... [--figures DIR] [--markdown]
+
+TABLE.csv: the table the campaigns ran (the shared database's format: cm, km/s, ksi under a
+row of units); each DIR a `tetcontact campaign data/cases/whipple.yaml TABLE.csv` folder (its
+predictions.csv: `row`, `predicted:wall perforated`, `measured:wall perforated`). For every row
+a campaign ran, the equation's verdict is P when the projectile's diameter exceeds
+tools/common/christiansen.py's critical diameter for that shot's bumper, wall (thickness and
+yield `wall_yield`), standoff, densities, speed and obliquity. A configuration is the bumper's
+alloy and thickness, the standoff and the wall's alloy and thickness. Prints, per
+configuration and over all, the shots, P and NP measured, and the engine's and the equation's
+right calls and accuracy (a markdown table with --markdown), and writes
+whipple-<configuration>.png per configuration into --figures (default the first DIR): the
+shots, P filled and NP open, the engine's wrong calls crossed, and the equation's curve at the
+configuration's wall yield. Exit code 0, or 2 on bad input."""
+import csv
+import os
+import sys
+
+if not __package__:  # run by path: the repository root on sys.path, for `tools.*`
+    sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))))
+
+from tools.common import christiansen  # noqa: E402
+
+KEY = ["bumper_mat", "bumper_thick", "standoff", "wall_mat", "wall_thick"]
+PRED, MEAS = "predicted:wall perforated", "measured:wall perforated"
+
+
+def fail(msg):
+    print("whipple_scores.py: error: " + msg, file=sys.stderr)
+    sys.exit(2)
+
+
+def read_table(path):
+    if not os.path.isfile(path):
+        fail(path + ": no such file")
+    with open(path) as f:
+        lines = [x for x in f if not x.startswith("#")]
+    rows = list(csv.reader(lines))
+    if len(rows) < 3:
+        fail(path + ": no shots")
+    header, data = rows[0], rows[2:]  # the second row is the units
+    need = KEY + ["proj_diam", "proj_density", "velocity", "angle", "bumper_density",
+                  "wall_yield", "result"]
+    missing = [c for c in need if c not in header]
+    if missing:
+        fail(path + ": no column " + ", ".join(missing))
+    return [dict(zip(header, r)) for r in data]
+
+
+def equation_says(shot):
+    """'P' when the diameter exceeds the critical one (SI through the equation's function)."""
+    cm = 0.01
+    d_c = christiansen.critical_diameter(
+        float(shot["velocity"]) * 1000.0, float(shot["bumper_thick"]) * cm,
+        float(shot["wall_thick"]) * cm, float(shot["standoff"]) * cm,
+        rho_p=float(shot["proj_density"]) * 1000.0, rho_b=float(shot["bumper_density"]) * 1000.0,
+        sigma_pa=float(shot["wall_yield"]) * christiansen.KSI, theta_deg=float(shot["angle"]))
+    return "P" if float(shot["proj_diam"]) * cm > d_c else "NP"
+
+
+def main(argv):
+    if not argv or argv[0] in ("-h", "--help"):
+        print(__doc__)
+        return 0 if argv else 2
+    figures, markdown, args = None, False, []
+    i = 0
+    while i < len(argv):
+        if argv[i] == "--figures":
+            if i + 1 >= len(argv):
+                fail("--figures needs a folder")
+            figures = argv[i + 1]
+            i += 2
+        elif argv[i] == "--markdown":
+            markdown = True
+            i += 1
+        else:
+            args.append(argv[i])
+            i += 1
+    if len(args) < 2:
+        fail("usage: whipple_scores.py TABLE.csv DIR... [--figures DIR] [--markdown]")
+    table = read_table(args[0])
+    shots = {}  # row number → (shot, engine's verdict)
+    for folder in args[1:]:
+        path = os.path.join(folder, "predictions.csv")
+        if not os.path.isfile(path):
+            fail(path + ": no such file (not a campaign folder)")
+        with open(path) as f:
+            reader = csv.DictReader(f)
+            if PRED not in (reader.fieldnames or []):
+                fail(path + ": no column " + PRED + " (not a campaign of whipple.yaml)")
+            for r in reader:
+                n = int(r["row"])
+                if not 1 <= n <= len(table):
+                    fail(f"{path}: row {n} is not a row of {args[0]}")
+                if r[PRED]:
+                    shots[n] = (table[n - 1], r[PRED])
+    groups = {}
+    for n, (shot, engine) in sorted(shots.items()):
+        groups.setdefault(tuple(shot[k] for k in KEY), []).append((n, shot, engine))
+    lines = []
+    if markdown:
+        lines += ["| bumper | standoff | wall | shots (P / NP) | engine right | equation right |",
+                  "|---|---|---|---|---|---|"]
+    totals = [0, 0, 0, 0]
+    for key, members in sorted(groups.items()):
+        p = sum(1 for _, s, _ in members if s["result"] == "P")
+        e = sum(1 for _, s, v in members if v == s["result"])
+        q = sum(1 for _, s, _ in members if equation_says(s) == s["result"])
+        n = len(members)
+        totals = [totals[0] + n, totals[1] + p, totals[2] + e, totals[3] + q]
+        bumper = f"{key[0]} {float(key[1]) * 10:g} mm"
+        wall = f"{key[3]} {float(key[4]) * 10:g} mm"
+        if markdown:
+            lines.append(f"| {bumper} | {float(key[2]) * 10:g} mm | {wall} | {n} ({p} / {n - p}) | "
+                         f"{e} ({100 * e / n:.0f} %) | {q} ({100 * q / n:.0f} %) |")
+        else:
+            lines.append(f"{bumper}, standoff {float(key[2]) * 10:g} mm, {wall}: {n} shots "
+                         f"({p} P, {n - p} NP): engine right on {e}, equation on {q}")
+    n, p, e, q = totals
+    if n == 0:
+        fail("no shot with a prediction")
+    if markdown:
+        lines.append(f"| all | | | {n} ({p} / {n - p}) | {e} ({100 * e / n:.0f} %) | "
+                     f"{q} ({100 * q / n:.0f} %) |")
+    else:
+        lines.append(f"all: {n} shots ({p} P, {n - p} NP): engine right on {e} "
+                     f"({100 * e / n:.0f} %), equation on {q} ({100 * q / n:.0f} %)")
+    print("\n".join(lines))
+    draw(groups, figures or args[1])
+    return 0
+
+
+def draw(groups, folder):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    for key, members in sorted(groups.items()):
+        fig, ax = plt.subplots(figsize=(6, 4.2))
+        shot = members[0][1]
+        vs = [1.0 + 0.05 * k for k in range(181)]
+        cm = 0.01
+        ax.plot(vs, [1e3 * christiansen.critical_diameter(
+            v * 1000.0, float(key[1]) * cm, float(key[4]) * cm, float(key[2]) * cm,
+            rho_p=float(shot["proj_density"]) * 1000.0,
+            rho_b=float(shot["bumper_density"]) * 1000.0,
+            sigma_pa=float(shot["wall_yield"]) * christiansen.KSI) for v in vs],
+            "k-", lw=1, label="Christiansen's critical diameter")
+        for _, s, engine in members:
+            v, d = float(s["velocity"]), float(s["proj_diam"]) * 10.0
+            perforated = s["result"] == "P"
+            ax.plot([v], [d], "o", color="tab:red" if perforated else "tab:blue",
+                    mfc=None if perforated else "none", ms=7)
+            if engine != s["result"]:
+                ax.plot([v], [d], "kx", ms=9)
+        ax.plot([], [], "o", color="tab:red", label="perforated (P)")
+        ax.plot([], [], "o", mfc="none", color="tab:blue", label="not perforated (NP)")
+        ax.plot([], [], "kx", label="the engine calls it wrong")
+        ax.set_xlabel("impact speed, km/s")
+        ax.set_ylabel("projectile diameter, mm")
+        ax.set_title(f"{key[0]} {float(key[1]) * 10:g} mm bumper, {float(key[2]) * 10:g} mm, "
+                     f"{key[3]} {float(key[4]) * 10:g} mm wall", fontsize=9)
+        ax.grid(True, alpha=0.3)
+        ax.legend(fontsize=7)
+        name = "whipple-" + "-".join(k.replace("%", "") for k in key) + ".png"
+        out = os.path.join(folder, name)
+        fig.savefig(out + ".tmp.png", dpi=100, bbox_inches="tight")
+        os.replace(out + ".tmp.png", out)
+        plt.close(fig)
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv[1:]))
