@@ -43,7 +43,7 @@ std::string fmt(double x, const char* f = "%.9g") {
 }
 
 std::string trim(const std::string& s) {
-  const auto a = s.find_first_not_of(" \t"), b = s.find_last_not_of(" \t");
+  const auto a = s.find_first_not_of(" \t\r"), b = s.find_last_not_of(" \t\r");
   return a == std::string::npos ? std::string() : s.substr(a, b - a + 1);
 }
 

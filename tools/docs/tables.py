@@ -29,7 +29,7 @@ NAME, the table:
     strength      the strength laws side by side: the aluminium Taylor rod and the 6061-T6 plate
                   impact's precursor (HEL) under each law, one thread
     taylor-tests  every Taylor test of data/validation/taylor-tests.csv under each metal's
-                  default law, Johnson–Cook and perfectly plastic (`tetcontact campaign
+                  default law and Johnson–Cook (`tetcontact campaign
                   data/cases/taylor.yaml`, a campaign per law, the cores at once): per material
                   and law the errors of the final length and the footprint; and the figure
                   data/figures/taylor-lf.png (Lf/L0 against speed; ~30 min on 2 cores)
@@ -37,6 +37,9 @@ NAME, the table:
                   whose shots straddle the limit (`campaign data/cases/whipple.yaml`, the
                   cores at once), the engine's verdicts and Christiansen's against the
                   measured ones per configuration; data/figures/whipple-*.png
+    hugoniot      the library's aluminium equations of state on their Hugoniot against the
+                  measured shock states of data/validation/aluminium-hugoniot.csv, per
+                  pressure band (no runs: the EOS's closed form, which the engine reproduces)
     all           every table above, in that order (hours on 2 cores)
 
 Without --write each table is printed, row by row as it is measured. With --write it also
@@ -58,6 +61,7 @@ import glob
 import json
 import os
 import re
+import statistics
 import subprocess
 import sys
 import tempfile
@@ -72,7 +76,7 @@ from tools.common.summary_keys import get  # noqa: E402
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 NAMES = ["stability", "micro", "profile", "ccd", "verify", "verify-full", "threads", "mpi",
          "whipple", "whipple-mesh", "whipple-hole", "strength", "taylor-tests",
-         "whipple-shots"]
+         "whipple-shots", "hugoniot"]
 
 
 def g(x):
@@ -600,7 +604,6 @@ VALIDATION = os.path.join(ROOT, "data", "validation")
 TAYLOR_LAWS = [  # (the campaign's folder, its label, --set and --rows)
     ("default", "the library's default law", [], None),
     ("johnson_cook", "Johnson–Cook", ["materials.rod.strength=johnson_cook"], None),
-    ("bilinear", "perfectly plastic at Y0", ["materials.rod.strength=bilinear"], None),
 ]
 TAYLOR_HEADER = [
     "| material (default law) | law | tests | Lf: median, 90 % within, largest \\|ΔLf/Lf\\| | "
@@ -678,6 +681,55 @@ def taylor_tests(binary, work, opts):
                    + [f for f, _ in folders[:2]] + ["--label", folders[0][1], "--label",
                                                    folders[1][1], "--out", figure], check=True,
                    capture_output=True)
+
+
+# hugoniot ----------------------------------------------------------------------------------------
+HUGONIOT_ENTRIES = ["al6061-t6", "al2024-t4", "al1100-o", "al7075-t6"]
+HUGONIOT_BANDS = [(0, 20), (20, 50), (50, 120), (120, 250)]  # GPa
+
+
+def library_eos(name):
+    """(ρ0, c0, s) of a library entry's Mie–Grüneisen EOS, read from data/materials.yaml's
+    one-line `eos:` of that entry."""
+    entry = None
+    with open(os.path.join(ROOT, "data", "materials.yaml")) as f:
+        for line in f:
+            if re.match(r"^[a-z0-9-]+:", line):
+                entry = line.split(":")[0]
+            elif entry == name and line.strip().startswith("density:"):
+                rho = float(line.split(":")[1].split("#")[0])
+            elif entry == name and line.strip().startswith("eos:"):
+                c0 = float(re.search(r"c0: *([0-9.e+-]+)", line).group(1))
+                s = float(re.search(r"\bs: *([0-9.e+-]+)", line).group(1))
+                return rho, c0, s
+    raise SystemExit(f"tables.py: error: data/materials.yaml: no Mie–Grüneisen entry {name}")
+
+
+def hugoniot(binary, work, opts):
+    """The library's aluminium EOS on its Hugoniot, p = ρ0 c0² η / (1 − s η)² (what the engine
+    computes: Material.MieGruneisenReproducesItsHugoniot), against each measured shock state."""
+    path = os.path.join(VALIDATION, "aluminium-hugoniot.csv")
+    with open(path, newline="\n") as f:
+        lines = [x.replace("\r", "") for x in f if x.strip() and not x.startswith("#")]
+    shocks = [(float(r[0]), float(r[1]), r[2]) for r in csv.reader(lines) if r[0] != "V_over_V0"]
+    sources = sorted({src for _, _, src in shocks})
+    yield ("| library entry | measured | " + " | ".join(
+        f"{lo}–{hi} GPa: points, median and largest error" for lo, hi in HUGONIOT_BANDS) + " |")
+    yield "|---|---|" + "---|" * len(HUGONIOT_BANDS)
+    for name in HUGONIOT_ENTRIES:
+        rho, c0, s = library_eos(name)
+        for k, src in enumerate(sources):
+            cells = []
+            for lo, hi in HUGONIOT_BANDS:
+                errors = [rho * c0 * c0 * (1 - v) / (1 - s * (1 - v)) ** 2 / 1e9 / p - 1
+                          for v, p, x in shocks if x == src and lo <= p < hi]
+                if not errors:
+                    cells.append("–")
+                    continue
+                worst = max(errors, key=abs)
+                cells.append(f"{len(errors)}: {100 * statistics.median(errors):+.1f} %, "
+                             f"largest {100 * worst:+.1f} %")
+            yield f"| {name if k == 0 else ''} | {src} | " + " | ".join(cells) + " |"
 
 
 # whipple-shots -----------------------------------------------------------------------------------
@@ -822,7 +874,7 @@ def whipple_hole(binary, work, opts):
 TABLES = {"stability": stability, "micro": micro, "profile": profile, "ccd": ccd, "verify": verify,
           "verify-full": verify_full, "threads": threads, "mpi": mpi, "whipple": whipple,
           "whipple-mesh": whipple_mesh, "whipple-hole": whipple_hole, "strength": strength,
-          "taylor-tests": taylor_tests, "whipple-shots": whipple_shots}
+          "taylor-tests": taylor_tests, "whipple-shots": whipple_shots, "hugoniot": hugoniot}
 assert list(TABLES) == NAMES
 
 
