@@ -180,7 +180,8 @@ std::vector<const Table::Row*> select_rows(const Table& t, const std::string& ex
     if (at + 1 < clause.size() && clause[at + 1] == '=') len = 2;
     const std::string op = clause.substr(at, len), name = trim(clause.substr(0, at)),
                       value = trim(clause.substr(at + len));
-    if (op == "!") throw CaseError(bad + "'" + clause + "': '!' must be '!='");
+    if (op != "=" && op != "!=" && op != "<" && op != "<=" && op != ">" && op != ">=")
+      throw CaseError(bad + "'" + clause + "': the comparison is one of = != < <= > >=");
     const int col = t.column(name);
     if (col < 0)
       throw CaseError(bad + "the table has no column '" + name + "' (its columns: " + t.columns() +

@@ -209,6 +209,11 @@ TEST(Campaign, BadTablesAreRefusedAndUnmeasuredTablesPredict) {
                                     dir.str());
   EXPECT_EQ(filter.code, 2);
   EXPECT_NE(filter.err.find("no column 'alloy'"), std::string::npos) << filter.err;
+  const auto op = test::run_cli("campaign '" + dir / "box.yaml" + "' '" + dir / "plain.csv" +
+                                    "' --rows 'metal==Cu' --out '" + dir / "bad" + "'",
+                                dir.str());
+  EXPECT_EQ(op.code, 2);
+  EXPECT_NE(op.err.find("the comparison is one of = != < <= > >="), std::string::npos) << op.err;
   EXPECT_FALSE(fs::exists(dir / "bad"));
 }
 

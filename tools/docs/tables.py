@@ -32,11 +32,11 @@ NAME, the table:
                   default law and Johnson–Cook (`tetcontact campaign
                   data/cases/taylor.yaml`, a campaign per law, the cores at once): per material
                   and law the errors of the final length and the footprint; and the figure
-                  data/figures/taylor-lf.png (Lf/L0 against speed; ~30 min on 2 cores)
+                  data/figures/taylor-lf.png (Lf/L0 against speed; ~80 min on 2 cores)
     whipple-shots the normal-incidence shots of three shields of data/validation/whipple-shots.csv
                   whose shots straddle the limit (`campaign data/cases/whipple.yaml`, the
                   cores at once), the engine's verdicts and Christiansen's against the
-                  measured ones per configuration; data/figures/whipple-*.png
+                  measured ones per configuration; data/figures/whipple-*.png (~15 min)
     hugoniot      the library's aluminium equations of state on their Hugoniot against the
                   measured shock states of data/validation/aluminium-hugoniot.csv, per
                   pressure band (no runs: the EOS's closed form, which the engine reproduces)
