@@ -8,6 +8,7 @@
 #include <tuple>
 
 #include "../test_util.hpp"
+#include "plate_case.hpp"
 
 using namespace tc;
 
@@ -219,35 +220,11 @@ TEST(Campaign, BadTablesAreRefusedAndUnmeasuredTablesPredict) {
 
 // Categories: the perforation of a plate (the measure's 1 or 0 is the category P or NP) against
 // a table's verdicts; the confusion table and the accuracy. The coarse 4 mm ball perforates the
-// 1 mm plate at 1,400 m/s and not at 1,000 (Limit.BracketsThePerforationSpeed); the third row's
-// verdict is wrong on purpose.
+// 1 mm plate at 1,400 m/s and not at 1,000 (Limit.BracketsThePerforationSpeed, its case); the
+// third row's verdict is wrong on purpose.
 TEST(Campaign, CategoriesGiveTheConfusionTable) {
   test::TempDir dir("campaign-categories");
-  test::write_text(dir / "plate.yaml", R"yaml(name: campaign-plate
-parameters:
-  v: 1000
-end_time: 4.0e-6
-materials:
-  al: {from: al6061-t6}
-bodies:
-  - name: ball
-    material: al
-    mesh: {sphere: {radius: 2.0e-3, cells_across: 4}}
-    transform: [{translate: [0, 0, 2.0e-3]}]
-    velocity: [0, 0, "= -v"]
-  - name: plate
-    material: al
-    mesh: {box: {size: [12.0e-3, 12.0e-3, 1.0e-3], cells: [8, 8, 1]}}
-    transform: [{translate: [0, 0, -0.5e-3]}]
-contact: {enabled: true, broadphase: grid}
-fracture: {enabled: true}
-output: {interval: 4.0e-6, fields: [velocity]}
-reference:
-  - name: plate perforated
-    measure: perforated
-    body: plate
-    plane: {point: [0, 0, -1.0e-3], normal: [0, 0, -1]}
-    within: 6.0e-3
+  test::write_text(dir / "plate.yaml", std::string(test::k_plate) + R"yaml(
 campaign:
   units_row: true
   parameters: {v: {column: velocity, factor: 1000}}

@@ -9,43 +9,13 @@
 #include <thread>
 
 #include "../test_util.hpp"
+#include "plate_case.hpp"
 
 using namespace tc;
 
 namespace {
 
 namespace fs = std::filesystem;
-
-// An aluminium ball (4 mm) onto an aluminium plate of thickness tb, coarse: it perforates a
-// 1 mm plate from between 1,000 and 1,400 m/s (single runs: not at 1,000, perforated at 1,400;
-// a 2 mm plate not at 1,400), each run under a second.
-const char* k_plate = R"yaml(name: limit-plate
-parameters:
-  v: 1000
-  tb: 1.0e-3
-end_time: 4.0e-6
-materials:
-  al: {from: al6061-t6}
-bodies:
-  - name: ball
-    material: al
-    mesh: {sphere: {radius: 2.0e-3, cells_across: 4}}
-    transform: [{translate: [0, 0, 2.0e-3]}]
-    velocity: [0, 0, "= -v"]
-  - name: plate
-    material: al
-    mesh: {box: {size: [12.0e-3, 12.0e-3, "= tb"], cells: [8, 8, "= max(1, round(tb / 1.0e-3))"]}}
-    transform: [{translate: [0, 0, "= -tb / 2"]}]
-contact: {enabled: true, broadphase: grid}
-fracture: {enabled: true}
-output: {interval: 4.0e-6, fields: [velocity]}
-reference:
-  - name: plate perforated
-    measure: perforated
-    body: plate
-    plane: {point: [0, 0, "= -tb"], normal: [0, 0, -1]}
-    within: 6.0e-3
-)yaml";
 
 struct Line {
   std::string vary, lo, hi, at_lo, at_hi, status;
@@ -108,7 +78,7 @@ const std::string k_search =
 // thicker plate needs a higher speed; every run's summary kept.
 TEST(Limit, BracketsThePerforationSpeed) {
   test::TempDir dir("limit");
-  test::write_text(dir / "plate.yaml", k_plate);
+  test::write_text(dir / "plate.yaml", test::k_plate);
   const auto r =
       test::run_cli("limit '" + dir / "plate.yaml" + "' " + k_search +
                         " --vary parameters.tb=1.0e-3,2.0e-3 --out '" + dir / "out" + "'",
@@ -152,7 +122,7 @@ TEST(Limit, BracketsThePerforationSpeed) {
 // uninterrupted search finds (runs are deterministic).
 TEST(Limit, ResumesAfterAKill) {
   test::TempDir dir("limit-resume");
-  test::write_text(dir / "plate.yaml", k_plate);
+  test::write_text(dir / "plate.yaml", test::k_plate);
   const std::string cmd = "limit '" + dir / "plate.yaml" + "' " + k_search + " --quiet --out '";
   const auto whole = test::run_cli(cmd + dir / "whole" + "'", dir.str());
   ASSERT_EQ(whole.code, 0) << whole.err;
@@ -192,7 +162,7 @@ TEST(Limit, ResumesAfterAKill) {
 // 2 mm plate's, higher), and the first search's runs stay as they were.
 TEST(Limit, AnotherOverrideIsNeverReused) {
   test::TempDir dir("limit-reuse");
-  test::write_text(dir / "plate.yaml", k_plate);
+  test::write_text(dir / "plate.yaml", test::k_plate);
   const std::string cmd =
       "limit '" + dir / "plate.yaml" + "' " + k_search + " --quiet --out '" + dir / "out" + "'";
   const auto first = test::run_cli(cmd, dir.str());
