@@ -22,6 +22,7 @@ tetcontact_tool_test(plot_sweep_bars test_plot_sweep.py)        # a real sweep p
 tetcontact_tool_test(tools_plot_limit test_plot_limit.py)
 tetcontact_tool_test(tools_plot_campaign test_plot_campaign.py)
 tetcontact_tool_test(tools_plot_taylor test_plot_taylor.py)
+tetcontact_tool_test(tools_taylor_profiles test_taylor_profiles.py)   # exact outline of a known law
 tetcontact_tool_test(tools_whipple_scores test_whipple_scores.py)   # against christiansen.py
 tetcontact_tool_test(tools_ball_plate_report test_ball_plate_report.py)
 tetcontact_tool_test(tools_check_vtu test_check_vtu.py)         # the arrays a run asked for

@@ -31,8 +31,10 @@ NAME, the table:
     taylor-tests  every Taylor test of data/validation/taylor-tests.csv under each metal's
                   default law and Johnson–Cook (`tetcontact campaign
                   data/cases/taylor.yaml`, a campaign per law, the cores at once): per material
-                  and law the errors of the final length and the footprint; and the figure
-                  data/figures/taylor-lf.png (Lf/L0 against speed; ~80 min on 2 cores)
+                  and law the errors of the final length and the footprint; the figure
+                  data/figures/taylor-lf.png (Lf/L0 against speed); the computed outlines of
+                  the digitised rods, each law's footprint and mean |Δr| / R0, and their
+                  figure data/figures/taylor-profiles.png (~80 min on 2 cores)
     whipple-shots the normal-incidence shots of three shields of data/validation/whipple-shots.csv
                   whose shots straddle the limit (`campaign data/cases/whipple.yaml`, the
                   cores at once), the engine's verdicts and Christiansen's against the
@@ -681,6 +683,31 @@ def taylor_tests(binary, work, opts):
                    + [f for f, _ in folders[:2]] + ["--label", folders[0][1], "--label",
                                                    folders[1][1], "--out", figure], check=True,
                    capture_output=True)
+    yield from taylor_outlines(folders)
+
+
+def taylor_outlines(folders):
+    """The computed outlines of the digitised rods (tools/post/taylor_profiles.py), a row per
+    rod with each law's footprint and mean |Δr| / R0, and the figure of them."""
+    from tools.post import taylor_profiles as tp
+    index = os.path.join(VALIDATION, "taylor-profiles.csv")
+    profiles = tp.checked_profiles(index, os.path.join(VALIDATION, "taylor-tests.csv"),
+                                   os.path.join(VALIDATION, "taylor-profiles"))
+    table = tp.rows(profiles, [f for f, _ in folders])
+    labels = [label for _, label in folders]
+    yield ""
+    yield ("| digitised outline | test | footprint radius (mm): measured; "
+           + ", ".join(labels) + " | mean (largest) \\|Δr\\| / R0: " + ", ".join(labels) + " |")
+    yield "|---|---|---|---|"
+    for name, test, outline, results in table:
+        bottom = min(z for _, z in outline)
+        foot = max(r for r, z in outline if z == bottom)
+        feet = ", ".join(f"{computed_foot:.2f}" for _, computed_foot, _, _ in results)
+        shapes = ", ".join(f"{100 * mean:.1f} % ({100 * largest:.0f} %)"
+                           for _, _, mean, largest in results)
+        yield (f"| `{name}` | {test['material']}, {test['source'].split(' (')[0]}, "
+               f"{test['U0_m_s']} m/s, {test['T0_K']} K | {foot:.2f}; {feet} | {shapes} |")
+    tp.plot(table, labels, os.path.join(ROOT, "data", "figures", "taylor-profiles.png"))
 
 
 # hugoniot ----------------------------------------------------------------------------------------
