@@ -113,6 +113,7 @@ void add_symmetry_planes(const Case& c, Model& model) {
     wall.point[plane.axis] = plane.at;
     wall.normal = Vec3::Zero();
     wall.normal[plane.axis] = 1.0;
+    wall.mirror = true;
     model.walls.push_back(wall);
   }
 }
@@ -206,6 +207,7 @@ Model build_model(const Case& c, std::vector<std::string>* notes) {
 
   model.walls = c.walls;
   add_symmetry_planes(c, model);
+  model.contact_heat = c.contact_settings.heat;
   if (c.contact) {
     ContactSettings cs = c.contact_settings;
     for (std::size_t i = 0; i < cs.pairs.size(); ++i) {

@@ -166,6 +166,8 @@ Json energy_json(const RunSummary& s) {
   e["viscous_work"] = s.last.viscous_work;
   // Node–face, edge–edge and particle contacts all do work.
   e["contact_work"] = s.contact_work ? Json(s.last.contact.work) : Json();
+  // Of it, the heat deposited in cells and particles (contact.heat): part of internal.
+  e["contact_heat"] = s.contact_work ? Json(s.last.contact_heat) : Json();
   e["boundary_work"] = s.last.boundary.work;
   e["wall_work"] = s.last.walls.work;
   e["total_initial"] = s.first.total;
@@ -528,8 +530,9 @@ void print_table(const RunSummary& s) {
      << fmt(s.wall, "%.3f") << " s\n";
   os << "  energy     initial " << fmt(first.total, "%.6g") << " J   final "
      << fmt(last.total, "%.6g") << " J   external work " << fmt(last.external_work(), "%.4g")
-     << " J   contact work " << fmt(last.contact.work, "%.4g") << " J   balance error "
-     << fmt(last.balance_error, "%.2e") << " (max " << fmt(s.balance_error_max, "%.2e") << ")\n";
+     << " J   contact work " << fmt(last.contact.work, "%.4g") << " J (heat "
+     << fmt(last.contact_heat, "%.4g") << " J)   balance error " << fmt(last.balance_error, "%.2e")
+     << " (max " << fmt(s.balance_error_max, "%.2e") << ")\n";
   if (last.plastic_work > 0 || last.viscous_work > 0)
     os << "  internal   " << fmt(last.internal, "%.6g") << " J, of which plastic work "
        << fmt(last.plastic_work, "%.4g") << " J, viscous heat " << fmt(last.viscous_work, "%.4g")

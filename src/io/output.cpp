@@ -23,7 +23,7 @@ OutputWriter::OutputWriter(const Model& model, const OutputSpec& spec, std::stri
   h << "step,t,dt,kinetic,internal,plastic_work,viscous_work,boundary_work,wall_work,total,"
        "balance_error,momentum_x,momentum_y,momentum_z";
   for (const RigidWall& w : model_.walls) h << ",wall_force_" << w.name;
-  if (model_.contact) h << ",contact_work,contact_force,contacts";
+  if (model_.contact) h << ",contact_work,contact_heat,contact_force,contacts";
   if (model_.element.fracture) h << ",damaged,destroyed";
   if (model_.particles) h << ",particles,particle_mass";
   if (spec_.penetration_every_step) h << ",nodes_inside,crossings";
@@ -44,8 +44,8 @@ void OutputWriter::observe(const State& st, const Sample& s) {
       h << ',' << format_double(v);
     for (double f : s.wall_force) h << ',' << format_double(f);
     if (model_.contact)
-      h << ',' << format_double(s.contact.work) << ',' << format_double(s.contact_force) << ','
-        << s.contacts;
+      h << ',' << format_double(s.contact.work) << ',' << format_double(s.contact_heat) << ','
+        << format_double(s.contact_force) << ',' << s.contacts;
     if (model_.element.fracture) h << ',' << s.damaged << ',' << s.destroyed;
     if (model_.particles) h << ',' << s.particles << ',' << format_double(s.particle_mass);
     if (probe_ && spec_.penetration_every_step)

@@ -59,6 +59,9 @@ double apply_contact(ContactPoint& c, State& st, double tau, std::vector<Vec3>& 
   if (lambda != 0.0) {
     push(c, lambda * n, st, ledger);
     c.lambda = accumulated;
+    // The pair's kinetic energy changes by λ (v_n + v_n') / 2, v_n' = v_n + λ Σ w²/m.
+    const double vn = v_rel.dot(n);
+    c.heat -= 0.5 * lambda * (2.0 * vn + lambda * inv_mass);
   }
   if (c.mode == FrictionMode::slip || c.lambda <= 0.0) return lambda;
   // Tangential: the impulse that stops the relative sliding, limited for Coulomb.
@@ -74,6 +77,7 @@ double apply_contact(ContactPoint& c, State& st, double tau, std::vector<Vec3>& 
   if (delta.squaredNorm() > 0.0) {
     push(c, delta, st, ledger);
     c.tangential = total;
+    c.heat -= delta.dot(v_now) + 0.5 * delta.squaredNorm() * inv_mass;  // likewise, sliding
   }
   return lambda;
 }

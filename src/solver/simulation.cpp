@@ -11,6 +11,7 @@
 
 #include "tetcontact/parallel/mpi.hpp"
 #include "tetcontact/parallel/parallel.hpp"
+#include "tetcontact/response/heat.hpp"
 #include "tetcontact/solver/integrator.hpp"
 
 namespace tc {
@@ -73,6 +74,12 @@ Simulation::Simulation(Model model, SolverSettings settings)
                             ? settings_.threads
                             : std::max(1, parallel::hardware_threads() / mpi::local_ranks()));
   State& st = state_;
+  // The symmetry planes each node lies on (their constraints: response/heat.hpp).
+  for (const VelocityConstraint& vc : model_.constraints) {
+    if (vc.name.rfind("symmetry-", 0) != 0) continue;
+    node_planes_.resize(model_.mesh.node_count(), 0);
+    for (const Index n : vc.nodes) ++node_planes_[n];
+  }
   // The modules this case needs, and nothing else.
   modules_ = {"integrator:central_difference", "elements:linear_tet"};
   bool plastic = false, mie = false, anp = false, thermal = false;
@@ -196,7 +203,8 @@ void Simulation::step() {
   if (resolver_) timed(Stage::verify, [&] { resolve_stage(); });  // the verified step
   timed(Stage::balance, [&] { sample_stage(); });                 // energy, momentum at tⁿ
   timed(Stage::output, [&] { output_stage(); });                  // observers see tⁿ
-  timed(Stage::commit, [&] { commit_stage(); });                  // Uⁿ⁺¹, xⁿ⁺¹ (eq. 1)
+  if (model_.contact_heat && corrects()) timed(Stage::commit, [&] { heat_stage(); });
+  timed(Stage::commit, [&] { commit_stage(); });  // Uⁿ⁺¹, xⁿ⁺¹ (eq. 1)
   if (fragmentation_) timed(Stage::fracture, [&] { fracture_stage(); });  // cells → particles
   timed(Stage::elements, [&] { elements_stage(); });  // σⁿ⁺¹, Fⁿ⁺¹, next τ
 }
@@ -284,7 +292,8 @@ void Simulation::predict_stage() {
 
 double Simulation::balance_error(const Sample& s) const {
   if (energy_scale_ <= 0.0) return 0.0;
-  return std::abs(s.total - s.external_work() - s.contact.work - first_.total) / energy_scale_;
+  return std::abs(s.total - s.external_work() - s.contact.work - s.contact_heat - first_.total) /
+         energy_scale_;
 }
 
 // Distributed: each rank's exact sums over its own tets, merged (exactly: the same bits as one
@@ -303,6 +312,7 @@ void Simulation::sample_stage() {
   std::optional<TetSums> sums;
   if (rank_tets()) sums = tet_sums_over_ranks();
   Sample s = sample_balance(state_, have_sample_ ? &last_ : nullptr, sums ? &*sums : nullptr);
+  s.contact_heat = contact_heat_;
   if (!std::isfinite(s.kinetic) || !std::isfinite(s.momentum.sum())) {
     std::ostringstream os;
     os << "non-finite velocity at t = " << state_.t << " s (step " << state_.step << ")";
@@ -377,6 +387,21 @@ void Simulation::commit_stage() {
   // are the zone's rigid ones).
   if (resolver_)
     for (const auto& [node, x] : resolver_->fixed_positions()) state_.x[node] = x;
+}
+
+// The kinetic energy the step's exchanges between bodies and particles dissipated, as internal
+// energy of the cells and particles at their nodes (response/heat.hpp: per island, the contact
+// work the balance books), before cells become particles and the elements' pass sees it; after
+// the sample, so that the balance of tⁿ⁺¹ counts it. The islands anew: the verification may
+// have added rescue points.
+void Simulation::heat_stage() {
+  State& st = state_;
+  const Islands islands = contact_islands(points_.lists, st.x.size(), points_.island_slot);
+  node_heat_.assign(st.x.size(), 0.0);
+  std::vector<char> heats(points_.lists.size(), 1);  // the walls' lists first
+  for (std::size_t w = 0; w < model_.walls.size(); ++w) heats[w] = model_.walls[w].mirror;
+  node_heat(points_.lists, heats, node_planes_, islands, st, heat_seen_, node_heat_);
+  contact_heat_ += deposit_heat(model_.mesh.tets, model_.materials, node_heat_, st);
 }
 
 // Destroyed boundary cells of the last element pass become particles before this one, which

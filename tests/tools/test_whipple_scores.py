@@ -46,6 +46,10 @@ def test_scores_and_figures(out):
     assert len(pngs) == 2
     for p in pngs:
         assert open(os.path.join(camp, p), "rb").read(8) == b"\x89PNG\r\n\x1a\n"
+    # --figures into a folder that is not there yet: made.
+    figures = os.path.join(out, "figures", "new")
+    run_tool("post/whipple_scores.py", table, camp, "--figures", figures, check=0)
+    assert sorted(f for f in os.listdir(figures) if f.endswith(".png")) == pngs
 
 
 def test_refusals(out):

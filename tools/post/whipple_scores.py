@@ -13,7 +13,8 @@ yield `wall_yield`), standoff, densities, speed and obliquity. A configuration i
 alloy and thickness, the standoff and the wall's alloy and thickness. Prints, per
 configuration and over all, the shots, P and NP measured, and the engine's and the equation's
 right calls and accuracy (a markdown table with --markdown), and writes
-whipple-<configuration>.png per configuration into --figures (default the first DIR): the
+whipple-<configuration>.png per configuration into --figures (default the first DIR; made
+when missing): the
 shots, P filled and NP open, the engine's wrong calls crossed, and the equation's curve at the
 configuration's wall yield. Exit code 0, or 2 on bad input."""
 import csv
@@ -130,7 +131,11 @@ def main(argv):
         lines.append(f"all: {n} shots ({p} P, {n - p} NP): engine right on {e} "
                      f"({100 * e / n:.0f} %), equation on {q} ({100 * q / n:.0f} %)")
     print("\n".join(lines))
-    draw(groups, figures or args[1])
+    figures = figures or args[1]
+    if os.path.exists(figures) and not os.path.isdir(figures):
+        fail(figures + ": not a folder (--figures)")
+    os.makedirs(figures, exist_ok=True)
+    draw(groups, figures)
     return 0
 
 

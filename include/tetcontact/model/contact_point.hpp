@@ -36,6 +36,7 @@ struct ContactPoint {
   // Accumulated over the passes of one step:
   double lambda = 0.0;             // normal impulse, N s
   Vec3 tangential = Vec3::Zero();  // tangential impulse on A, N s
+  double heat = 0.0;               // kinetic energy the exchange took from the pair, J
 };
 
 /// Sixteen units of rounding at the largest coordinate of the points: the separation a contact

@@ -72,6 +72,10 @@ struct ContactSettings {
   /// 380 of 581 steps; with the default, on 10.
   double separation = -1.0;
   static constexpr double k_separation_fraction = 1e-6;
+  /// The kinetic energy each exchange between bodies or particles dissipates becomes internal
+  /// energy of the cells and particles at its nodes (response/heat.hpp); off (the default until
+  /// the validation tables are measured with it): it is only booked, as the contact work.
+  bool heat = false;
 };
 
 struct RigidWall {
@@ -79,6 +83,9 @@ struct RigidWall {
   Vec3 point = Vec3::Zero();
   Vec3 normal = Vec3::UnitZ();  // unit, pointing to the side the bodies are on
   double friction = 0.0;        // Coulomb coefficient k (0: ideal slip)
+  /// A symmetry plane's wall: what strikes it meets its mirror image (its exchanges heat as a
+  /// contact between bodies does, response/heat.hpp).
+  bool mirror = false;
 };
 
 /// Options of the element formulation, from the case's `solver` section.
@@ -117,6 +124,9 @@ struct Model {
   /// Erosion (with particles): a cell whose stable step falls below this fraction of the
   /// first step's becomes a particle wherever it is (fracture.erosion_step_ratio; 0: off).
   double erosion_step_ratio = 0.0;
+  /// Contact heat (contact.heat, response/heat.hpp): also with contact between bodies off, for
+  /// the particles' exchanges.
+  bool contact_heat = false;
 };
 
 /// Surface nodes of every body, sorted (the nodes that can touch a wall or another body).

@@ -26,7 +26,8 @@ namespace tc {
 /// equal and opposite: momentum is conserved to round-off. Contacts push, never pull.
 /// Friction then acts on the relative tangential velocity: stick removes it, Coulomb limits
 /// the accumulated tangential impulse to k times the accumulated normal one, slip leaves it.
-/// Impulses are added per node to `ledger` (A side and B side). Returns the normal impulse
+/// Impulses are added per node to `ledger` (A side and B side), and the kinetic energy the
+/// correction took from the pair to `c.heat` (response/heat.hpp). Returns the normal impulse
 /// of this correction (negative when it takes back an over-push).
 double apply_contact(ContactPoint& c, State& st, double tau, std::vector<Vec3>& ledger);
 

@@ -110,6 +110,7 @@ class Simulation {
   void commit_stage();
   void elements_stage();
   void fracture_stage();
+  void heat_stage();
   bool corrects() const;  // walls, contact or particles: the step corrects U*
   void detect_stage();
   void respond_stage();
@@ -132,6 +133,10 @@ class Simulation {
   std::unique_ptr<StepResolver> resolver_;  // with contact.verify
   StepContacts points_;                     // this step's contact points
   ContactLedger contact_totals_;
+  std::vector<double> node_heat_;          // this step's contact heat per node (heat_stage)
+  std::vector<char> heat_seen_;            // node_heat's scratch
+  std::vector<std::uint8_t> node_planes_;  // symmetry planes each mesh node lies on
+  double contact_heat_ = 0.0;              // deposited so far, J
   std::vector<double> wall_force_max_;
   Sample first_, last_;
   bool have_sample_ = false;
