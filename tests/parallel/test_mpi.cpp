@@ -169,6 +169,19 @@ TEST(Mpi, CoarseBallPlateWithFractureAndParticlesIsBitIdenticalOn2To4Ranks) {
   EXPECT_GT(test::number(s, "/contact/node_face"), 0);
 }
 
+// With contact heat: the heat of the exchanges is the same on every rank, so every cell's and
+// particle's energy is too.
+TEST(Mpi, CoarseBallPlateWithContactHeatIsBitIdenticalOn2And3Ranks) {
+  const test::Json s = same_on_any_rank_count(
+      "ball-plate-heat", "data/cases/ball-plate.yaml",
+      "--set bodies.0.mesh.sphere.cells_across=8 --set 'bodies.1.mesh.box.cells=[24,24,2]' "
+      "--set end_time=1.5e-6 --set contact.heat=true",
+      {2, 3});
+  EXPECT_GT(test::number(s, "/fracture/particles"), 50);
+  EXPECT_GT(test::number(s, "/energy/contact_heat"),
+            0.5 * -test::number(s, "/energy/contact_work"));
+}
+
 TEST(Mpi, BarsAndATaylorRodWithNodalPressureAreBitIdenticalOn2To4Ranks) {
   const test::Json bars = same_on_any_rank_count("bars", "data/cases/bars-impact.yaml",
                                                  "--set end_time=20.0e-6", {2, 3, 4});
