@@ -91,6 +91,7 @@ void add_symmetry_planes(const Case& c, Model& model) {
     const std::string name = std::string("symmetry-") + "xyz"[plane.axis];
     VelocityConstraint vc;
     vc.name = name;
+    vc.mirror = true;
     vc.components[0] = vc.components[1] = vc.components[2] = false;
     vc.components[plane.axis] = true;
     for (Index n = 0; n < model.mesh.node_count(); ++n) {

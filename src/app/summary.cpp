@@ -166,7 +166,8 @@ Json energy_json(const RunSummary& s) {
   e["viscous_work"] = s.last.viscous_work;
   // Node–face, edge–edge and particle contacts all do work.
   e["contact_work"] = s.contact_work ? Json(s.last.contact.work) : Json();
-  // Of it, the heat deposited in cells and particles (contact.heat): part of internal.
+  // The heat the exchanges (and the symmetry planes', booked as wall work) deposited in cells and
+  // particles (contact.heat): part of internal.
   e["contact_heat"] = s.contact_work ? Json(s.last.contact_heat) : Json();
   e["boundary_work"] = s.last.boundary.work;
   e["wall_work"] = s.last.walls.work;

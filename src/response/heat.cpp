@@ -1,5 +1,7 @@
 #include "tetcontact/response/heat.hpp"
 
+#include <algorithm>
+
 #include "tetcontact/parallel/exact_sum.hpp"
 #include "tetcontact/parallel/parallel.hpp"
 
@@ -18,8 +20,7 @@ void for_nodes(const ContactPoint& c, F&& f) {
 
 void node_heat(const std::vector<ContactList>& lists, const std::vector<char>& heats,
                const std::vector<std::uint8_t>& planes, const Islands& islands, const State& st,
-               std::vector<char>& seen, std::vector<double>& heat) {
-  seen.resize(st.x.size(), 0);
+               std::vector<double>& heat) {
   // w²/m of a node in the whole: a node on symmetry planes stands for 2^planes of them.
   const auto weight = [&](Index k, double w) {
     const double m = st.m[k] * (static_cast<std::size_t>(k) < planes.size() ? 1 << planes[k] : 1);
@@ -29,23 +30,26 @@ void node_heat(const std::vector<ContactList>& lists, const std::vector<char>& h
   const auto point = [&](const Islands::Ref& r) -> const ContactPoint& {
     return (*lists[r.list].points)[r.point];
   };
+  // The work of a point's own impulse (λ n + the tangential, w_k of it on A's node k, −w_k on
+  // B's): W of the island is their sum, whatever else the ledgers of its nodes hold.
+  const auto work_of = [&](const ContactPoint& c) {
+    const Vec3 j = c.lambda * c.normal + c.tangential;
+    double w = 0.0;
+    for (int i = 0; i < c.a_count; ++i)
+      w += c.a_w[i] * j.dot(st.v[c.a_nodes[i]] + st.v_star[c.a_nodes[i]]);
+    for (int i = 0; i < c.b_count; ++i)
+      w -= c.b_w[i] * j.dot(st.v[c.b_nodes[i]] + st.v_star[c.b_nodes[i]]);
+    return 0.5 * w;
+  };
   for (std::size_t i = 0; i < islands.count(); ++i) {
     const auto first = islands.refs.begin() + islands.begin[i];
     const auto last = islands.refs.begin() + islands.begin[i + 1];
-    double dissipated = 0.0, work = 0.0;  // ΣΔK of the exchanges, W of the island's nodes
+    double dissipated = 0.0, work = 0.0;  // ΣΔK of the exchanges that lost, W of them all
     for (auto r = first; r != last; ++r) {
       if (!booked(*r)) continue;
-      dissipated += point(*r).heat;
-      const std::vector<Vec3>& ledger = *lists[r->list].ledger;
-      const char bit = &ledger == &st.contact_impulse ? 1 : 2;  // each ledger once a node
-      for_nodes(point(*r), [&](Index k, double) {
-        if (seen[k] & bit) return;
-        seen[k] |= bit;
-        work += 0.5 * ledger[k].dot(st.v[k] + st.v_star[k]);
-      });
+      dissipated += std::max(point(*r).heat, 0.0);
+      work += work_of(point(*r));
     }
-    for (auto r = first; r != last; ++r)
-      for_nodes(point(*r), [&](Index k, double) { seen[k] = 0; });
     if (!(dissipated > 0.0 && work < 0.0)) continue;
     const double scale = -work / dissipated;
     for (auto r = first; r != last; ++r) {
@@ -53,7 +57,7 @@ void node_heat(const std::vector<ContactList>& lists, const std::vector<char>& h
       const ContactPoint& c = point(*r);
       double sum = 0.0;  // Σ w²/m over both sides
       for_nodes(c, [&](Index k, double w) { sum += weight(k, w); });
-      if (c.heat == 0.0 || !(sum > 0.0)) continue;
+      if (!(c.heat > 0.0 && sum > 0.0)) continue;
       const double per = scale * c.heat / sum;
       for_nodes(c, [&](Index k, double w) { heat[k] += per * weight(k, w); });
     }

@@ -76,7 +76,7 @@ Simulation::Simulation(Model model, SolverSettings settings)
   State& st = state_;
   // The symmetry planes each node lies on (their constraints: response/heat.hpp).
   for (const VelocityConstraint& vc : model_.constraints) {
-    if (vc.name.rfind("symmetry-", 0) != 0) continue;
+    if (!vc.mirror) continue;
     node_planes_.resize(model_.mesh.node_count(), 0);
     for (const Index n : vc.nodes) ++node_planes_[n];
   }
@@ -400,7 +400,7 @@ void Simulation::heat_stage() {
   node_heat_.assign(st.x.size(), 0.0);
   std::vector<char> heats(points_.lists.size(), 1);  // the walls' lists first
   for (std::size_t w = 0; w < model_.walls.size(); ++w) heats[w] = model_.walls[w].mirror;
-  node_heat(points_.lists, heats, node_planes_, islands, st, heat_seen_, node_heat_);
+  node_heat(points_.lists, heats, node_planes_, islands, st, node_heat_);
   contact_heat_ += deposit_heat(model_.mesh.tets, model_.materials, node_heat_, st);
 }
 

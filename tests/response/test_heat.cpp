@@ -21,9 +21,8 @@ std::vector<double> heat_of(std::vector<ContactPoint>& points, const State& st,
       {&points, const_cast<std::vector<Vec3>*>(&st.contact_impulse)}};
   std::vector<Index> slot;
   const Islands islands = contact_islands(lists, st.x.size(), slot);
-  std::vector<char> seen;
   std::vector<double> heat(st.x.size(), 0.0);
-  node_heat(lists, {1}, planes, islands, st, seen, heat);
+  node_heat(lists, {1}, planes, islands, st, heat);
   return heat;
 }
 
@@ -129,6 +128,43 @@ TEST(ContactHeat, TheKernelsHeatIsTheLostKineticEnergyWithFriction) {
   }
 }
 
+// A node stopped by a symmetry plane's wall (its mirror image) keeps its loss as heat; by a
+// rigid wall, not: the wall's loss is its work. Both at once on one node (one island): only the
+// plane's loss is heat, the rigid wall's work not counted in the island's.
+TEST(ContactHeat, ASymmetryPlaneHeatsWhatStrikesItAndARigidWallDoesNot) {
+  const auto wall_point = [](const Vec3& normal) {
+    ContactPoint c;
+    c.a_nodes[0] = 0;
+    c.a_w[0] = 1;
+    c.a_count = 1;
+    c.b_count = 0;  // a wall
+    c.normal = normal;
+    c.gap = -1.0;  // the target: stopped along the normal
+    return c;
+  };
+  State st;
+  st.x = {Vec3::Zero()};
+  st.v_star = {Vec3(-1, 0, -3)};
+  st.v = st.v_star;
+  st.m = {2.0};
+  st.wall_impulse.assign(1, Vec3::Zero());
+  std::vector<ContactPoint> rigid{wall_point(Vec3::UnitX())}, plane{wall_point(Vec3::UnitZ())};
+  apply_contact(rigid[0], st, 1e-6, st.wall_impulse);
+  apply_contact(plane[0], st, 1e-6, st.wall_impulse);
+  EXPECT_NEAR(rigid[0].heat, 1.0, 1e-12);  // ½ m 1²
+  EXPECT_NEAR(plane[0].heat, 9.0, 1e-12);  // ½ m 3²
+  const std::vector<ContactList> lists{{&rigid, &st.wall_impulse}, {&plane, &st.wall_impulse}};
+  std::vector<Index> slot;
+  const Islands islands = contact_islands(lists, 1, slot);
+  ASSERT_EQ(islands.count(), 1u);
+  for (const std::vector<char>& heats :
+       {std::vector<char>{0, 1}, std::vector<char>{0, 0}, std::vector<char>{1, 1}}) {
+    std::vector<double> heat(1, 0.0);
+    node_heat(lists, heats, {}, islands, st, heat);
+    EXPECT_NEAR(heat[0], 1.0 * heats[0] + 9.0 * heats[1], 1e-12);
+  }
+}
+
 // Two tets sharing the face (1, 2, 3) and a particle: a node's heat goes to its cells by the
 // mass each gives it, the particle's to the particle, and the total is what was given.
 TEST(ContactHeat, ANodesHeatGoesToItsCellsByTheirMassAndAParticlesToIt) {
@@ -181,8 +217,8 @@ TEST(ContactHeat, TheContactWorkBecomesInternalEnergyAndTheTotalIsKept) {
   const double heat = test::number(on, "/energy/contact_heat");
   const double first = test::number(on, "/energy/total_initial");
   EXPECT_LT(work, -0.05 * first);  // the crush dissipates: measured −144.5 of 1,729.9 J
-  // The heat of the steps before the last sample is their booked work: 144.529 J against
-  // 144.508 J (the last step's share f of its work is booked, its heat not yet deposited).
+  // The heat is the booked work of the islands that dissipated: 144.529 J against a total of
+  // −144.508 J (islands whose passes gave energy back, W > 0, deposit nothing).
   EXPECT_NEAR(heat, -work, 1e-3 * -work);
   EXPECT_LT(std::abs(test::number(on, "/energy/total_final") - first), 1e-3 * first);
   EXPECT_LT(test::number(on, "/energy/balance_error_max"), 1e-3);

@@ -108,6 +108,7 @@ struct VelocityConstraint {
   std::vector<Index> nodes;
   std::array<bool, 3> components{true, true, true};
   Vec3 velocity = Vec3::Zero();
+  bool mirror = false;  // a symmetry plane's: each of its nodes stands for 2 of the whole's
 };
 
 struct Model {

@@ -35,8 +35,9 @@ struct Sample {
   ImpulseLedger boundary;      // prescribed velocities: work and impulse to t^n
   ImpulseLedger walls;         // rigid walls: work and impulse to t^n
   ImpulseLedger contact;       // contacts between bodies: work (≤ 0) and impulse (≈ 0) to t^n
-  double contact_heat = 0.0;   // of that work, the heat deposited in cells and particles
-                               // before t^n (response/heat.hpp; part of internal)
+  double contact_heat = 0.0;   // the heat the exchanges (and the symmetry planes') deposited
+                               // in cells and particles before t^n (response/heat.hpp;
+                               // part of internal)
   double contact_force = 0.0;  // total normal contact force this step (Σ λ / τ), N
   long contacts = 0;           // node–face contacts this step
   long damaged = 0;            // cells spalled (damaged, not destroyed) at t^n

@@ -6,14 +6,14 @@
 //   ΔK_i = ΔK (w_i² / m_i) / Σ_both sides (w² / m),
 // its kinetic energy lost in that frame: the lighter side heats more (a particle striking a
 // plate takes nearly all of it). How much in all, per island of the step's contacts (their
-// nodes are the island's alone, and their impulses j_i sum to zero over them): the contact
-// work the energy balance books,
+// nodes are the island's alone): the work of their impulses as the energy balance books it,
 //   W = Σ_i j_i · (Uⁿ⁻½_i + Uⁿ⁺½_i) / 2,
 // the leapfrog's measure; the exchanges' own, ΣΔK, taken on U* between the passes, differs
 // from −W by the forces' work during the exchange (Σ j·τa/2), and depositing it would create
-// energy. So each exchange's ΔK is scaled by −W / ΣΔK of its island (where the island
-// dissipated: W < 0). A node's heat then goes to the cells around it in proportion to the mass
-// each gives it (¼ ρ V0), or to the particle it is.
+// energy. So each exchange that lost energy (ΔK > 0; one whose passes gave some back heats
+// nothing) has its ΔK scaled by −W / ΣΔK of its island (where the island dissipated: W < 0). A
+// node's heat then goes to the cells around it in proportion to the mass each gives it (¼ ρ V0), or
+// to the particle it is.
 #pragma once
 
 #include <cstdint>
@@ -29,14 +29,13 @@ namespace tc {
 /// The heat of each node (one entry per node of the state, added to `heat`) from the exchanges
 /// of the lists marked in `heats` (one entry per list: those between bodies and particles, and a
 /// symmetry plane's, whose exchange is one with the mirror half; not a rigid wall's, whose loss
-/// is its work), island by island as above, W over the ledgers those lists book in. A node on
+/// is its work), island by island as above, W of those lists' points' own impulses. A node on
 /// symmetry planes stands for 2^planes[k] nodes of the whole (`planes`: per mesh node, empty
 /// without planes): its share weighs with the whole's mass, m_k 2^planes[k], as the whole's
-/// contact and its mirror images share. `seen` is scratch of one entry per node, all 0 (left
-/// all 0 again).
+/// contact and its mirror images share.
 void node_heat(const std::vector<ContactList>& lists, const std::vector<char>& heats,
                const std::vector<std::uint8_t>& planes, const Islands& islands, const State& st,
-               std::vector<char>& seen, std::vector<double>& heat);
+               std::vector<double>& heat);
 
 /// Deposits the nodes' heat as internal energy: each live cell gains Σ_corners heat_k (¼ ρ V0)
 /// / m_k and its temperature that over ρ V0 c_v (thermal materials); particle i gains the heat

@@ -134,7 +134,6 @@ class Simulation {
   StepContacts points_;                     // this step's contact points
   ContactLedger contact_totals_;
   std::vector<double> node_heat_;          // this step's contact heat per node (heat_stage)
-  std::vector<char> heat_seen_;            // node_heat's scratch
   std::vector<std::uint8_t> node_planes_;  // symmetry planes each mesh node lies on
   double contact_heat_ = 0.0;              // deposited so far, J
   std::vector<double> wall_force_max_;
