@@ -26,7 +26,6 @@ import csv
 import math
 import os
 import sys
-import xml.etree.ElementTree as ET
 
 if not __package__:  # run by path: the repository root on sys.path, for `tools.*`
     sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))))
@@ -104,13 +103,14 @@ def checked_profiles(index_path, table_path, profiles_dir):
 
 
 def frame_files(run):
-    """The first and the last frame of a run folder, from its case.pvd."""
-    pvd = os.path.join(run, "case.pvd")
-    if not os.path.isfile(pvd):
-        fail(pvd + ": no such file (the run wrote no frames)")
-    files = [d.get("file") for d in ET.parse(pvd).getroot().iter("DataSet")]
+    """The first and the last frame of a run folder (check_vtu's reading of its case.pvd)."""
+    from tools.post import check_vtu
+    try:
+        files = [f for _, f in check_vtu.frame_list(run, "case.pvd")]
+    except check_vtu.BadFolder as e:
+        fail(str(e))
     if len(files) < 2:
-        fail(pvd + ": fewer than two frames")
+        fail(os.path.join(run, "case.pvd") + ": fewer than two frames")
     return os.path.join(run, files[0]), os.path.join(run, files[-1])
 
 
