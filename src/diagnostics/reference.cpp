@@ -6,6 +6,7 @@
 #include <cmath>
 #include <deque>
 #include <limits>
+#include <map>
 #include <stdexcept>
 #include <unordered_map>
 
@@ -262,6 +263,52 @@ double image_sign(const Images& images, int k, int component) {
   return sign;
 }
 
+// thickness_left: the plate's columns along the plane's normal n, on a grid of squares of side
+// h in the plane (axes e1, e2 ⟂ n, from the plane's point, so that a symmetry plane through it
+// is a grid line); a column's share = Σ V0 of its cells still in the body / Σ V0 of all its
+// cells, in reference positions, whatever the plate's bulge.
+double thickness_left(const ReferenceSpec& r, const Model& model, const State& st) {
+  const auto body = std::find_if(model.mesh.bodies.begin(), model.mesh.bodies.end(),
+                                 [&](const BodyRange& b) { return b.name == r.body; });
+  if (body == model.mesh.bodies.end())
+    throw std::runtime_error("reference '" + r.name + "': no body named '" + r.body + "'");
+  const Vec3 n = r.plane_normal;
+  const Vec3 e1 = (std::abs(n.x()) < 0.9 ? Vec3::UnitX() : Vec3::UnitY()).cross(n).normalized();
+  const Vec3 e2 = n.cross(e1);
+  struct Cell {
+    double u, v, volume;
+    bool held;
+  };
+  std::vector<Cell> cells;
+  std::vector<double> sizes;
+  for (Index t = body->tet_begin; t < body->tet_end; ++t) {
+    const Tet& k = model.mesh.tets[t];
+    const std::array<Vec3, 4> x{model.mesh.x[k[0]], model.mesh.x[k[1]], model.mesh.x[k[2]],
+                                model.mesh.x[k[3]]};
+    const Vec3 off = 0.25 * (x[0] + x[1] + x[2] + x[3]) - r.plane_point;
+    const double u = off.dot(e1), v = off.dot(e2);
+    if (r.within > 0.0 && std::hypot(u, v) > r.within) continue;
+    const double volume = std::abs(tet_signed_volume(x[0], x[1], x[2], x[3]));
+    const Damage d = st.damage.empty() ? Damage::intact : st.damage[t];
+    cells.push_back({u, v, volume, d != Damage::destroyed && d != Damage::particle});
+    sizes.push_back(std::cbrt(6.0 * volume));
+  }
+  if (cells.empty())
+    throw std::runtime_error("reference '" + r.name + "': no cell of body '" + r.body +
+                             "' within its distance of the plane's normal");
+  std::nth_element(sizes.begin(), sizes.begin() + sizes.size() / 2, sizes.end());
+  const double h = sizes[sizes.size() / 2];
+  std::map<std::pair<long, long>, std::pair<double, double>> columns;  // (held, all) V0
+  for (const Cell& c : cells) {
+    auto& col = columns[{std::lround(std::floor(c.u / h)), std::lround(std::floor(c.v / h))}];
+    col.second += c.volume;
+    if (c.held) col.first += c.volume;
+  }
+  double least = 1.0;
+  for (const auto& [key, col] : columns) least = std::min(least, col.first / col.second);
+  return least;
+}
+
 double measure(const ReferenceSpec& r, const Model& model, const State& st, const RunFigures& run,
                DebrisCache& cache) {
   using M = ReferenceSpec::Measure;
@@ -312,6 +359,7 @@ double measure(const ReferenceSpec& r, const Model& model, const State& st, cons
       r.measure == M::debris_cone_angle || r.measure == M::debris_particle_mass ||
       r.measure == M::largest_fragment)
     return debris_measure(r, model, st, cache);
+  if (r.measure == M::thickness_left) return thickness_left(r, model, st);
   if (r.measure == M::hole_diameter) {
     const Vec3 centre = 0.5 * (r.region_min + r.region_max);
     double nearest = std::numeric_limits<double>::infinity();

@@ -110,3 +110,47 @@ TEST(Reference, PerforationIsDebrisBehindTheDeformedWall) {
   place_debris(2.0);
   EXPECT_EQ(perforated(), 0.0);
 }
+
+// The thickness left of a plate 4 × 4 × 4 of unit cubes split into six tets: 1 intact; the top
+// three layers of one column turned into particles (a crater three cubes deep) leave 1/4 there;
+// a column elsewhere with its rear layer destroyed (a spall) leaves 3/4, which is not the least;
+// `within` that leaves the crater's column out sees only the spall's; the whole column gone, 0.
+TEST(Reference, ThicknessLeftIsTheDeepestColumnsShare) {
+  TetMesh plate = make_box(Vec3(4, 4, 4), {4, 4, 4}, HexSplit::six);  // z from −2 to 2
+  Model model = test::single_body_model(plate, test::aluminium());
+  State st = initial_state(model);
+  ReferenceSpec left;
+  left.name = "left";
+  left.measure = ReferenceSpec::Measure::thickness_left;
+  left.body = "body";
+  left.plane_point = Vec3(0, 0, 2);
+  left.plane_normal = Vec3(0, 0, -1);
+  left.value = left.tolerance = std::nan("");
+  const auto measured = [&] {
+    const auto r = evaluate_references({left}, model, st);
+    EXPECT_TRUE(r[0].error.empty()) << r[0].error;
+    return r[0].measured;
+  };
+  EXPECT_EQ(measured(), 1.0);
+  // Column (x, y) in (0, 1) × (0, 1): the cubes above z = −1 turned into particles.
+  const auto in_column = [&](Index t, double x0, double y0, double zmin) {
+    Vec3 c = Vec3::Zero();
+    for (Index k : model.mesh.tets[t]) c += 0.25 * model.mesh.x[k];
+    return c.x() > x0 && c.x() < x0 + 1 && c.y() > y0 && c.y() < y0 + 1 && c.z() > zmin;
+  };
+  for (Index t = 0; t < model.mesh.tet_count(); ++t)
+    if (in_column(t, 0, 0, -1)) st.damage[t] = Damage::particle;
+  EXPECT_NEAR(measured(), 0.25, 1e-12);
+  // Column (−2, −1) × (−2, −1): its rear cube (z < −1) destroyed.
+  for (Index t = 0; t < model.mesh.tet_count(); ++t)
+    if (in_column(t, -2, -2, -3) && !in_column(t, -2, -2, -1)) st.damage[t] = Damage::destroyed;
+  EXPECT_NEAR(measured(), 0.25, 1e-12);
+  left.plane_point = Vec3(-1.5, -1.5, 2);  // the spall's column at the centre
+  left.within = 1.0;                       // the crater's column (centres ≥ 2 away) left out
+  EXPECT_NEAR(measured(), 0.75, 1e-12);
+  left.plane_point = Vec3(0, 0, 2);
+  left.within = 0.0;
+  for (Index t = 0; t < model.mesh.tet_count(); ++t)
+    if (in_column(t, 0, 0, -3)) st.damage[t] = Damage::particle;
+  EXPECT_EQ(measured(), 0.0);
+}

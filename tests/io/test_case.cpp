@@ -342,10 +342,12 @@ TEST(CaseFile, ReadmeExampleIsValid) {
   EXPECT_TRUE(c.fracture);
   EXPECT_EQ(c.materials.size(), 6u);
   EXPECT_EQ(c.walls.size(), 1u);
-  ASSERT_EQ(c.references.size(), 3u);
+  ASSERT_EQ(c.references.size(), 4u);
   EXPECT_EQ(c.references[2].measure, ReferenceSpec::Measure::perforated);
   EXPECT_EQ(c.references[2].debris_of, std::vector<std::string>{"rod"});
   EXPECT_EQ(c.references[2].time, 1.0e-5);
+  EXPECT_EQ(c.references[3].measure, ReferenceSpec::Measure::thickness_left);
+  EXPECT_EQ(c.references[3].within, 0.005);
   EXPECT_EQ(c.material("target").yield_stress, 0.3e9);
   EXPECT_EQ(c.material("hot_rod").strength, StrengthModel::johnson_cook);
   EXPECT_EQ(c.material("hot_rod").johnson_cook.n, 0.31);
@@ -526,6 +528,13 @@ TEST(CaseFile, MaterialAndWallErrors) {
        ":24:",
        "reference.0.debris_of.0",
        "no body named 'rod'"},
+      {"debris of a plate's own thickness",
+       v + "reference:\n  - {name: t, measure: thickness_left, body: block, plane: {point: [0, 0, "
+           "0], normal: [0, 0, 1]}, debris_of: [block]}\n",
+       {},
+       ":24:",
+       "reference.0.debris_of",
+       "thickness_left measures the body's own cells"},
       {"a measure's time after the end",
        v + "reference:\n  - {name: p, measure: perforated, body: block, plane: {point: [0, 0, 0], "
            "normal: [0, 0, 1]}, time: 2.0e-6}\n",

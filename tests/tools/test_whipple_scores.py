@@ -63,3 +63,45 @@ def test_refusals(out):
     assert "row 9 is not a row of" in r.stderr
     r = run_tool("post/whipple_scores.py", os.path.join(out, "none.csv"), out, check=2)
     assert "none.csv: no such file" in r.stderr
+
+
+def test_limits(out):
+    """--limits: the engine's brackets read per configuration (diameters cm → mm) and drawn on
+    that configuration's figure only; a file without a column, or with a word for a number, is
+    refused naming it."""
+    table = os.path.join(out, "shots.csv")
+    open(table, "w").write(TABLE)
+    camp = os.path.join(out, "campaign")
+    os.makedirs(camp)
+    open(os.path.join(camp, "predictions.csv"), "w").write(
+        "row,line,predicted:wall perforated\n1,4,NP\n2,5,NP\n3,6,NP\n")
+    key = "AA6061-T6,0.07874,5.08,AA6061-T6,0.254"
+    limits = os.path.join(out, "limits.csv")
+    open(limits, "w").write(
+        "bumper_mat,bumper_thick,standoff,wall_mat,wall_thick,velocity,lo,hi,status\n"
+        f"{key},3,0.3,0.33,ok\n"
+        f"{key},7,0.2,1.2,no bracket: the criterion is not met at both ends\n")
+    import sys
+    sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))))
+    from tools.post import whipple_scores as ws
+    got = ws.read_limits(limits)
+    assert list(got) == [("AA6061-T6", "0.07874", "5.08", "AA6061-T6", "0.254")]
+    import pytest
+    assert got[list(got)[0]] == [(3.0, 3.0, pytest.approx(3.3), "ok"),
+                                 (7.0, 2.0, 12.0, "no bracket: the criterion is not met at both ends")]
+    plain, drawn = os.path.join(out, "plain"), os.path.join(out, "drawn")
+    run_tool("post/whipple_scores.py", table, camp, "--figures", plain, check=0)
+    run_tool("post/whipple_scores.py", table, camp, "--figures", drawn, "--limits", limits, check=0)
+    name = "whipple-AA6061-T6-0.07874-5.08-AA6061-T6-0.254.png"
+    other = "whipple-AA6061-T6-0.07874-5.08-AA6061-T6-0.4064.png"
+    read = lambda d, f: open(os.path.join(d, f), "rb").read()
+    assert read(plain, name) != read(drawn, name)    # the limit drawn
+    assert read(plain, other) == read(drawn, other)  # the other shield has none
+    open(limits, "w").write("bumper_mat,velocity,lo,hi,status\nAA6061-T6,3,0.3,0.33,ok\n")
+    r = run_tool("post/whipple_scores.py", table, camp, "--limits", limits, check=2)
+    assert "limits.csv: no column bumper_thick" in r.stderr
+    open(limits, "w").write(
+        "bumper_mat,bumper_thick,standoff,wall_mat,wall_thick,velocity,lo,hi,status\n"
+        f"{key},fast,0.3,0.33,ok\n")
+    r = run_tool("post/whipple_scores.py", table, camp, "--limits", limits, check=2)
+    assert "limits.csv: line 2: velocity, lo and hi must be numbers" in r.stderr

@@ -38,7 +38,12 @@ NAME, the table:
     whipple-shots the normal-incidence shots of three shields of data/validation/whipple-shots.csv
                   whose shots straddle the limit (`campaign data/cases/whipple.yaml`, the
                   cores at once), the engine's verdicts and Christiansen's against the
-                  measured ones per configuration; data/figures/whipple-*.png (~15 min)
+                  measured ones per configuration, and the engine's ballistic limit
+                  (`tetcontact limit`) of the 3.175 mm wall's shield at 3, 5 and 7 km/s;
+                  data/figures/whipple-*.png (~45 min)
+    whipple-refined   sixteen of those shots (the 6061-T6 shield's) on the shipped mesh and with
+                  the rear wall's cells three times finer: each verdict and the wall's thickness
+                  left (~40 min on 2 cores)
     hugoniot      the library's aluminium equations of state on their Hugoniot against the
                   measured shock states of data/validation/aluminium-hugoniot.csv, per
                   pressure band (no runs: the EOS's closed form, which the engine reproduces)
@@ -78,7 +83,7 @@ from tools.common.summary_keys import get  # noqa: E402
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 NAMES = ["stability", "micro", "profile", "ccd", "verify", "verify-full", "threads", "mpi",
          "whipple", "whipple-mesh", "whipple-hole", "strength", "taylor-tests",
-         "whipple-shots", "hugoniot"]
+         "whipple-shots", "whipple-refined", "hugoniot"]
 
 
 def g(x):
@@ -787,13 +792,182 @@ def whipple_shots(binary, work, opts):
         with open(os.path.join(out, "predictions.csv")) as f:
             seconds += sum(float(x["wall_seconds"] or 0) for x in csv.DictReader(f))
         folders.append(out)
+    limits_csv = os.path.join(work, "whipple-limits.csv")
+    limit_lines, limit_seconds = whipple_limits(binary, work, table, limits_csv)
     r = subprocess.run(["/usr/bin/python3", os.path.join(ROOT, "tools/post/whipple_scores.py"),
                         table] + folders + ["--markdown", "--figures",
-                                            os.path.join(ROOT, "data", "figures")],
+                                            os.path.join(ROOT, "data", "figures"),
+                                            "--limits", limits_csv],
                        capture_output=True, text=True, check=True)
     yield from r.stdout.splitlines()
     yield ""
     yield f"The runs' own times added up: {seconds / 60:.0f} min (one thread each)."
+    yield ""
+    yield from limit_lines
+    yield ""
+    yield (f"The searches' runs' own times added up: {limit_seconds / 60:.0f} min (one thread "
+           f"each, two at a time).")
+
+
+# The engine's ballistic limit on the shield whose figure the manual shows: the 6061-T6 shield's
+# 3.175 mm wall (five of its six shots perforated). A search's cost grows with the diameter (the
+# bumper's core is 4 d wide at fixed cells): the other shields' critical diameters (4–14 mm)
+# would cost hours.
+WHIPPLE_LIMITS = [("al6061-0.79mm", "0.3175")]  # (the campaign's folder, the wall's cm)
+WHIPPLE_LIMIT_SPEEDS = [3.0, 5.0, 7.0]  # km/s
+WHIPPLE_LIMIT_HEADER = [
+    "| shield | speed | equation's critical diameter | engine's limit: largest NP, smallest P | "
+    "runs |",
+    "|---|---|---|---|---|"]
+
+
+def limit_search_sets(run_key):
+    """The --set lines of a campaign run's run.key but the sphere's diameter and speed: the
+    shield's configuration exactly as the campaign made it."""
+    with open(run_key) as f:
+        sets = [x[4:].rstrip("\n") for x in f if x.startswith("set ")]
+    return [x for x in sets if not x.startswith(("parameters.d=", "parameters.v="))]
+
+
+def whipple_limit_cell(lo, hi, status):
+    """The engine's bracket in mm: both ends found, or the side the limit lies beyond."""
+    if status == "ok":
+        return f"{lo * 1e3:.2f}–{hi * 1e3:.2f} mm"
+    if "not met at both ends" in status:
+        return f"above {hi * 1e3:.2f} mm (NP at {lo * 1e3:.2f} and {hi * 1e3:.2f} mm)"
+    if "met at both ends" in status:
+        return f"below {lo * 1e3:.2f} mm (P at {lo * 1e3:.2f} and {hi * 1e3:.2f} mm)"
+    return "not found: " + status
+
+
+def whipple_limits(binary, work, table, out_csv):
+    """The engine's ballistic limit (`tetcontact limit --find parameters.d`, to 15 %) of the
+    shields of WHIPPLE_LIMITS at WHIPPLE_LIMIT_SPEEDS, searched between the equation's critical
+    diameter and 2.5 times it; the brackets into out_csv (the table's units: cm, km/s) for
+    whipple_scores.py --limits, and the markdown lines."""
+    from tools.post import whipple_scores as ws
+    shots = ws.read_table(table)
+    lines, seconds = list(WHIPPLE_LIMIT_HEADER), 0.0
+    rows = []
+    for folder, wall in WHIPPLE_LIMITS:
+        campaign = os.path.join(work, "whipple-" + folder)
+        with open(os.path.join(campaign, "predictions.csv")) as f:
+            first = next(x for x in csv.DictReader(f) if x["wall_thick"] == wall)
+        shot = dict(shots[int(first["row"]) - 1])
+        sets = limit_search_sets(os.path.join(campaign, "runs", first["folder"], "run.key"))
+        for v in WHIPPLE_LIMIT_SPEEDS:
+            shot["velocity"] = str(v)
+            cm = 0.01
+            dc = christiansen.critical_diameter(
+                v * 1000.0, float(shot["bumper_thick"]) * cm, float(shot["wall_thick"]) * cm,
+                float(shot["standoff"]) * cm, rho_p=float(shot["proj_density"]) * 1000.0,
+                rho_b=float(shot["bumper_density"]) * 1000.0,
+                sigma_pa=float(shot["wall_yield"]) * christiansen.KSI)
+            out = os.path.join(work, f"limit-{folder}-{wall}-{v:g}")
+            cmd = [binary, "limit", os.path.join(ROOT, "data/cases/whipple.yaml"), "--quiet",
+                   "--find", "parameters.d", "--between", f"{dc:.6g}", f"{2.5 * dc:.6g}",
+                   "--criterion", "perforated:wall", "--tolerance", "0.15", "--out", out,
+                   "--set", f"parameters.v={v * 1000.0:g}"]
+            for x in sets:
+                cmd += ["--set", x]
+            r = subprocess.run(cmd, capture_output=True, text=True)
+            if r.returncode not in (0, 1):
+                raise SystemExit(f"tables.py: error: {' '.join(cmd)}: exit {r.returncode}\n"
+                                 f"{r.stderr}")
+            with open(os.path.join(out, "limit.csv")) as f:
+                b = next(csv.DictReader(f))
+            lo, hi = float(b[K.LIMIT_LO]), float(b[K.LIMIT_HI])
+            seconds += float(b["run_seconds"])
+            rows.append({**{k: shot[k] for k in ws.KEY}, "velocity": f"{v:g}",
+                         "lo": f"{lo / cm:.6g}", "hi": f"{hi / cm:.6g}",
+                         "status": b[K.LIMIT_STATUS]})
+            lines.append(f"| {shot['bumper_mat']} {float(shot['bumper_thick']) * 10:g} mm, "
+                         f"{float(shot['standoff']) * 10:g} mm, {shot['wall_mat']} "
+                         f"{float(shot['wall_thick']) * 10:g} mm | {v:g} km/s | "
+                         f"{dc * 1e3:.2f} mm | {whipple_limit_cell(lo, hi, b[K.LIMIT_STATUS])} | "
+                         f"{b['runs']} |")
+    with open(out_csv + ".tmp", "w", newline="") as f:
+        w = csv.DictWriter(f, fieldnames=ws.KEY + ["velocity", "lo", "hi", "status"])
+        w.writeheader()
+        w.writerows(rows)
+    os.replace(out_csv + ".tmp", out_csv)
+    return lines, seconds
+
+
+# whipple-refined ---------------------------------------------------------------------------------
+# The 6061-T6 family's shots whose verdicts are checked on a finer wall: every NP shot and nine P
+# shots of 2.29–3.18 mm walls at 2.5–6.9 km/s (the thinner walls' runs cost twice as much).
+WHIPPLE_REFINED_ROWS = "302,383,521,591,693,715,817,847,306,307,424,444,542,557,821,858"
+WHIPPLE_REFINED = [  # (folder, label, --set)
+    ("shipped", "2 cells through", []),
+    ("wall6", "6 cells through", ['parameters.hw="= tw / 6"']),
+]
+WHIPPLE_REFINED_HEADER = [
+    "| row (line) | wall | speed | measured | equation | shipped: verdict, thickness left | "
+    "wall 6 cells through: verdict, thickness left, wall mass to particles | run time (shipped, "
+    "finer) |",
+    "|---|---|---|---|---|---|---|---|"]
+
+
+def whipple_refined_cells(prediction, s):
+    """(verdict, wall thickness left, wall mass turned into particles in the whole shield (four
+    times the quarter's), run seconds) of one campaign run."""
+    m = {x[K.NAME]: x[K.MEASURED] for x in get(s, K.REFERENCES)}
+    eroded = sum(b["mass"] for b in get(s, K.FRACTURE_FROM_BODIES) if b["name"] == "wall")
+    return (prediction["predicted:wall perforated"], m[K.WALL_THICKNESS_LEFT], 4.0 * eroded,
+            float(prediction["wall_seconds"]))
+
+
+def whipple_refined_row(n, line, shot, equation, cells):
+    (v0, t0, _, s0), (v1, t1, e1, s1) = cells
+    return (f"| {n} ({line}) | {float(shot['wall_thick']) * 10:.2f} mm | "
+            f"{float(shot['velocity']):.1f} km/s | {shot['result']} | {equation} | {v0}, {t0:.2f} | "
+            f"{v1}, {t1:.2f}, {e1 * 1e6:.0f} mg | {s0:.0f} s, {s1:.0f} s |")
+
+
+def whipple_refined(binary, work, opts):
+    """The shots of WHIPPLE_REFINED_ROWS on the shipped mesh and with the rear wall's cells three
+    times finer (6 through it instead of 2; the sphere and the bumper as shipped): each verdict
+    and the wall's thickness left beside the measured verdict and the equation's."""
+    from tools.post import whipple_scores as ws
+    table_path = os.path.join(VALIDATION, "whipple-shots.csv")
+    if not os.path.isfile(table_path):
+        raise SystemExit(f"tables.py: error: {table_path}: no such file (the shared Whipple shots)")
+    table = ws.read_table(table_path)
+    runs = {}  # folder → {row: (prediction row, summary)}
+    for name, _, sets in WHIPPLE_REFINED:
+        out = os.path.join(work, "whipple-refined-" + name)
+        cmd = [binary, "campaign", os.path.join(ROOT, "data/cases/whipple.yaml"), table_path,
+               "--quiet", "--out", out, "--rows", WHIPPLE_REFINED_ROWS]
+        for x in sets:
+            cmd += ["--set", x]
+        r = subprocess.run(cmd, capture_output=True, text=True)
+        if r.returncode != 0:
+            raise SystemExit(f"tables.py: error: {' '.join(cmd)}: exit {r.returncode}\n{r.stderr}")
+        runs[name] = {}
+        with open(os.path.join(out, "predictions.csv")) as f:
+            for x in csv.DictReader(f):
+                with open(os.path.join(out, "runs", x["folder"], "summary.json")) as g:
+                    runs[name][int(x["row"])] = (x, json.load(g))
+    yield from WHIPPLE_REFINED_HEADER
+    rows = sorted(runs["shipped"], key=lambda n: (table[n - 1]["result"], float(
+        table[n - 1]["wall_thick"]), -float(table[n - 1]["velocity"])))
+    right = {"equation": 0, "shipped": 0, "wall6": 0}
+    changed = 0
+    for n in rows:
+        shot = table[n - 1]
+        eq = ws.equation_says(shot)
+        cells = [whipple_refined_cells(*runs[name][n]) for name in ("shipped", "wall6")]
+        right["equation"] += eq == shot["result"]
+        right["shipped"] += cells[0][0] == shot["result"]
+        right["wall6"] += cells[1][0] == shot["result"]
+        changed += cells[0][0] != cells[1][0]
+        yield whipple_refined_row(n, runs["shipped"][n][0]["line"], shot, eq, cells)
+    total = len(rows)
+    yield ""
+    yield (f"Right: the equation {right['equation']} of {total}, the shipped mesh "
+           f"{right['shipped']}, the finer wall {right['wall6']}; the verdict changes with the "
+           f"wall's refinement on {changed} of {total}.")
 
 
 # whipple, whipple-mesh, whipple-hole -------------------------------------------------------------
@@ -901,7 +1075,8 @@ def whipple_hole(binary, work, opts):
 TABLES = {"stability": stability, "micro": micro, "profile": profile, "ccd": ccd, "verify": verify,
           "verify-full": verify_full, "threads": threads, "mpi": mpi, "whipple": whipple,
           "whipple-mesh": whipple_mesh, "whipple-hole": whipple_hole, "strength": strength,
-          "taylor-tests": taylor_tests, "whipple-shots": whipple_shots, "hugoniot": hugoniot}
+          "taylor-tests": taylor_tests, "whipple-shots": whipple_shots,
+          "whipple-refined": whipple_refined, "hugoniot": hugoniot}
 assert list(TABLES) == NAMES
 
 

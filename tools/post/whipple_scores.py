@@ -2,7 +2,7 @@
 """Scores a campaign of Whipple-shield shots against the Christiansen equation on the same
 shots, per shield configuration, and draws each configuration's shots in diameter–speed.
 
-    whipple_scores.py TABLE.csv DIR... [--figures DIR] [--markdown]
+    whipple_scores.py TABLE.csv DIR... [--figures DIR] [--markdown] [--limits LIMITS.csv]
 
 TABLE.csv: the table the campaigns ran (the shared database's format: cm, km/s, ksi under a
 row of units); each DIR a `tetcontact campaign data/cases/whipple.yaml TABLE.csv` folder (its
@@ -16,7 +16,12 @@ right calls and accuracy (a markdown table with --markdown), and writes
 whipple-<configuration>.png per configuration into --figures (default the first DIR; made
 when missing): the
 shots, P filled and NP open, the engine's wrong calls crossed, and the equation's curve at the
-configuration's wall yield. Exit code 0, or 2 on bad input."""
+configuration's wall yield. With --limits, the engine's ballistic limit on the figures of the
+configurations it names: LIMITS.csv has the configuration's columns (as TABLE.csv's), velocity
+(km/s), lo and hi (the projectile's diameter, cm: the largest not perforating and the smallest
+perforating, `tetcontact limit`'s bracket) and status (`limit`'s: ok, or why no bracket); a
+bracket is drawn as a bar from lo to hi, a limit beyond the searched diameters as an arrow
+from the end it lies beyond. Exit code 0, or 2 on bad input."""
 import csv
 import os
 import sys
@@ -67,13 +72,18 @@ def main(argv):
     if not argv or argv[0] in ("-h", "--help"):
         print(__doc__)
         return 0 if argv else 2
-    figures, markdown, args = None, False, []
+    figures, markdown, args, limits_path = None, False, [], None
     i = 0
     while i < len(argv):
         if argv[i] == "--figures":
             if i + 1 >= len(argv):
                 fail("--figures needs a folder")
             figures = argv[i + 1]
+            i += 2
+        elif argv[i] == "--limits":
+            if i + 1 >= len(argv):
+                fail("--limits needs a file")
+            limits_path = argv[i + 1]
             i += 2
         elif argv[i] == "--markdown":
             markdown = True
@@ -135,11 +145,32 @@ def main(argv):
     if os.path.exists(figures) and not os.path.isdir(figures):
         fail(figures + ": not a folder (--figures)")
     os.makedirs(figures, exist_ok=True)
-    draw(groups, figures)
+    draw(groups, figures, read_limits(limits_path) if limits_path else {})
     return 0
 
 
-def draw(groups, folder):
+def read_limits(path):
+    """{configuration key: [(speed km/s, lo mm, hi mm, status)]} from a --limits file."""
+    if not os.path.isfile(path):
+        fail(path + ": no such file (--limits)")
+    with open(path) as f:
+        reader = csv.DictReader(f)
+        need = KEY + ["velocity", "lo", "hi", "status"]
+        missing = [c for c in need if c not in (reader.fieldnames or [])]
+        if missing:
+            fail(path + ": no column " + ", ".join(missing))
+        out = {}
+        for n, r in enumerate(reader, start=2):
+            try:
+                point = (float(r["velocity"]), float(r["lo"]) * 10.0, float(r["hi"]) * 10.0,
+                         r["status"])
+            except ValueError:
+                fail(f"{path}: line {n}: velocity, lo and hi must be numbers")
+            out.setdefault(tuple(r[k] for k in KEY), []).append(point)
+    return out
+
+
+def draw(groups, folder, limits):
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
@@ -162,6 +193,18 @@ def draw(groups, folder):
                     mfc=None if perforated else "none", ms=7)
             if engine != s["result"]:
                 ax.plot([v], [d], "kx", ms=9)
+        for v, lo, hi, status in sorted(limits.get(key, [])):
+            if status == "ok":
+                ax.plot([v, v], [lo, hi], "-", color="tab:green", lw=3, solid_capstyle="butt")
+            elif "not met at both ends" in status:  # the limit lies above the searched range
+                ax.annotate("", xy=(v, hi * 1.15), xytext=(v, hi),
+                            arrowprops={"arrowstyle": "->", "color": "tab:green", "lw": 2})
+            elif "met at both ends" in status:  # below it
+                ax.annotate("", xy=(v, lo / 1.15), xytext=(v, lo),
+                            arrowprops={"arrowstyle": "->", "color": "tab:green", "lw": 2})
+        if key in limits:
+            ax.plot([], [], "-", color="tab:green", lw=3,
+                    label="the engine's limit (bracket; arrow: beyond the search)")
         ax.plot([], [], "o", color="tab:red", label="perforated (P)")
         ax.plot([], [], "o", mfc="none", color="tab:blue", label="not perforated (NP)")
         ax.plot([], [], "kx", label="the engine calls it wrong")

@@ -39,9 +39,17 @@ struct ReferenceSpec {
     debris_particle_mass,  // the mass of the particles beyond the plane, kg
     largest_fragment,      // the largest debris fragment's mass: cells beyond the plane joined
                            // through shared nodes, or one particle, kg
+    // Of `body` itself, a plate whose front face the plane is (its normal across the plate):
+    thickness_left,  // the smallest share of the plate's thickness still in it along a line
+                     // across it: columns along the normal, each the cells whose reference
+                     // centre lies in one square of side h (the median over the body's cells of
+                     // (6 V0)^(1/3): a cube's edge when it is split into six tets), within
+                     // `within` of the normal through the plane's point; a column's share is
+                     // the reference volume of its cells still in the body (not destroyed, not
+                     // particles) over that of all its cells; 1 untouched, 0 holed through
   };
   /// Each measure's name in a case file and a summary, and its unit (SI; "" for a verdict).
-  static constexpr NameTable<Measure, 16> k_measure_names{
+  static constexpr NameTable<Measure, 17> k_measure_names{
       {{Measure::length, "length"},
        {Measure::radius, "radius"},
        {Measure::mean_stress, "mean_stress"},
@@ -57,8 +65,9 @@ struct ReferenceSpec {
        {Measure::debris_speed, "debris_speed"},
        {Measure::debris_cone_angle, "debris_cone_angle"},
        {Measure::debris_particle_mass, "debris_particle_mass"},
-       {Measure::largest_fragment, "largest_fragment"}}};
-  static constexpr NameTable<Measure, 16> k_measure_units{{{Measure::length, "m"},
+       {Measure::largest_fragment, "largest_fragment"},
+       {Measure::thickness_left, "thickness_left"}}};
+  static constexpr NameTable<Measure, 17> k_measure_units{{{Measure::length, "m"},
                                                            {Measure::radius, "m"},
                                                            {Measure::mean_stress, "Pa"},
                                                            {Measure::mean_pressure, "Pa"},
@@ -73,7 +82,8 @@ struct ReferenceSpec {
                                                            {Measure::debris_speed, "m/s"},
                                                            {Measure::debris_cone_angle, "deg"},
                                                            {Measure::debris_particle_mass, "kg"},
-                                                           {Measure::largest_fragment, "kg"}}};
+                                                           {Measure::largest_fragment, "kg"},
+                                                           {Measure::thickness_left, ""}}};
   std::string name;  // shown in tables
   Measure measure = Measure::length;
   std::string body;   // length, radius, velocity, hole_diameter, the debris measures
