@@ -266,7 +266,8 @@ double image_sign(const Images& images, int k, int component) {
 // thickness_left: the plate's columns along the plane's normal n, on a grid of squares of side
 // h in the plane (axes e1, e2 ⟂ n, from the plane's point, so that a symmetry plane through it
 // is a grid line); a column's share = Σ V0 of its cells still in the body / Σ V0 of all its
-// cells, in reference positions, whatever the plate's bulge.
+// cells, in reference positions, whatever the plate's bulge. h is the median cell size of the
+// cells centred within `within`; a column counts whole when its square's centre is within it.
 double thickness_left(const ReferenceSpec& r, const Model& model, const State& st) {
   const auto body = std::find_if(model.mesh.bodies.begin(), model.mesh.bodies.end(),
                                  [&](const BodyRange& b) { return b.name == r.body; });
@@ -275,6 +276,9 @@ double thickness_left(const ReferenceSpec& r, const Model& model, const State& s
   const Vec3 n = r.plane_normal;
   const Vec3 e1 = (std::abs(n.x()) < 0.9 ? Vec3::UnitX() : Vec3::UnitY()).cross(n).normalized();
   const Vec3 e2 = n.cross(e1);
+  const auto inside = [&](double u, double v) {
+    return r.within <= 0.0 || std::hypot(u, v) <= r.within;
+  };
   struct Cell {
     double u, v, volume;
     bool held;
@@ -287,13 +291,12 @@ double thickness_left(const ReferenceSpec& r, const Model& model, const State& s
                                 model.mesh.x[k[3]]};
     const Vec3 off = 0.25 * (x[0] + x[1] + x[2] + x[3]) - r.plane_point;
     const double u = off.dot(e1), v = off.dot(e2);
-    if (r.within > 0.0 && std::hypot(u, v) > r.within) continue;
     const double volume = std::abs(tet_signed_volume(x[0], x[1], x[2], x[3]));
     const Damage d = st.damage.empty() ? Damage::intact : st.damage[t];
     cells.push_back({u, v, volume, d != Damage::destroyed && d != Damage::particle});
-    sizes.push_back(std::cbrt(6.0 * volume));
+    if (inside(u, v)) sizes.push_back(std::cbrt(6.0 * volume));
   }
-  if (cells.empty())
+  if (sizes.empty())
     throw std::runtime_error("reference '" + r.name + "': no cell of body '" + r.body +
                              "' within its distance of the plane's normal");
   std::nth_element(sizes.begin(), sizes.begin() + sizes.size() / 2, sizes.end());
@@ -305,7 +308,15 @@ double thickness_left(const ReferenceSpec& r, const Model& model, const State& s
     if (c.held) col.first += c.volume;
   }
   double least = 1.0;
-  for (const auto& [key, col] : columns) least = std::min(least, col.first / col.second);
+  bool any = false;
+  for (const auto& [key, col] : columns) {
+    if (!inside((key.first + 0.5) * h, (key.second + 0.5) * h) || !(col.second > 0.0)) continue;
+    least = std::min(least, col.first / col.second);
+    any = true;
+  }
+  if (!any)
+    throw std::runtime_error("reference '" + r.name + "': no column of body '" + r.body +
+                             "' centred within its distance of the plane's normal");
   return least;
 }
 

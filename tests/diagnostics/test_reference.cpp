@@ -145,9 +145,26 @@ TEST(Reference, ThicknessLeftIsTheDeepestColumnsShare) {
   for (Index t = 0; t < model.mesh.tet_count(); ++t)
     if (in_column(t, -2, -2, -3) && !in_column(t, -2, -2, -1)) st.damage[t] = Damage::destroyed;
   EXPECT_NEAR(measured(), 0.25, 1e-12);
-  left.plane_point = Vec3(-1.5, -1.5, 2);  // the spall's column at the centre
-  left.within = 1.0;                       // the crater's column (centres ≥ 2 away) left out
+  // The grid from (−2, −2), on the cubes: within 1 only the square (−2, −1)², centred 0.71
+  // away, counts (the next ones are centred 1.58 away, the crater's 3.5 away).
+  left.plane_point = Vec3(-2, -2, 2);
+  left.within = 1.0;
   EXPECT_NEAR(measured(), 0.75, 1e-12);
+  // An oblique normal, (1, 1, −1)/√3 from the centre of the front face: the slanted columns
+  // through the crater keep some of their cells, so the least share lies strictly between.
+  left.plane_point = Vec3(0, 0, 2);
+  left.within = 0.0;
+  left.plane_normal = Vec3(1, 1, -1).normalized();
+  const double oblique = measured();
+  EXPECT_GT(oblique, 0.0);
+  EXPECT_LT(oblique, 1.0);
+  left.plane_normal = Vec3(0, 0, -1);
+  // Nothing within: named.
+  left.within = 1e-3;
+  left.plane_point = Vec3(10, 10, 2);
+  const auto none = evaluate_references({left}, model, st);
+  EXPECT_NE(none[0].error.find("no cell of body 'body' within"), std::string::npos)
+      << none[0].error;
   left.plane_point = Vec3(0, 0, 2);
   left.within = 0.0;
   for (Index t = 0; t < model.mesh.tet_count(); ++t)

@@ -303,12 +303,12 @@ def test_whipple_refined_row():
         {"name": "projectile", "particles": 7, "mass": 1e-6},
         {"name": "wall", "particles": 9, "mass": 25e-6}]})
     shipped = T.whipple_refined_cells({"predicted:wall perforated": "NP", "wall_seconds": "31.6"}, s)
-    assert shipped == ("NP", 0.4444, 100e-6, 31.6)  # the whole wall's: four quarters
-    finer = ("P", 0.0, 384e-6, 455.2)
+    assert shipped == ("NP", 12.3e-6, 0.4444, 100e-6, 31.6)  # the particles: four quarters
+    finer = ("P", 1.1e-6, 0.0, 384e-6, 455.2)
     shot = {"wall_thick": "0.254", "velocity": "6.9", "result": "P"}
     assert cells(T.whipple_refined_row(306, 317, shot, "NP", [shipped, finer])) == [
-        "306 (317)", "2.54 mm", "6.9 km/s", "P", "NP", "NP, 0.44", "P, 0.00, 384 mg",
-        "32 s, 455 s"]
+        "306 (317)", "2.54 mm", "6.9 km/s", "P", "NP", "NP, 0.44, 100.0 mg",
+        "P (1.1 mg), 0.00, 384.0 mg", "32 s, 455 s"]
     with pytest.raises(KeyError):  # a run of a case without the measure
         T.whipple_refined_cells({"predicted:wall perforated": "NP", "wall_seconds": "1"},
                                 fake_summary(references=WHIPPLE_REFERENCES, fracture=s["fracture"]))
@@ -317,9 +317,12 @@ def test_whipple_refined_row():
 def test_whipple_limit_helpers(tmp_path):
     key = tmp_path / "run.key"
     key.write_text("case /x/whipple.yaml\nset parameters.d=0.003175\nset parameters.v=6900\n"
-                   "set parameters.tw=0.00254\nset materials.wall.from=al6061-t6\ntext\nname: w\n")
+                   "set parameters.tw=0.00254\nset materials.wall.from=al6061-t6\ntext\nname: w\n"
+                   "set up: a case's text line that is not an override\n")
     assert T.limit_search_sets(str(key)) == ["parameters.tw=0.00254", "materials.wall.from=al6061-t6"]
     assert T.whipple_limit_cell(3.1e-3, 3.4e-3, "ok") == "3.10–3.40 mm"
+    assert T.whipple_limit_cell(3.1e-3, 3.4e-3, "ok", "1", "0") == \
+        "3.10–3.40 mm, reversed (P at 3.10 mm)"
     assert T.whipple_limit_cell(2e-3, 12e-3, "no bracket: the criterion is not met at both ends") \
         == "above 12.00 mm (NP at 2.00 and 12.00 mm)"
     assert T.whipple_limit_cell(2e-3, 12e-3, "no bracket: the criterion is met at both ends") \

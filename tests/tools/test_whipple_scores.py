@@ -66,9 +66,9 @@ def test_refusals(out):
 
 
 def test_limits(out):
-    """--limits: the engine's brackets read per configuration (diameters cm → mm) and drawn on
-    that configuration's figure only; a file without a column, or with a word for a number, is
-    refused naming it."""
+    """--limits: the engine's brackets read per configuration (diameters cm → mm), what each
+    shows, drawn on that configuration's figure only; a file without a column, with a word for a
+    number, or naming a configuration no campaign ran, is refused naming it, before any table."""
     table = os.path.join(out, "shots.csv")
     open(table, "w").write(TABLE)
     camp = os.path.join(out, "campaign")
@@ -89,6 +89,12 @@ def test_limits(out):
     import pytest
     assert got[list(got)[0]] == [(3.0, 3.0, pytest.approx(3.3), "ok"),
                                  (7.0, 2.0, 12.0, "no bracket: the criterion is not met at both ends")]
+    assert ws.limit_marks(got[list(got)[0]]) == [("bracket", 3.0, 3.0, pytest.approx(3.3)),
+                                                ("above", 7.0, 12.0)]
+    assert ws.limit_marks([(5.0, 1.0, 2.0, "no bracket: the criterion is met at both ends"),
+                           (6.0, 1.0, 2.0, "reversed bracket"),
+                           (7.0, 1.0, 2.0, "run at parameters.d=0.01: failed")]) == [
+        ("below", 5.0, 1.0)]
     plain, drawn = os.path.join(out, "plain"), os.path.join(out, "drawn")
     run_tool("post/whipple_scores.py", table, camp, "--figures", plain, check=0)
     run_tool("post/whipple_scores.py", table, camp, "--figures", drawn, "--limits", limits, check=0)
@@ -97,6 +103,11 @@ def test_limits(out):
     read = lambda d, f: open(os.path.join(d, f), "rb").read()
     assert read(plain, name) != read(drawn, name)    # the limit drawn
     assert read(plain, other) == read(drawn, other)  # the other shield has none
+    open(limits, "w").write(
+        "bumper_mat,bumper_thick,standoff,wall_mat,wall_thick,velocity,lo,hi,status\n"
+        "AA6061-T6,0.07874,5.08,AA6061-T6,0.3175,3,0.3,0.33,ok\n")
+    r = run_tool("post/whipple_scores.py", table, camp, "--limits", limits, check=2)
+    assert "none of the campaigns' shots" in r.stderr and r.stdout == ""
     open(limits, "w").write("bumper_mat,velocity,lo,hi,status\nAA6061-T6,3,0.3,0.33,ok\n")
     r = run_tool("post/whipple_scores.py", table, camp, "--limits", limits, check=2)
     assert "limits.csv: no column bumper_thick" in r.stderr

@@ -419,6 +419,7 @@ TEST(Validation, WhippleCoarsePerforatesAboveTheLimitAndNotBelow) {
   EXPECT_LT(cone, 80.0);
   EXPECT_GT(above.measured("debris mass in particles"), 0.0);
   EXPECT_GT(above.measured("bumper hole diameter"), 4.0e-3);  // wider than the sphere
+  EXPECT_EQ(above.measured("wall thickness left"), 0.0);      // holed through
   EXPECT_LT(above.momentum_error, 1e-12);
   EXPECT_LT(above.balance_error_max, 1e-3);  // 5.1e-5 measured
 
@@ -430,6 +431,7 @@ TEST(Validation, WhippleCoarsePerforatesAboveTheLimitAndNotBelow) {
   const CaseRun below = run(thick);
   EXPECT_EQ(below.measured("wall perforated"), 0.0);
   EXPECT_EQ(below.measured("mass through the wall"), 0.0);
+  EXPECT_GT(below.measured("wall thickness left"), 0.0);
   std::vector<std::string> off = thick;
   off.push_back("contact.enabled=false");
   EXPECT_EQ(run(off).measured("wall perforated"), 1.0);

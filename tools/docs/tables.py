@@ -40,10 +40,10 @@ NAME, the table:
                   cores at once), the engine's verdicts and Christiansen's against the
                   measured ones per configuration, and the engine's ballistic limit
                   (`tetcontact limit`) of the 3.175 mm wall's shield at 3, 5 and 7 km/s;
-                  data/figures/whipple-*.png (~45 min)
+                  data/figures/whipple-*.png (~25 min)
     whipple-refined   sixteen of those shots (the 6061-T6 shield's) on the shipped mesh and with
                   the rear wall's cells three times finer: each verdict and the wall's thickness
-                  left (~40 min on 2 cores)
+                  left (~35 min on 2 cores)
     hugoniot      the library's aluminium equations of state on their Hugoniot against the
                   measured shock states of data/validation/aluminium-hugoniot.csv, per
                   pressure band (no runs: the EOS's closed form, which the engine reproduces)
@@ -806,7 +806,7 @@ def whipple_shots(binary, work, opts):
     yield from limit_lines
     yield ""
     yield (f"The searches' runs' own times added up: {limit_seconds / 60:.0f} min (one thread "
-           f"each, two at a time).")
+           f"each, the cores at once).")
 
 
 # The engine's ballistic limit on the shield whose figure the manual shows: the 6061-T6 shield's
@@ -815,6 +815,7 @@ def whipple_shots(binary, work, opts):
 # would cost hours.
 WHIPPLE_LIMITS = [("al6061-0.79mm", "0.3175")]  # (the campaign's folder, the wall's cm)
 WHIPPLE_LIMIT_SPEEDS = [3.0, 5.0, 7.0]  # km/s
+WHIPPLE_LIMIT_RANGE = (0.6, 2.5)  # the search between these multiples of the critical diameter
 WHIPPLE_LIMIT_HEADER = [
     "| shield | speed | equation's critical diameter | engine's limit: largest NP, smallest P | "
     "runs |",
@@ -824,14 +825,22 @@ WHIPPLE_LIMIT_HEADER = [
 def limit_search_sets(run_key):
     """The --set lines of a campaign run's run.key but the sphere's diameter and speed: the
     shield's configuration exactly as the campaign made it."""
+    sets = []
     with open(run_key) as f:
-        sets = [x[4:].rstrip("\n") for x in f if x.startswith("set ")]
+        for x in f:
+            if x.rstrip("\n") == "text":  # the case's and the library's text follow
+                break
+            if x.startswith("set "):
+                sets.append(x[4:].rstrip("\n"))
     return [x for x in sets if not x.startswith(("parameters.d=", "parameters.v="))]
 
 
-def whipple_limit_cell(lo, hi, status):
-    """The engine's bracket in mm: both ends found, or the side the limit lies beyond."""
+def whipple_limit_cell(lo, hi, status, at_lo="0", at_hi="1"):
+    """The engine's bracket in mm: both ends found (NP at lo, P at hi; the other way round is
+    said), or the side the limit lies beyond."""
     if status == "ok":
+        if (at_lo, at_hi) != ("0", "1"):
+            return f"{lo * 1e3:.2f}–{hi * 1e3:.2f} mm, reversed (P at {lo * 1e3:.2f} mm)"
         return f"{lo * 1e3:.2f}–{hi * 1e3:.2f} mm"
     if "not met at both ends" in status:
         return f"above {hi * 1e3:.2f} mm (NP at {lo * 1e3:.2f} and {hi * 1e3:.2f} mm)"
@@ -842,8 +851,8 @@ def whipple_limit_cell(lo, hi, status):
 
 def whipple_limits(binary, work, table, out_csv):
     """The engine's ballistic limit (`tetcontact limit --find parameters.d`, to 15 %) of the
-    shields of WHIPPLE_LIMITS at WHIPPLE_LIMIT_SPEEDS, searched between the equation's critical
-    diameter and 2.5 times it; the brackets into out_csv (the table's units: cm, km/s) for
+    shields of WHIPPLE_LIMITS at WHIPPLE_LIMIT_SPEEDS, searched between WHIPPLE_LIMIT_RANGE's
+    multiples of the equation's critical diameter; the brackets into out_csv (the table's units: cm, km/s) for
     whipple_scores.py --limits, and the markdown lines."""
     from tools.post import whipple_scores as ws
     shots = ws.read_table(table)
@@ -852,7 +861,10 @@ def whipple_limits(binary, work, table, out_csv):
     for folder, wall in WHIPPLE_LIMITS:
         campaign = os.path.join(work, "whipple-" + folder)
         with open(os.path.join(campaign, "predictions.csv")) as f:
-            first = next(x for x in csv.DictReader(f) if x["wall_thick"] == wall)
+            first = next((x for x in csv.DictReader(f) if x["wall_thick"] == wall), None)
+        if first is None:
+            raise SystemExit(f"tables.py: error: {campaign}: no shot with wall_thick {wall} "
+                             f"(WHIPPLE_LIMITS)")
         shot = dict(shots[int(first["row"]) - 1])
         sets = limit_search_sets(os.path.join(campaign, "runs", first["folder"], "run.key"))
         for v in WHIPPLE_LIMIT_SPEEDS:
@@ -863,9 +875,11 @@ def whipple_limits(binary, work, table, out_csv):
                 float(shot["standoff"]) * cm, rho_p=float(shot["proj_density"]) * 1000.0,
                 rho_b=float(shot["bumper_density"]) * 1000.0,
                 sigma_pa=float(shot["wall_yield"]) * christiansen.KSI)
-            out = os.path.join(work, f"limit-{folder}-{wall}-{v:g}")
+            f_lo, f_hi = WHIPPLE_LIMIT_RANGE
+            # A folder per search: its runs are this search's (a resumed one's too).
+            out = os.path.join(work, f"limit-{folder}-{wall}-{v:g}-{f_lo:g}-{f_hi:g}")
             cmd = [binary, "limit", os.path.join(ROOT, "data/cases/whipple.yaml"), "--quiet",
-                   "--find", "parameters.d", "--between", f"{dc:.6g}", f"{2.5 * dc:.6g}",
+                   "--find", "parameters.d", "--between", f"{f_lo * dc:.6g}", f"{f_hi * dc:.6g}",
                    "--criterion", "perforated:wall", "--tolerance", "0.15", "--out", out,
                    "--set", f"parameters.v={v * 1000.0:g}"]
             for x in sets:
@@ -877,14 +891,19 @@ def whipple_limits(binary, work, table, out_csv):
             with open(os.path.join(out, "limit.csv")) as f:
                 b = next(csv.DictReader(f))
             lo, hi = float(b[K.LIMIT_LO]), float(b[K.LIMIT_HI])
-            seconds += float(b["run_seconds"])
+            for path in glob.glob(os.path.join(out, "runs", "*", "*", "summary.json")):
+                with open(path) as f:  # run now or earlier: each run's own time
+                    seconds += float(get(json.load(f), K.WALL_SECONDS))
+            ends = (b["criterion_lo"], b["criterion_hi"])
+            cell = whipple_limit_cell(lo, hi, b[K.LIMIT_STATUS], *ends)
+            ok = b[K.LIMIT_STATUS] != "ok" or ends == ("0", "1")
             rows.append({**{k: shot[k] for k in ws.KEY}, "velocity": f"{v:g}",
                          "lo": f"{lo / cm:.6g}", "hi": f"{hi / cm:.6g}",
-                         "status": b[K.LIMIT_STATUS]})
+                         "status": b[K.LIMIT_STATUS] if ok else "reversed bracket"})
             lines.append(f"| {shot['bumper_mat']} {float(shot['bumper_thick']) * 10:g} mm, "
                          f"{float(shot['standoff']) * 10:g} mm, {shot['wall_mat']} "
                          f"{float(shot['wall_thick']) * 10:g} mm | {v:g} km/s | "
-                         f"{dc * 1e3:.2f} mm | {whipple_limit_cell(lo, hi, b[K.LIMIT_STATUS])} | "
+                         f"{dc * 1e3:.2f} mm | {cell} | "
                          f"{b['runs']} |")
     with open(out_csv + ".tmp", "w", newline="") as f:
         w = csv.DictWriter(f, fieldnames=ws.KEY + ["velocity", "lo", "hi", "status"])
@@ -895,34 +914,38 @@ def whipple_limits(binary, work, table, out_csv):
 
 
 # whipple-refined ---------------------------------------------------------------------------------
-# The 6061-T6 family's shots whose verdicts are checked on a finer wall: every NP shot and nine P
-# shots of 2.29–3.18 mm walls at 2.5–6.9 km/s (the thinner walls' runs cost twice as much).
+# The 6061-T6 family's shots whose verdicts are checked on a finer wall: its seven NP shots
+# (2.54–4.57 mm walls) and nine P shots of 2.29–3.17 mm walls at 2.5–6.9 km/s (the thinner
+# walls' runs cost twice as much).
 WHIPPLE_REFINED_ROWS = "302,383,521,591,693,715,817,847,306,307,424,444,542,557,821,858"
 WHIPPLE_REFINED = [  # (folder, label, --set)
     ("shipped", "2 cells through", []),
     ("wall6", "6 cells through", ['parameters.hw="= tw / 6"']),
 ]
 WHIPPLE_REFINED_HEADER = [
-    "| row (line) | wall | speed | measured | equation | shipped: verdict, thickness left | "
-    "wall 6 cells through: verdict, thickness left, wall mass to particles | run time (shipped, "
-    "finer) |",
+    "| row (line) | wall | speed | measured | equation | shipped: verdict (mass through), "
+    "thickness left, wall mass to particles | wall 6 cells through: the same | run time "
+    "(shipped, finer) |",
     "|---|---|---|---|---|---|---|---|"]
 
 
 def whipple_refined_cells(prediction, s):
-    """(verdict, wall thickness left, wall mass turned into particles in the whole shield (four
-    times the quarter's), run seconds) of one campaign run."""
+    """(verdict, mass through the wall, wall thickness left, wall mass turned into particles,
+    run seconds) of one campaign run of the quarter model: the masses are the whole shield's
+    (the mass through is measured so; the particles' are four times the quarter's)."""
     m = {x[K.NAME]: x[K.MEASURED] for x in get(s, K.REFERENCES)}
     eroded = sum(b["mass"] for b in get(s, K.FRACTURE_FROM_BODIES) if b["name"] == "wall")
-    return (prediction["predicted:wall perforated"], m[K.WALL_THICKNESS_LEFT], 4.0 * eroded,
-            float(prediction["wall_seconds"]))
+    return (prediction["predicted:wall perforated"], m[K.MASS_THROUGH_WALL],
+            m[K.WALL_THICKNESS_LEFT], 4.0 * eroded, float(prediction["wall_seconds"]))
 
 
 def whipple_refined_row(n, line, shot, equation, cells):
-    (v0, t0, _, s0), (v1, t1, e1, s1) = cells
+    def mesh(verdict, through, left, eroded, _):
+        shown = f"P ({through * 1e6:.1f} mg)" if verdict == "P" else verdict
+        return f"{shown}, {left:.2f}, {eroded * 1e6:.1f} mg"
     return (f"| {n} ({line}) | {float(shot['wall_thick']) * 10:.2f} mm | "
-            f"{float(shot['velocity']):.1f} km/s | {shot['result']} | {equation} | {v0}, {t0:.2f} | "
-            f"{v1}, {t1:.2f}, {e1 * 1e6:.0f} mg | {s0:.0f} s, {s1:.0f} s |")
+            f"{float(shot['velocity']):.1f} km/s | {shot['result']} | {equation} | "
+            f"{mesh(*cells[0])} | {mesh(*cells[1])} | {cells[0][4]:.0f} s, {cells[1][4]:.0f} s |")
 
 
 def whipple_refined(binary, work, opts):

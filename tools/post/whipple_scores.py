@@ -20,8 +20,9 @@ configuration's wall yield. With --limits, the engine's ballistic limit on the f
 configurations it names: LIMITS.csv has the configuration's columns (as TABLE.csv's), velocity
 (km/s), lo and hi (the projectile's diameter, cm: the largest not perforating and the smallest
 perforating, `tetcontact limit`'s bracket) and status (`limit`'s: ok, or why no bracket); a
-bracket is drawn as a bar from lo to hi, a limit beyond the searched diameters as an arrow
-from the end it lies beyond. Exit code 0, or 2 on bad input."""
+bracket is drawn as a bar from lo to hi, a limit beyond the searched diameters as a triangle
+at the end it lies beyond; a configuration that none of the DIRs' shots has is refused. Exit
+code 0, or 2 on bad input."""
 import csv
 import os
 import sys
@@ -92,8 +93,10 @@ def main(argv):
             args.append(argv[i])
             i += 1
     if len(args) < 2:
-        fail("usage: whipple_scores.py TABLE.csv DIR... [--figures DIR] [--markdown]")
+        fail("usage: whipple_scores.py TABLE.csv DIR... [--figures DIR] [--markdown] "
+             "[--limits LIMITS.csv]")
     table = read_table(args[0])
+    limits = read_limits(limits_path) if limits_path else {}
     shots = {}  # row number → (shot, engine's verdict)
     for folder in args[1:]:
         path = os.path.join(folder, "predictions.csv")
@@ -112,6 +115,10 @@ def main(argv):
     groups = {}
     for n, (shot, engine) in sorted(shots.items()):
         groups.setdefault(tuple(shot[k] for k in KEY), []).append((n, shot, engine))
+    for key in limits:
+        if key not in groups:
+            fail(f"{limits_path}: the configuration {', '.join(key)} is none of the campaigns' "
+                 f"shots (--limits)")
     lines = []
     if markdown:
         lines += ["| bumper | standoff | wall | shots (P / NP) | engine right | equation right |",
@@ -145,7 +152,7 @@ def main(argv):
     if os.path.exists(figures) and not os.path.isdir(figures):
         fail(figures + ": not a folder (--figures)")
     os.makedirs(figures, exist_ok=True)
-    draw(groups, figures, read_limits(limits_path) if limits_path else {})
+    draw(groups, figures, limits)
     return 0
 
 
@@ -164,10 +171,25 @@ def read_limits(path):
             try:
                 point = (float(r["velocity"]), float(r["lo"]) * 10.0, float(r["hi"]) * 10.0,
                          r["status"])
-            except ValueError:
+            except (TypeError, ValueError):
                 fail(f"{path}: line {n}: velocity, lo and hi must be numbers")
             out.setdefault(tuple(r[k] for k in KEY), []).append(point)
     return out
+
+
+def limit_marks(points):
+    """What the figure shows of the engine's limit at each speed: ("bracket", v, lo, hi) for a
+    bracket found, ("above", v, hi) when the search's ends were both NP, ("below", v, lo) when
+    both were P; a reversed bracket or a failed search shows nothing."""
+    marks = []
+    for v, lo, hi, status in sorted(points):
+        if status == "ok":
+            marks.append(("bracket", v, lo, hi))
+        elif "not met at both ends" in status:
+            marks.append(("above", v, hi))
+        elif "met at both ends" in status:
+            marks.append(("below", v, lo))
+    return marks
 
 
 def draw(groups, folder, limits):
@@ -193,18 +215,17 @@ def draw(groups, folder, limits):
                     mfc=None if perforated else "none", ms=7)
             if engine != s["result"]:
                 ax.plot([v], [d], "kx", ms=9)
-        for v, lo, hi, status in sorted(limits.get(key, [])):
-            if status == "ok":
-                ax.plot([v, v], [lo, hi], "-", color="tab:green", lw=3, solid_capstyle="butt")
-            elif "not met at both ends" in status:  # the limit lies above the searched range
-                ax.annotate("", xy=(v, hi * 1.15), xytext=(v, hi),
-                            arrowprops={"arrowstyle": "->", "color": "tab:green", "lw": 2})
-            elif "met at both ends" in status:  # below it
-                ax.annotate("", xy=(v, lo / 1.15), xytext=(v, lo),
-                            arrowprops={"arrowstyle": "->", "color": "tab:green", "lw": 2})
-        if key in limits:
+        marks = limit_marks(limits.get(key, []))
+        for mark in marks:
+            if mark[0] == "bracket":
+                ax.plot([mark[1]] * 2, mark[2:], "-", color="tab:green", lw=3,
+                        solid_capstyle="butt")
+            else:  # the limit lies above (below) the searched diameters: a triangle at the end
+                ax.plot([mark[1]], [mark[2]], "^" if mark[0] == "above" else "v",
+                        color="tab:green", ms=9)
+        if marks:
             ax.plot([], [], "-", color="tab:green", lw=3,
-                    label="the engine's limit (bracket; arrow: beyond the search)")
+                    label="the engine's limit (▲: above the search's largest diameter)")
         ax.plot([], [], "o", color="tab:red", label="perforated (P)")
         ax.plot([], [], "o", mfc="none", color="tab:blue", label="not perforated (NP)")
         ax.plot([], [], "kx", label="the engine calls it wrong")
@@ -213,7 +234,7 @@ def draw(groups, folder, limits):
         ax.set_title(f"{key[0]} {float(key[1]) * 10:g} mm bumper, {float(key[2]) * 10:g} mm, "
                      f"{key[3]} {float(key[4]) * 10:g} mm wall", fontsize=9)
         ax.grid(True, alpha=0.3)
-        ax.legend(fontsize=7)
+        ax.legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.16), ncol=2)
         name = "whipple-" + "-".join(k.replace("%", "") for k in key) + ".png"
         out = os.path.join(folder, name)
         fig.savefig(out + ".tmp.png", dpi=100, bbox_inches="tight")

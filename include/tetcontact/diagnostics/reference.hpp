@@ -42,13 +42,15 @@ struct ReferenceSpec {
     // Of `body` itself, a plate whose front face the plane is (its normal across the plate):
     thickness_left,  // the smallest share of the plate's thickness still in it along a line
                      // across it: columns along the normal, each the cells whose reference
-                     // centre lies in one square of side h (the median over the body's cells of
-                     // (6 V0)^(1/3): a cube's edge when it is split into six tets), within
-                     // `within` of the normal through the plane's point; a column's share is
-                     // the reference volume of its cells still in the body (not destroyed, not
-                     // particles) over that of all its cells; 1 untouched, 0 holed through
+                     // centre lies in one square of side h (the median of (6 V0)^(1/3) over the
+                     // cells centred within `within` of the normal through the plane's point: a
+                     // cube's edge when it is split into six tets), the squares centred within
+                     // `within`; a column's share is the reference volume of its cells still in
+                     // the body (not destroyed, not particles; a scab of intact cells counts
+                     // until it is particles) over that of all its cells; 1 untouched, 0 holed
   };
-  /// Each measure's name in a case file and a summary, and its unit (SI; "" for a verdict).
+  /// Each measure's name in a case file and a summary, and its unit (SI; "" for a verdict or a
+  /// ratio).
   static constexpr NameTable<Measure, 17> k_measure_names{
       {{Measure::length, "length"},
        {Measure::radius, "radius"},
