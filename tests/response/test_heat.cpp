@@ -7,6 +7,7 @@
 #include <random>
 
 #include "../test_util.hpp"
+#include "contact_points.hpp"
 #include "tetcontact/response/heat.hpp"
 #include "tetcontact/response/impulse.hpp"
 
@@ -45,14 +46,8 @@ TEST(ContactHeat, AnInelasticCollisionHeatsEachSideByItsLossInTheCentreOfMassFra
   st.v = st.v_star;  // no force this step: the booked work is the exchange's loss
   st.m = {m1, m2};
   st.contact_impulse.assign(2, Vec3::Zero());
-  ContactPoint c;  // node 0 above node 1, normal +z from B to A
-  c.a_nodes[0] = 0;
-  c.a_w[0] = 1;
-  c.a_count = 1;
-  c.b_nodes[0] = 1;
-  c.b_w[0] = 1;
-  c.b_count = 1;
-  c.gap = -1.0;  // penetrated: the target is the common velocity
+  ContactPoint c = test::node_against_node(0, 1);  // node 0 above node 1, normal +z from B to A
+  c.gap = -1.0;                                    // penetrated: the target is the common velocity
   const double k0 = kinetic(st);
   apply_contact(c, st, 1e-9, st.contact_impulse);
   EXPECT_NEAR(st.v_star[0].z(), st.v_star[1].z(), 1e-9);
@@ -89,14 +84,8 @@ TEST(ContactHeat, TheKernelsHeatIsTheLostKineticEnergyWithFriction) {
     st.v = st.v_star;
     if (k % 2) st.v[k % 4] += Vec3(u(rng) - 0.5, u(rng) - 0.5, u(rng) - 0.5);
     st.contact_impulse.assign(4, Vec3::Zero());
-    ContactPoint c;
-    c.a_nodes[0] = 0;
-    c.a_w[0] = 1;
-    c.a_count = 1;
     const double w1 = u(rng), w2 = (1 - w1) * u(rng);
-    c.b_nodes = {1, 2, 3, 0};
-    c.b_w = {w1, w2, 1 - w1 - w2, 0};
-    c.b_count = 3;
+    ContactPoint c = test::node_against_face(0, {1, 2, 3}, w1, w2);
     c.gap = -1e-3;
     c.mode = FrictionMode::coulomb;
     c.friction = 0.3;

@@ -3,6 +3,7 @@
 
 #include <random>
 
+#include "contact_points.hpp"
 #include "tetcontact/response/impulse.hpp"
 
 using namespace tc;
@@ -34,14 +35,8 @@ TEST(Impulse, ConservesMomentumAndEnforcesTheNormalVelocity) {
   for (int k = 0; k < 100; ++k) {
     State st = random_state(rng, 4);
     std::vector<Vec3> ledger(4, Vec3::Zero());
-    ContactPoint c;  // node 0 against face (1, 2, 3)
-    c.a_nodes[0] = 0;
-    c.a_w[0] = 1;
-    c.a_count = 1;
     const double w1 = u(rng), w2 = (1 - w1) * u(rng);
-    c.b_nodes = {1, 2, 3, 0};
-    c.b_w = {w1, w2, 1 - w1 - w2, 0};
-    c.b_count = 3;
+    ContactPoint c = test::node_against_face(0, {1, 2, 3}, w1, w2);
     c.normal = Vec3(u(rng) - 0.5, u(rng) - 0.5, u(rng) - 0.5).normalized();
     c.gap = k % 2 ? 0.0 : 1e-3;
     const double tau = 1e-3;
@@ -106,13 +101,7 @@ TEST(Impulse, StickRemovesTheSlidingAndCoulombLimitsIt) {
     st.v_star = {Vec3(4, 0, -1), Vec3(0, 0, 1)};
     st.m = {1.0, 1.0};
     std::vector<Vec3> ledger(2, Vec3::Zero());
-    ContactPoint c;
-    c.a_nodes[0] = 0;
-    c.a_w[0] = 1;
-    c.a_count = 1;
-    c.b_nodes[0] = 1;
-    c.b_w[0] = 1;
-    c.b_count = 1;
+    ContactPoint c = test::node_against_node(0, 1);
     c.normal = Vec3(0, 0, 1);
     c.mode = mode;
     c.friction = 0.5;
