@@ -124,6 +124,7 @@ void add_symmetry_planes(const Case& c, Model& model) {
 SolverSettings solver_settings(const Case& c) {
   SolverSettings s;
   s.end_time = c.end_time;
+  s.end_when_released = c.end_when_released;
   s.cfl = c.cfl;
   s.max_steps = c.max_steps;
   s.threads = c.threads;

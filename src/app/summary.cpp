@@ -103,6 +103,9 @@ RunSummary summarize(const Case& c, const Simulation& sim, const OutputWriter& w
   s.steps = sim.state().step;
   s.time = sim.last_sample().t;
   s.end_time = c.end_time;
+  s.ended_by = sim.ended_by();
+  s.end_when_released = c.end_when_released;
+  s.last_push = sim.last_push();
   s.wall = wall;
   s.modules = sim.modules();
   s.material_library = c.material_library;
@@ -441,6 +444,11 @@ Json summary_json(const RunSummary& s) {
   j["steps"] = s.steps;
   j["time"] = s.time;
   j["end_time"] = s.end_time;
+  Json end = Json::object();
+  end["by"] = s.ended_by.empty() ? Json() : Json(s.ended_by);
+  end["when_released"] = s.end_when_released > 0.0 ? Json(s.end_when_released) : Json();
+  end["last_push"] = s.last_push >= 0.0 ? Json(s.last_push) : Json();
+  j["end"] = end;
   j["wall_seconds"] = s.wall;
   j["modules"] = s.modules;
   Json mesh = Json::object();
@@ -528,7 +536,10 @@ void print_table(const RunSummary& s) {
   os << "tetcontact " << TETCONTACT_VERSION << " — case " << s.case_name << "\n";
   os << "  status     " << s.status << "\n";
   os << "  steps      " << s.steps << "   t = " << fmt(last.t) << " s   wall "
-     << fmt(s.wall, "%.3f") << " s\n";
+     << fmt(s.wall, "%.3f") << " s";
+  if (s.ended_by == "released")
+    os << "   (released: nothing pushed since t = " << fmt(s.last_push) << " s)";
+  os << "\n";
   os << "  energy     initial " << fmt(first.total, "%.6g") << " J   final "
      << fmt(last.total, "%.6g") << " J   external work " << fmt(last.external_work(), "%.4g")
      << " J   contact work " << fmt(last.contact.work, "%.4g") << " J (heat "

@@ -145,9 +145,9 @@ Case load_case(const std::string& path, const std::vector<std::string>& override
   Case c;
   c.file = path;
   r.keys(root, "",
-         {"name", "description", "parameters", "end_time", "solver", "material_library",
-          "materials", "bodies", "boundary_conditions", "walls", "symmetry", "output", "reference",
-          "contact", "fracture", "expect", "diagnostics", "campaign"});
+         {"name", "description", "parameters", "end_time", "end_when_released", "solver",
+          "material_library", "materials", "bodies", "boundary_conditions", "walls", "symmetry",
+          "output", "reference", "contact", "fracture", "expect", "diagnostics", "campaign"});
   c.parameters = substitute_parameters(r, root);
   c.name = root["name"] ? r.string(root["name"], "name") : fs::path(path).stem().string();
   if (root["description"]) c.description = r.string(root["description"], "description");
@@ -169,6 +169,18 @@ Case load_case(const std::string& path, const std::vector<std::string>& override
   }
   read_fracture(r, root, c);
   check_particles_needed(r, root, c);
+  if (const YAML::Node e = root["end_when_released"]) {
+    c.end_when_released = r.non_negative(e, "end_when_released");
+    if (c.end_when_released > 0.0 && c.walls.empty() && !c.contact && !c.fracture)
+      r.fail(e, "end_when_released",
+             "the case has no wall, no contact and no fracture: nothing would push on a body to "
+             "release it");
+    if (c.end_when_released >= c.end_time) {
+      std::ostringstream os;
+      os << "must be shorter than end_time (" << c.end_time << " s), got " << e.Scalar();
+      r.fail(e, "end_when_released", os.str());
+    }
+  }
   read_expect(r, root, c);
   read_campaign(r, root, c);
   if (c.fracture &&

@@ -32,7 +32,7 @@ OutputWriter::OutputWriter(const Model& model, const OutputSpec& spec, std::stri
 }
 
 void OutputWriter::observe(const State& st, const Sample& s) {
-  const bool final = s.t >= end_time_;
+  const bool final = s.final || s.t >= end_time_;
   std::vector<double> depth;
   if (probe_ && spec_.penetration_every_step) depth = measure_penetration(st);
   if (history_ && (s.step % spec_.history_every == 0 || final)) {
@@ -66,7 +66,7 @@ void OutputWriter::observe(const State& st, const Sample& s) {
 
 // A frame at the first sample at or after each multiple of the interval, and at the end.
 bool OutputWriter::frame_due(const Sample& s) const {
-  return s.t >= next_frame_ - 1e-9 * spec_.interval || s.t >= end_time_;
+  return s.t >= next_frame_ - 1e-9 * spec_.interval || s.final || s.t >= end_time_;
 }
 
 // The penetration at a time level: the run's maxima and last measure updated; the per-node

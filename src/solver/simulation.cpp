@@ -177,7 +177,12 @@ void Simulation::add_observer(Observer* observer, const std::string& module_name
 }
 
 bool Simulation::done() const {
-  return state_.t >= settings_.end_time;
+  return state_.t >= settings_.end_time || released();
+}
+
+bool Simulation::released() const {
+  return settings_.end_when_released > 0.0 && last_push_ >= 0.0 &&
+         state_.t - last_push_ >= settings_.end_when_released;
 }
 
 template <class Body>
@@ -211,6 +216,8 @@ void Simulation::step() {
 
 // The final time level sampled: nothing is committed after it, so nothing to verify.
 void Simulation::finish() {
+  ended_by_ = state_.t >= settings_.end_time || !released() ? "end_time" : "released";
+  finishing_ = true;
   timed(Stage::predict, [&] { predict_stage(); });
   detect_stage();
   respond_stage();
@@ -279,6 +286,15 @@ void Simulation::respond_stage() {
   for (const ContactPoint& c : points_.particles)
     contact_totals_.particle_contacts += c.lambda > 0.0;
   wall_results_ = wall_results(points_.walls);
+  // A push: a wall that is not a symmetry plane, or a contact, exchanged momentum.
+  const auto pushes = [](const std::vector<ContactPoint>& points) {
+    return std::any_of(points.begin(), points.end(),
+                       [](const ContactPoint& c) { return c.lambda > 0.0; });
+  };
+  bool pushed = pushes(points_.bodies) || pushes(points_.particles);
+  for (std::size_t w = 0; w < model_.walls.size() && !pushed; ++w)
+    pushed = !model_.walls[w].mirror && pushes(points_.walls[w]);
+  if (pushed) last_push_ = st.t;
 }
 
 // The step's motion verified, and failures resolved (solver/resolve.hpp).
@@ -312,6 +328,7 @@ void Simulation::sample_stage() {
   std::optional<TetSums> sums;
   if (rank_tets()) sums = tet_sums_over_ranks();
   Sample s = sample_balance(state_, have_sample_ ? &last_ : nullptr, sums ? &*sums : nullptr);
+  s.final = finishing_;
   s.contact_heat = contact_heat_;
   if (!std::isfinite(s.kinetic) || !std::isfinite(s.momentum.sum())) {
     std::ostringstream os;

@@ -636,6 +636,33 @@ TEST(Case, ErosionRatioOutOfRangeOrWithoutParticlesIsRefused) {
   }
 }
 
+// end_when_released: off at 0, refused where nothing could push on a body, and refused when
+// it is not shorter than end_time.
+TEST(CaseFile, EndWhenReleasedNeedsSomethingToPushAndAShorterEnd) {
+  const std::string taylor = test::source_path("data/cases/taylor.yaml");
+  EXPECT_EQ(load_case(taylor).end_when_released, 5.0e-6);
+  EXPECT_EQ(load_case(taylor, {"end_when_released=0"}).end_when_released, 0.0);
+  const std::string v = std::string(k_valid) + "end_when_released: 1.0e-7\n";
+  expect_errors(
+      {{"nothing to push", v, {}, ":", "end_when_released", "no wall, no contact and no fracture"},
+       {"negative",
+        v,
+        {"end_when_released=-1e-7"},
+        "--set",
+        "end_when_released",
+        "must not be negative"}},
+      "end-released");
+  for (const char* bad : {"end_when_released=1", "end_when_released=-1"}) {
+    try {
+      load_case(taylor, {bad});
+      ADD_FAILURE() << bad << " was accepted";
+    } catch (const CaseError& e) {
+      EXPECT_NE(std::string(e.what()).find("key 'end_when_released'"), std::string::npos)
+          << e.what();
+    }
+  }
+}
+
 // No source path is compiled in: the data folder is found beside the program's folder (the
 // build tree's ../data), or named by TETCONTACT_DATA; a wrong name is an error that says so.
 TEST(Files, DataFolderBesideTheProgramOrFromTheEnvironment) {

@@ -24,6 +24,10 @@ struct CaseRun {
   double momentum_error = 0.0;
   long tets = 0;
   double seconds = 0.0;  // setup and run, wall clock
+  long steps = 0;
+  double time = 0.0, end_time = 0.0, last_push = -1.0;  // s
+  std::string ended_by;                                 // Simulation::ended_by
+  Sample last;                                          // the final sample
   /// The named reference's measured value (a failure when it is missing or unmeasured).
   double measured(const std::string& name) const {
     for (const ReferenceResult& r : refs)
@@ -53,6 +57,12 @@ inline CaseRun run_case(const std::string& file, const std::vector<std::string>&
   r.tets = sim.model().mesh.tet_count();
   r.balance_error_max = sim.balance_error_max();
   r.momentum_error = momentum_error(sim.first_sample(), sim.last_sample());
+  r.steps = sim.state().step;
+  r.time = sim.last_sample().t;
+  r.end_time = c.end_time;
+  r.last_push = sim.last_push();
+  r.ended_by = sim.ended_by();
+  r.last = sim.last_sample();
   return r;
 }
 

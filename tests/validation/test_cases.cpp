@@ -85,6 +85,32 @@ TEST(Validation, TaylorCopper) {
   expect_all_pass(run_case("data/cases/taylor-copper.yaml"), 6e-5);  // 7.9e-6 measured
 }
 
+// A Taylor rod (the measured tests' case, coarse) ends once the anvil has let it go: the rod has
+// stopped, sprung back and left the anvil, and what the run to its end time adds is elastic
+// ringing: the same final length and plastic work, in well under half the steps.
+TEST(Validation, TaylorRodEndsOnceTheAnvilReleasesIt) {
+  const std::vector<std::string> coarse = {"parameters.nc=4", "parameters.na=12"};
+  std::vector<std::string> to_end = coarse;
+  to_end.push_back("end_when_released=0");
+  const CaseRun released = run_case("data/cases/taylor.yaml", coarse);
+  const CaseRun full = run_case("data/cases/taylor.yaml", to_end);
+  EXPECT_EQ(released.ended_by, "released");
+  EXPECT_EQ(full.ended_by, "end_time");
+  // Ended 5 µs after the last push, within one step.
+  EXPECT_GE(released.time - released.last_push, 5.0e-6);
+  EXPECT_LT(released.time - released.last_push, 5.0e-6 + 2 * released.last.dt);
+  EXPECT_LT(released.time, 0.5 * released.end_time);
+  EXPECT_LT(released.steps, full.steps / 2);
+  // The same push ended both runs: the full run's anvil never pushed again.
+  EXPECT_EQ(full.last_push, released.last_push);
+  EXPECT_GT(released.last.momentum.z(), 0.0);  // moving off the anvil
+  EXPECT_NEAR(released.last.plastic_work, full.last.plastic_work, 1e-3 * full.last.plastic_work);
+  EXPECT_NEAR(released.measured("final length"), full.measured("final length"),
+              5e-3 * full.measured("final length"));
+  EXPECT_NEAR(released.measured("footprint radius"), full.measured("footprint radius"),
+              5e-3 * full.measured("footprint radius"));
+}
+
 // The aluminium rod whose step collapsed, as it was first run, perfectly plastic at Y0 (coarse, to
 // 20 µs): with the plain average nodal pressure the tets at the axis next to the wall are
 // crushed (V/V0 0.50 measured) and the step falls 20×, which the run reports as a collapse

@@ -31,6 +31,10 @@ struct RunSummary {
   std::vector<std::pair<std::string, double>> parameters;  // the values the expressions used
   long steps = 0;
   double time = 0.0, end_time = 0.0, wall = 0.0;
+  // Why the run ended ("end_time", "released"; "" when it failed), the case's
+  // end_when_released (0: none) and the last push of a wall or contact (< 0: none).
+  std::string ended_by;
+  double end_when_released = 0.0, last_push = -1.0;
   std::vector<std::string> modules, warnings, regimes;
   std::size_t nodes = 0, tets = 0, surface_faces = 0, surface_edges = 0, frames = 0;
   std::vector<std::string> symmetry;  // the symmetry planes' names (the whole: 2^size copies)

@@ -137,6 +137,9 @@ struct Case {
   std::string name;
   std::string description;
   double end_time = 0.0;
+  /// `end_when_released`: the run ends once no wall and no contact has pushed on any body for
+  /// this long (s) after the first push, or at end_time; 0 (the default): at end_time.
+  double end_when_released = 0.0;
   double cfl = 0.5;
   long max_steps = 10'000'000;
   int threads = 0;  // solver.threads; 0: all cores (auto)

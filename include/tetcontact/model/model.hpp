@@ -135,6 +135,9 @@ std::vector<Index> all_surface_nodes(const std::vector<Surface>& surfaces);
 
 struct SolverSettings {
   double end_time = 0.0;
+  /// The run ends earlier, once no wall (symmetry planes aside) and no contact between bodies or
+  /// particles has pushed for this long (s) after the first push; 0: only at end_time.
+  double end_when_released = 0.0;
   double cfl = 0.5;
   long max_steps = 10'000'000;
   int threads = 0;  // threads of the parallel loops; 0: all cores (results do not depend on it)

@@ -50,6 +50,7 @@ struct Sample {
   Vec3 momentum = Vec3::Zero();    // Σ m (U^n + U^{n+1}) / 2
   double momentum_scale = 0.0;     // Σ m |U^n + U^{n+1}| / 2, for relative errors
   std::vector<double> wall_force;  // normal reaction force on each wall this step, N
+  bool final = false;              // the run's last sample (Simulation::finish)
 
   /// Work done on the bodies by everything outside them (boundary conditions, walls).
   double external_work() const { return boundary.work + walls.work; }

@@ -53,9 +53,18 @@ class Simulation {
   /// One step t^n → t^{n+1}.
   void step();
   /// Samples the final time level (prediction only, nothing committed) so that observers see
-  /// it. Call once, after the last step. The run ends at the first step at or after end_time.
+  /// it. Call once, after the last step. The run ends at the first step at or after end_time,
+  /// or once released (SolverSettings::end_when_released).
   void finish();
   bool done() const;
+  /// No wall (symmetry planes aside) and no contact has pushed for end_when_released since
+  /// the last push (never before the first push, never without end_when_released).
+  bool released() const;
+  /// Why the run ended, once finished: "end_time" or "released".
+  const std::string& ended_by() const { return ended_by_; }
+  /// The time level of the last step a wall (symmetry planes aside) or a contact pushed on a
+  /// body or particle, s; < 0: none did.
+  double last_push() const { return last_push_; }
 
   void add_observer(Observer* observer, const std::string& module_name);
   /// Names a stage run outside the step (listed in `modules`).
@@ -139,6 +148,9 @@ class Simulation {
   std::vector<double> wall_force_max_;
   Sample first_, last_;
   bool have_sample_ = false;
+  bool finishing_ = false;  // finish(): its sample is the run's last
+  double last_push_ = -1.0;
+  std::string ended_by_;
   double energy_scale_ = 0.0;
   double balance_error_max_ = 0.0;
   Index critical_tet_ = -1;
