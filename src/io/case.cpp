@@ -171,10 +171,10 @@ Case load_case(const std::string& path, const std::vector<std::string>& override
   check_particles_needed(r, root, c);
   if (const YAML::Node e = root["end_when_released"]) {
     c.end_when_released = r.non_negative(e, "end_when_released");
-    if (c.end_when_released > 0.0 && c.walls.empty() && !c.contact && !c.fracture)
+    if (c.end_when_released > 0.0 && c.walls.empty() && !c.contact && !(c.fracture && c.particles))
       r.fail(e, "end_when_released",
-             "the case has no wall, no contact and no fracture: nothing would push on a body to "
-             "release it");
+             "the case has no wall, no contact and no particles: nothing would push on a body "
+             "to release it");
     if (c.end_when_released >= c.end_time) {
       std::ostringstream os;
       os << "must be shorter than end_time (" << c.end_time << " s), got " << e.Scalar();

@@ -206,6 +206,7 @@ void Simulation::step() {
   respond_stage();  // the sequential passes over them, island by island
   timed(Stage::predict, [&] { hold_constraints(state_, model_.constraints); });
   if (resolver_) timed(Stage::verify, [&] { resolve_stage(); });  // the verified step
+  note_push();                                                    // end_when_released
   timed(Stage::balance, [&] { sample_stage(); });                 // energy, momentum at tⁿ
   timed(Stage::output, [&] { output_stage(); });                  // observers see tⁿ
   if (model_.contact_heat && corrects()) timed(Stage::commit, [&] { heat_stage(); });
@@ -286,15 +287,21 @@ void Simulation::respond_stage() {
   for (const ContactPoint& c : points_.particles)
     contact_totals_.particle_contacts += c.lambda > 0.0;
   wall_results_ = wall_results(points_.walls);
-  // A push: a wall that is not a symmetry plane, or a contact, exchanged momentum.
-  const auto pushes = [](const std::vector<ContactPoint>& points) {
-    return std::any_of(points.begin(), points.end(),
-                       [](const ContactPoint& c) { return c.lambda > 0.0; });
-  };
-  bool pushed = pushes(points_.bodies) || pushes(points_.particles);
+}
+
+// Whether the step's corrections pushed: a wall that is not a symmetry plane, or a contact
+// between bodies or particles (the passes, rescue points and impact zones alike: all of them
+// land in contact_impulse) exchanged momentum. Every rank alike: the corrections are whole on
+// each.
+void Simulation::note_push() {
+  if (!corrects()) return;
+  bool pushed = std::any_of(state_.contact_impulse.begin(), state_.contact_impulse.end(),
+                            [](const Vec3& j) { return !j.isZero(0.0); });
   for (std::size_t w = 0; w < model_.walls.size() && !pushed; ++w)
-    pushed = !model_.walls[w].mirror && pushes(points_.walls[w]);
-  if (pushed) last_push_ = st.t;
+    pushed = !model_.walls[w].mirror &&
+             std::any_of(points_.walls[w].begin(), points_.walls[w].end(),
+                         [](const ContactPoint& c) { return c.lambda > 0.0; });
+  if (pushed) last_push_ = state_.t;
 }
 
 // The step's motion verified, and failures resolved (solver/resolve.hpp).

@@ -55,6 +55,40 @@ TEST(Cli, RunWritesSeriesHistoryAndSummary) {
     EXPECT_NE(e.path().extension(), ".tmp") << e.path();
 }
 
+// A run that ends released (a coarse Taylor rod off its anvil) writes its last frame and history
+// row at the time it ended, and says why it ended.
+TEST(Cli, ARunEndedReleasedWritesItsLastFrameAndHistoryRow) {
+  test::TempDir dir("cli-released");
+  const std::string out = dir / "out";
+  const auto r =
+      test::run_cli("run " + quote(test::source_path("data/cases/taylor.yaml")) +
+                        " --set parameters.nc=4 --set parameters.na=12 --out " + quote(out),
+                    dir.str());
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.out.find("(released: nothing pushed since t = "), std::string::npos) << r.out;
+  const test::Json summary = test::read_json(out + "/summary.json");
+  EXPECT_EQ(summary.at("end").at("by"), "released");
+  EXPECT_EQ(test::number(summary, "/end/when_released"), 5.0e-6);
+  const double time = test::number(summary, "/time");
+  EXPECT_LT(time, 0.5 * test::number(summary, "/end_time"));
+  EXPECT_GE(time - test::number(summary, "/end/last_push"), 5.0e-6);
+  // The history's last row and the series' last frame are at the end.
+  const std::string history = test::read_text(out + "/history.csv");
+  const std::size_t last = history.rfind('\n', history.size() - 2) + 1;
+  const std::string row = history.substr(last);
+  const std::size_t comma = row.find(',');
+  EXPECT_EQ(std::stol(row.substr(0, comma)), test::number(summary, "/steps")) << row;
+  EXPECT_EQ(std::stod(row.substr(comma + 1)), time) << row;
+  const std::string pvd = test::read_text(out + "/case.pvd");
+  const std::regex timestep("timestep=\"([^\"]+)\"");
+  std::string last_step;
+  for (auto it = std::sregex_iterator(pvd.begin(), pvd.end(), timestep);
+       it != std::sregex_iterator(); ++it)
+    last_step = (*it)[1];
+  ASSERT_FALSE(last_step.empty()) << pvd;
+  EXPECT_NEAR(std::stod(last_step), time, 1e-12) << pvd;
+}
+
 TEST(Cli, FinalTableOnStdout) {
   test::TempDir dir("cli-table");
   const auto r = test::run_cli(

@@ -644,7 +644,13 @@ TEST(CaseFile, EndWhenReleasedNeedsSomethingToPushAndAShorterEnd) {
   EXPECT_EQ(load_case(taylor, {"end_when_released=0"}).end_when_released, 0.0);
   const std::string v = std::string(k_valid) + "end_when_released: 1.0e-7\n";
   expect_errors(
-      {{"nothing to push", v, {}, ":", "end_when_released", "no wall, no contact and no fracture"},
+      {{"nothing to push", v, {}, ":", "end_when_released", "no wall, no contact and no particles"},
+       {"fracture without particles",
+        v + "fracture: {particles: false, erosion_step_ratio: 0}\n",
+        {},
+        ":",
+        "end_when_released",
+        "no wall, no contact and no particles"},
        {"negative",
         v,
         {"end_when_released=-1e-7"},
@@ -652,10 +658,13 @@ TEST(CaseFile, EndWhenReleasedNeedsSomethingToPushAndAShorterEnd) {
         "end_when_released",
         "must not be negative"}},
       "end-released");
-  for (const char* bad : {"end_when_released=1", "end_when_released=-1"}) {
+  for (const std::vector<std::string>& bad :
+       {std::vector<std::string>{"end_when_released=1"},
+        std::vector<std::string>{"end_when_released=-1"},
+        std::vector<std::string>{"end_time=1.0e-4", "end_when_released=1.0e-4"}}) {
     try {
-      load_case(taylor, {bad});
-      ADD_FAILURE() << bad << " was accepted";
+      load_case(taylor, bad);
+      ADD_FAILURE() << bad.back() << " was accepted";
     } catch (const CaseError& e) {
       EXPECT_NE(std::string(e.what()).find("key 'end_when_released'"), std::string::npos)
           << e.what();

@@ -44,6 +44,9 @@ CASE_FILE = ("case_file",)
 STATUS = ("status",)
 STEPS = ("steps",)
 TIME = ("time",)
+END_BY = ("end", "by")
+END_WHEN_RELEASED = ("end", "when_released")
+END_LAST_PUSH = ("end", "last_push")
 WALL_SECONDS = ("wall_seconds",)
 MODULES = ("modules",)               # the stages the run made ("broadphase:grid", ...)
 MESH_NODES = ("mesh", "nodes")
@@ -174,8 +177,8 @@ CCD_FALSE_NEGATIVES = "false_negatives"
 CCD_FCL = "fcl"
 
 # The paths every run's summary.json holds (tests/tools/test_summary_keys.py checks them).
-ALWAYS = [CASE, CASE_FILE, STATUS, STEPS, TIME, WALL_SECONDS, MODULES, MESH_NODES, MESH_TETS,
-          TIMINGS, ENERGY_BALANCE_ERROR, ENERGY_BALANCE_ERROR_MAX, MOMENTUM_ERROR, MASS_ERROR,
+ALWAYS = [CASE, CASE_FILE, STATUS, STEPS, TIME, END_BY, END_WHEN_RELEASED, END_LAST_PUSH,
+          WALL_SECONDS, MODULES, MESH_NODES, MESH_TETS, TIMINGS, ENERGY_BALANCE_ERROR, ENERGY_BALANCE_ERROR_MAX, MOMENTUM_ERROR, MASS_ERROR,
           BODIES, TIME_STEP_MIN, TIME_STEP_FIRST, TIME_STEP_COLLAPSES, PENETRATION,
           MAX_DEPTH_OVER_H, PENETRATION_SAMPLES, FRACTURE_ENABLED, FRACTURE_PARTICLES,
           FRACTURE_MASS_TO_PARTICLES, SAFEGUARDS_ERODED, SAFEGUARDS_PARTICLES_MOVED_OUT, CONTACT]

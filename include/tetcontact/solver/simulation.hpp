@@ -124,6 +124,7 @@ class Simulation {
   void detect_stage();
   void respond_stage();
   void resolve_stage();
+  void note_push();  // last_push_
   template <class Body>
   void timed(Stage stage, Body&& body);
   [[noreturn]] void rethrow_with_body(const InvertedElement& e) const;
