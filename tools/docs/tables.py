@@ -44,6 +44,11 @@ NAME, the table:
     whipple-refined   sixteen of those shots (the 6061-T6 shield's) on the shipped mesh and with
                   the rear wall's cells three times finer: each verdict and the wall's thickness
                   left (~35 min on 2 cores)
+    whipple-defaults  the same sixteen shots at the shipped mesh with each setting a
+                  hypervelocity user chooses changed alone (average nodal pressure off, erosion
+                  at 20 % and 5 % of the first step, the sphere 12 cells across, ductile
+                  failure in the wall only): verdicts right,
+                  verdicts changed, the wall's thickness left, the cost
     hugoniot      the library's aluminium equations of state on their Hugoniot against the
                   measured shock states of data/validation/aluminium-hugoniot.csv, per
                   pressure band (no runs: the EOS's closed form, which the engine reproduces)
@@ -83,7 +88,7 @@ from tools.common.summary_keys import get  # noqa: E402
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 NAMES = ["stability", "micro", "profile", "ccd", "verify", "verify-full", "threads", "mpi",
          "whipple", "whipple-mesh", "whipple-hole", "strength", "taylor-tests",
-         "whipple-shots", "whipple-refined", "hugoniot"]
+         "whipple-shots", "whipple-refined", "whipple-defaults", "hugoniot"]
 
 
 def g(x):
@@ -929,6 +934,26 @@ WHIPPLE_REFINED_HEADER = [
     "|---|---|---|---|---|---|---|---|"]
 
 
+def whipple_campaign(binary, table_path, out, rows, sets):
+    """`tetcontact campaign data/cases/whipple.yaml` on these rows of the shot table with these
+    --set values, into `out`: {row: (its predictions.csv row, its summary)}."""
+    if not os.path.isfile(table_path):
+        raise SystemExit(f"tables.py: error: {table_path}: no such file (the shared Whipple shots)")
+    cmd = [binary, "campaign", os.path.join(ROOT, "data/cases/whipple.yaml"), table_path,
+           "--quiet", "--out", out, "--rows", rows]
+    for x in sets:
+        cmd += ["--set", x]
+    r = subprocess.run(cmd, capture_output=True, text=True)
+    if r.returncode != 0:
+        raise SystemExit(f"tables.py: error: {' '.join(cmd)}: exit {r.returncode}\n{r.stderr}")
+    runs = {}
+    with open(os.path.join(out, "predictions.csv")) as f:
+        for x in csv.DictReader(f):
+            with open(os.path.join(out, "runs", x["folder"], "summary.json")) as g:
+                runs[int(x["row"])] = (x, json.load(g))
+    return runs
+
+
 def whipple_refined_cells(prediction, s):
     """(verdict, mass through the wall, wall thickness left, wall mass turned into particles,
     run seconds) of one campaign run of the quarter model: the masses are the whole shield's
@@ -954,24 +979,10 @@ def whipple_refined(binary, work, opts):
     and the wall's thickness left beside the measured verdict and the equation's."""
     from tools.post import whipple_scores as ws
     table_path = os.path.join(VALIDATION, "whipple-shots.csv")
-    if not os.path.isfile(table_path):
-        raise SystemExit(f"tables.py: error: {table_path}: no such file (the shared Whipple shots)")
+    runs = {name: whipple_campaign(binary, table_path, os.path.join(work, "whipple-refined-" + name),
+                                   WHIPPLE_REFINED_ROWS, sets)
+            for name, _, sets in WHIPPLE_REFINED}  # folder → {row: (prediction row, summary)}
     table = ws.read_table(table_path)
-    runs = {}  # folder → {row: (prediction row, summary)}
-    for name, _, sets in WHIPPLE_REFINED:
-        out = os.path.join(work, "whipple-refined-" + name)
-        cmd = [binary, "campaign", os.path.join(ROOT, "data/cases/whipple.yaml"), table_path,
-               "--quiet", "--out", out, "--rows", WHIPPLE_REFINED_ROWS]
-        for x in sets:
-            cmd += ["--set", x]
-        r = subprocess.run(cmd, capture_output=True, text=True)
-        if r.returncode != 0:
-            raise SystemExit(f"tables.py: error: {' '.join(cmd)}: exit {r.returncode}\n{r.stderr}")
-        runs[name] = {}
-        with open(os.path.join(out, "predictions.csv")) as f:
-            for x in csv.DictReader(f):
-                with open(os.path.join(out, "runs", x["folder"], "summary.json")) as g:
-                    runs[name][int(x["row"])] = (x, json.load(g))
     yield from WHIPPLE_REFINED_HEADER
     rows = sorted(runs["shipped"], key=lambda n: (table[n - 1]["result"], float(
         table[n - 1]["wall_thick"]), -float(table[n - 1]["velocity"])))
@@ -991,6 +1002,68 @@ def whipple_refined(binary, work, opts):
     yield (f"Right: the equation {right['equation']} of {total}, the shipped mesh "
            f"{right['shipped']}, the finer wall {right['wall6']}; the verdict changes with the "
            f"wall's refinement on {changed} of {total}.")
+
+
+# The settings a hypervelocity user has to choose, each changed alone on the same sixteen shots at
+# the shipped mesh (the mesh itself: whipple-refined).
+WHIPPLE_DEFAULTS = [  # (folder, label, --set)
+    ("shipped", "as shipped: average nodal pressure on, erosion at 10 % of the first step, "
+                "sphere 8 cells across", []),
+    ("anp-off", "average nodal pressure off", ["solver.average_nodal_pressure=false"]),
+    ("erosion-0.2", "erosion at 20 % of the first step", ["fracture.erosion_step_ratio=0.2"]),
+    ("erosion-0.05", "erosion at 5 % of the first step", ["fracture.erosion_step_ratio=0.05"]),
+    ("sphere12", "sphere 12 cells across", ["parameters.np=12"]),
+    ("wall-ductile-only", "ductile failure in the wall only (the sphere and the bumper fail by "
+                          "spall and erosion)",
+     ["materials.projectile.ductile_failure=false", "materials.bumper.ductile_failure=false"]),
+]
+WHIPPLE_DEFAULTS_HEADER = [
+    "| setting | right (of the shots) | verdicts unlike the shipped | thickness left, mean: "
+    "P shots, NP shots | wall mass to particles, all shots | the wall's momentum along the "
+    "shot, all shots | run time: sum (largest) |",
+    "|---|---|---|---|---|---|---|"]
+
+
+def wall_momentum(s):
+    """The whole rear wall's momentum along the shot (−z) at the end of a run, kg m/s."""
+    wall = next(b for b in get(s, K.BODIES) if b["name"] == "wall")
+    return -get(s, K.MESH_MULTIPLICITY) * wall["mass"] * wall["velocity"][2]
+
+
+def whipple_defaults_row(label, shots):
+    """One setting's row: `shots` a list of (measured verdict, the shipped run's verdict, this
+    run's whipple_refined_cells, its wall_momentum)."""
+    right = sum(cells[0] == measured for measured, _, cells, _ in shots)
+    unlike = sum(cells[0] != shipped for _, shipped, cells, _ in shots)
+
+    def mean_left(verdict):
+        left = [cells[2] for measured, _, cells, _ in shots if measured == verdict]
+        return f"{statistics.mean(left):.2f}" if left else "–"
+    eroded = sum(cells[3] for _, _, cells, _ in shots)
+    momentum = sum(p for _, _, _, p in shots)
+    seconds = [cells[4] for _, _, cells, _ in shots]
+    return (f"| {label} | {right} of {len(shots)} | {unlike} | {mean_left('P')}, "
+            f"{mean_left('NP')} | {eroded * 1e6:.1f} mg | {momentum:.2f} kg m/s | "
+            f"{sum(seconds) / 60:.1f} min ({max(seconds):.0f} s) |")
+
+
+def whipple_defaults(binary, work, opts):
+    """The shots of WHIPPLE_REFINED_ROWS as shipped and with each setting of WHIPPLE_DEFAULTS
+    changed alone: per setting the verdicts right, those unlike the shipped, the wall's
+    thickness left on the measured P and NP shots, and the cost."""
+    from tools.post import whipple_scores as ws
+    table_path = os.path.join(VALIDATION, "whipple-shots.csv")
+    runs = {}  # folder → {row: (whipple_refined_cells, wall_momentum)}
+    for name, _, sets in WHIPPLE_DEFAULTS:
+        out = os.path.join(work, "whipple-defaults-" + name)
+        runs[name] = {n: (whipple_refined_cells(x, s), wall_momentum(s)) for n, (x, s) in
+                      whipple_campaign(binary, table_path, out, WHIPPLE_REFINED_ROWS, sets).items()}
+    table = ws.read_table(table_path)
+    yield from WHIPPLE_DEFAULTS_HEADER
+    shipped = runs["shipped"]
+    for name, label, _ in WHIPPLE_DEFAULTS:
+        yield whipple_defaults_row(label, [(table[n - 1]["result"], shipped[n][0][0],
+                                            *runs[name][n]) for n in sorted(shipped)])
 
 
 # whipple, whipple-mesh, whipple-hole -------------------------------------------------------------
@@ -1099,7 +1172,8 @@ TABLES = {"stability": stability, "micro": micro, "profile": profile, "ccd": ccd
           "verify-full": verify_full, "threads": threads, "mpi": mpi, "whipple": whipple,
           "whipple-mesh": whipple_mesh, "whipple-hole": whipple_hole, "strength": strength,
           "taylor-tests": taylor_tests, "whipple-shots": whipple_shots,
-          "whipple-refined": whipple_refined, "hugoniot": hugoniot}
+          "whipple-refined": whipple_refined, "whipple-defaults": whipple_defaults,
+          "hugoniot": hugoniot}
 assert list(TABLES) == NAMES
 
 
