@@ -203,7 +203,8 @@ CLI::App* add_limit(CLI::App& app, tc::LimitOptions& l) {
   cmd->add_flag("--quiet", l.quiet, "no progress lines");
   cmd->footer(
       "Each run is `tetcontact run` into DIR/runs/<KEY2=w>/<KEY=x>_<hash>/ (summary.json,\n"
-      "run.log, run.key: the case file, every override, the library); a finished run of the same "
+      "run.log, run.key: the program's build, the case file, every override, the library); a "
+      "finished run of the same "
       "inputs\n"
       "is read, not run again, so an interrupted search resumes. Writes DIR/limit.csv: per bracket "
       "the key, its ends, the criterion at each,\n"
@@ -234,7 +235,8 @@ CLI::App* add_campaign(CLI::App& app, tc::CampaignOptions& c) {
                 "check the case, the table and the case every row makes; run nothing");
   cmd->footer(
       "Each row is `tetcontact run` into DIR/runs/row-<N>_<hash>/ (summary.json, run.log,\n"
-      "run.key: the case file, every override, the library); a finished run of the same inputs is "
+      "run.key: the program's build, the case file, every override, the library); a finished run "
+      "of the same inputs is "
       "read,\n"
       "not run again, so an interrupted campaign resumes and another --set runs anew. Writes\n"
       "DIR/predictions.csv (per row: inputs, predicted, measured, error, status),\n"

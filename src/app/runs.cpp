@@ -12,6 +12,7 @@
 #include <map>
 #include <sstream>
 #include <stdexcept>
+#include <vector>
 
 #include "tetcontact/io/case.hpp"
 #include "tetcontact/io/files.hpp"
@@ -20,9 +21,42 @@ namespace tc {
 
 namespace fs = std::filesystem;
 
+namespace {
+
+// 64-bit FNV-1a, as 16 hex digits.
+struct Fnv1a {
+  std::uint64_t h = 14695981039346656037ull;
+  void add(const char* p, std::size_t n) {
+    for (std::size_t i = 0; i < n; ++i)
+      h = (h ^ static_cast<unsigned char>(p[i])) * 1099511628211ull;
+  }
+  std::string hex() const {
+    char out[17];
+    std::snprintf(out, sizeof out, "%016llx", static_cast<unsigned long long>(h));
+    return out;
+  }
+};
+
+}  // namespace
+
+std::string program_identity() {
+  static const std::string id = [] {
+    const std::string exe = self_exe();
+    std::ifstream in(exe, std::ios::binary);
+    if (!in) throw std::runtime_error(exe + ": cannot read this program to key its runs");
+    Fnv1a f;
+    std::vector<char> buf(1 << 16);
+    while (in.read(buf.data(), static_cast<std::streamsize>(buf.size())) || in.gcount() > 0)
+      f.add(buf.data(), static_cast<std::size_t>(in.gcount()));
+    return f.hex();
+  }();
+  return id;
+}
+
 std::string run_key(const std::string& case_path, const std::vector<std::string>& overrides,
                     const std::string& library) {
   std::ostringstream key;
+  key << "program " << program_identity() << "\n";
   key << "case " << fs::absolute(case_path).lexically_normal().string() << "\n";
   for (const std::string& o : overrides) key << "set " << o << "\n";
   key << "text\n" << canonical_case_text(case_path) << "\n";
@@ -31,11 +65,9 @@ std::string run_key(const std::string& case_path, const std::vector<std::string>
 }
 
 std::string run_folder_name(const std::string& label, const std::string& key) {
-  std::uint64_t h = 14695981039346656037ull;  // FNV-1a, 64 bits
-  for (const unsigned char c : key) h = (h ^ c) * 1099511628211ull;
-  char hex[17];
-  std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(h));
-  return label + "_" + std::string(hex, 12);
+  Fnv1a f;
+  f.add(key.data(), key.size());
+  return label + "_" + f.hex().substr(0, 12);
 }
 
 bool finished_run(const ChildRun& r) {

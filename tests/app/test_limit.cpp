@@ -5,6 +5,7 @@
 
 #include <chrono>
 #include <filesystem>
+#include <fstream>
 #include <sstream>
 #include <thread>
 
@@ -157,9 +158,10 @@ TEST(Limit, ResumesAfterAKill) {
   EXPECT_LT(l.reused, l.runs);
 }
 
-// A search run again into the same folder with another --set runs anew: its runs are keyed by
-// every input, so none of the 1 mm plate's runs stands for the 2 mm plate's (the bracket is the
-// 2 mm plate's, higher), and the first search's runs stay as they were.
+// A search run again into the same folder with another --set, or by another build of the program,
+// runs anew: its runs are keyed by every input, so none of the 1 mm plate's runs stands for the
+// 2 mm plate's (the bracket is the 2 mm plate's, higher), and the first search's runs stay as
+// they were.
 TEST(Limit, AnotherOverrideIsNeverReused) {
   test::TempDir dir("limit-reuse");
   test::write_text(dir / "plate.yaml", test::k_plate);
@@ -171,6 +173,19 @@ TEST(Limit, AnotherOverrideIsNeverReused) {
   const auto again = test::run_cli(cmd, dir.str());  // the same inputs: every run read back
   ASSERT_EQ(again.code, 0) << again.err;
   EXPECT_EQ(read_limit(dir / "out/limit.csv", false).at(0).reused, thin.runs);
+  // Another build of the program (here the same one with a byte appended, which the loader
+  // ignores) is another input: it runs every point anew, beside the first build's runs.
+  const std::string other = dir / "other-build";
+  fs::copy_file(TETCONTACT_BINARY, other);
+  std::ofstream(other, std::ios::app | std::ios::binary) << '\n';
+  fs::permissions(other, fs::perms::owner_exec, fs::perm_options::add);
+  const std::string other_cmd = "TETCONTACT_DATA='" + test::source_path("data") + "' '" + other +
+                                "' " + cmd + " >'" + dir / "other.log" + "' 2>&1";
+  ASSERT_EQ(std::system(other_cmd.c_str()), 0) << test::read_text(dir / "other.log");
+  const Line rebuilt = read_limit(dir / "out/limit.csv", false).at(0);
+  EXPECT_EQ(rebuilt.reused, 0);
+  EXPECT_EQ(rebuilt.lo, thin.lo);  // the same code: the same bracket
+  EXPECT_EQ(rebuilt.hi, thin.hi);
   const auto thick = test::run_cli(cmd + " --set parameters.tb=2.0e-3", dir.str());
   ASSERT_EQ(thick.code, 0) << thick.err;
   const Line l = read_limit(dir / "out/limit.csv", false).at(0);

@@ -1,7 +1,8 @@
 // Runs of a case in child processes of this program, each in its own folder keyed by its complete
 // inputs: what `limit` and `campaign` run. A run is deterministic, so a finished run whose key is
 // the key of a wanted one is read back instead of run again (an interrupted search or campaign
-// resumes), and a run with any other input — another override, an edited case — never is.
+// resumes), and a run with any other input — another override, an edited case, another build of
+// the program — never is.
 #pragma once
 
 #include <functional>
@@ -10,10 +11,15 @@
 
 namespace tc {
 
-/// The complete inputs of a run, as text: the case file (its absolute path and its content,
-/// keys and values without comments: canonical_case_text), every override in the order given (a
-/// later one wins, so the order is part of the key) and the material library the case reads
-/// (`library`, Case::material_library; "" when it reads none), likewise.
+/// This program's build: 16 hex digits of the 64-bit FNV-1a hash of its executable's bytes (read
+/// once). Another build may compute other numbers, so it is part of every run's key.
+std::string program_identity();
+
+/// The complete inputs of a run, as text: the program (program_identity), the case file (its
+/// absolute path and its content, keys and values without comments: canonical_case_text), every
+/// override in the order given (a later one wins, so the order is part of the key) and the
+/// material library the case reads (`library`, Case::material_library; "" when it reads none),
+/// likewise. Mesh files the case names are not in it.
 std::string run_key(const std::string& case_path, const std::vector<std::string>& overrides,
                     const std::string& library);
 
