@@ -41,9 +41,9 @@ struct Fnv1a {
 
 std::string program_identity() {
   static const std::string id = [] {
-    const std::string exe = self_exe();
-    std::ifstream in(exe, std::ios::binary);
-    if (!in) throw std::runtime_error(exe + ": cannot read this program to key its runs");
+    // The running image itself (the path's file may have been rebuilt since it started).
+    std::ifstream in("/proc/self/exe", std::ios::binary);
+    if (!in) throw std::runtime_error("/proc/self/exe: cannot read this program to key its runs");
     Fnv1a f;
     std::vector<char> buf(1 << 16);
     while (in.read(buf.data(), static_cast<std::streamsize>(buf.size())) || in.gcount() > 0)
@@ -114,7 +114,9 @@ int run_program(const std::vector<std::string>& argv, const std::string& log) {
 
 void run_children(const std::vector<ChildRun*>& todo, int jobs,
                   const std::function<void(ChildRun&)>& on_done) {
-  const std::string exe = self_exe();
+  // The children run this very image (a forked child's /proc/self/exe is its parent's), not
+  // whatever file now lies at its path, so that their runs are of the build in their key.
+  const std::string exe = "/proc/self/exe";
   std::map<pid_t, ChildRun*> running;
   std::size_t next = 0;
   while (next < todo.size() || !running.empty()) {
@@ -142,13 +144,6 @@ void run_children(const std::vector<ChildRun*>& todo, int jobs,
 
 void prepare_runs_folder(const std::string& dir) {
   if (!fs::exists(dir + "/runs")) prepare_output_dir(dir, false);
-}
-
-std::string self_exe() {
-  std::vector<char> buf(4096);
-  const ssize_t n = readlink("/proc/self/exe", buf.data(), buf.size() - 1);
-  if (n <= 0) throw std::runtime_error("cannot find this program's path (/proc/self/exe)");
-  return std::string(buf.data(), static_cast<std::size_t>(n));
 }
 
 }  // namespace tc

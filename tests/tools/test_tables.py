@@ -332,7 +332,7 @@ def test_whipple_defaults_row():
 
 def test_whipple_limit_helpers(tmp_path):
     key = tmp_path / "run.key"
-    key.write_text("case /x/whipple.yaml\nset parameters.d=0.003175\nset parameters.v=6900\n"
+    key.write_text("program 0123456789abcdef\ncase /x/whipple.yaml\nset parameters.d=0.003175\nset parameters.v=6900\n"
                    "set parameters.tw=0.00254\nset materials.wall.from=al6061-t6\ntext\nname: w\n"
                    "set up: a case's text line that is not an override\n")
     assert T.limit_search_sets(str(key)) == ["parameters.tw=0.00254", "materials.wall.from=al6061-t6"]

@@ -25,9 +25,10 @@ struct LimitOptions {
 };
 
 /// Runs DIR/runs/<KEY2=w>/<KEY=x>_<hash>/ (each a `tetcontact run`, its summary.json kept; the
-/// folder's name and its run.key hold the run's complete inputs — the case file and every
-/// override —, and a finished run of the same inputs is read back, not run again: an interrupted
-/// search resumes, and a search with another --set runs anew beside it) and writes
+/// folder's name and its run.key hold the run's complete inputs — the program's build, the case
+/// file, every override and the library: run_key —, and a finished run of the same inputs is read
+/// back, not run again: an interrupted search resumes, and a search with another --set or by
+/// another build runs anew beside it) and writes
 /// DIR/limit.csv, a line per bracket. Exit codes: 0 every bracket found, 1 one was not (both
 /// ends alike, or a run failed: its line says which), 2 bad input (nothing run).
 int limit_command(const LimitOptions& options);

@@ -40,6 +40,8 @@ bool finished_run(const ChildRun& r);
 
 /// Runs `todo`, `jobs` at a time, each `this program ARGS` in its folder (created, run.key written
 /// first, the run's output to run.log); `on_done` is called as each ends, in the order they end.
+/// The children execute this process's own image (/proc/self/exe), so a program rebuilt at its
+/// path meanwhile does not run under the key of the build that started them.
 void run_children(const std::vector<ChildRun*>& todo, int jobs,
                   const std::function<void(ChildRun&)>& on_done = {});
 
@@ -50,8 +52,5 @@ int run_program(const std::vector<std::string>& argv, const std::string& log);
 /// Makes DIR ready for a search's or campaign's runs: a folder that holds earlier runs (DIR/runs)
 /// is kept as it is, to be resumed; any other non-empty folder is refused (OutputError).
 void prepare_runs_folder(const std::string& dir);
-
-/// This program's path (/proc/self/exe).
-std::string self_exe();
 
 }  // namespace tc
