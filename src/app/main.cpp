@@ -203,11 +203,9 @@ CLI::App* add_limit(CLI::App& app, tc::LimitOptions& l) {
   cmd->add_flag("--quiet", l.quiet, "no progress lines");
   cmd->footer(
       "Each run is `tetcontact run` into DIR/runs/<KEY2=w>/<KEY=x>_<hash>/ (summary.json,\n"
-      "run.log, run.key: the program's build, the case file, every override, the library); a "
-      "finished run of the same "
-      "inputs\n"
-      "is read, not run again, so an interrupted search resumes. Writes DIR/limit.csv: per bracket "
-      "the key, its ends, the criterion at each,\n"
+      "run.log, run.key: the program's build, the case file, every override, the library);\n"
+      "a finished run of the same inputs is read, not run again, so an interrupted search\n"
+      "resumes. Writes DIR/limit.csv: per bracket the key, its ends, the criterion at each,\n"
       "runs, reused runs, wall_seconds (the search's elapsed time), run_seconds (the runs'\n"
       "own times added up; they run side by side) and status. Each run.log holds that run's\n"
       "table, notes and warnings.\n"
@@ -235,10 +233,9 @@ CLI::App* add_campaign(CLI::App& app, tc::CampaignOptions& c) {
                 "check the case, the table and the case every row makes; run nothing");
   cmd->footer(
       "Each row is `tetcontact run` into DIR/runs/row-<N>_<hash>/ (summary.json, run.log,\n"
-      "run.key: the program's build, the case file, every override, the library); a finished run "
-      "of the same inputs is "
-      "read,\n"
-      "not run again, so an interrupted campaign resumes and another --set runs anew. Writes\n"
+      "run.key: the program's build, the case file, every override, the library); a finished\n"
+      "run of the same inputs is read, not run again, so an interrupted campaign resumes, and\n"
+      "another --set or another build runs anew. Writes\n"
       "DIR/predictions.csv (per row: inputs, predicted, measured, error, status),\n"
       "DIR/statistics.json (error percentiles, or confusion table and accuracy, per group) and\n"
       "DIR/campaign.png (tools/post/plot_campaign.py). Exit codes: 0, 1 a run failed (its line\n"
