@@ -351,6 +351,8 @@ Json fracture_json(const RunSummary& s) {
   fr["conversion_mass_error"] = l.mass_error;
   fr["particle_contacts"] = p.particle_contacts;
   fr["eroded"] = l.eroded;  // a safeguard: cells whose step fell below the erosion limit
+  fr["cells_joined_to_clusters"] = l.joined;  // fracture.fragments: clusters
+  fr["cohesion_loss"] = l.cohesion_loss;      // J, kept as the clusters' internal energy
   fr["ductile_failed"] = or_null(p.ductile_failed);
   fr["particles_moved_out"] = p.particles_moved_out;  // a safeguard
   fr["particle_move_max"] = p.particle_move_max;

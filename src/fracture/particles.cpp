@@ -7,10 +7,12 @@
 
 namespace tc {
 
-Fragmentation::Fragmentation(const Mesh& mesh)
+Fragmentation::Fragmentation(const Mesh& mesh, Fragments fragments)
     : neighbours_(tet_neighbours(mesh)),
       lengths_(body_edge_lengths(mesh)),
-      removed_(mesh.tets.size(), 0) {
+      removed_(mesh.tets.size(), 0),
+      fragments_(fragments),
+      particle_of_(mesh.tets.size(), -1) {
   cells_at_node_.assign(mesh.x.size(), 0);
   for (const Tet& k : mesh.tets)
     for (Index n : k) ++cells_at_node_[n];
@@ -37,6 +39,51 @@ Index add_particle(State& st, const Vec3& x, const Vec3& v, double m, double rad
   st.particle_energy.push_back(energy);
   st.particle_tet.push_back(tet);
   return static_cast<Index>(st.x.size() - 1);
+}
+
+// The particle a converted cell (its centre c, velocity Ū, inscribed radius r) joins, or −1: of
+// the particles holding a face neighbour of the same material, those that cohere with it,
+//   |V − Ū| < v_c = 2 σ* / (ρ0 c0)  and  |x_P − c| ≤ 2 (R + r),
+// the one of the least relative speed (then the lowest node).
+Index Fragmentation::cohering(Index t, const State& st, const std::vector<Material>& materials,
+                              const Vec3& centre, const Vec3& u, double radius) const {
+  const Index material = st.tet_material[t];
+  const Material& mat = materials[material];
+  if (!(mat.spall_strength > 0.0)) return -1;  // nothing holds its pieces together
+  const double v_c = 2.0 * mat.spall_strength / (mat.density * mat.bulk_sound_speed());
+  Index best = -1;
+  double best_speed = v_c;
+  for (Index other : neighbours_[t]) {
+    if (other < 0 || particle_of_[other] < 0 || st.tet_material[other] != material) continue;
+    const Index p = particle_of_[other];
+    const double speed = (st.v[p] - u).norm();
+    const double reach = 2.0 * (st.particle_radius[p - st.first_particle] + radius);
+    if ((st.x[p] - centre).norm() > reach) continue;
+    if (speed < best_speed || (speed == best_speed && best >= 0 && p < best))
+      best = p, best_speed = speed;
+  }
+  return best;
+}
+
+// A perfectly inelastic join of the cell (mass m, centre c, velocity Ū, energy e, inscribed
+// radius r) to particle P: mass M + m, momentum M V + m Ū, centre of mass, energy
+// E_P + e + ½ M m/(M+m) |V − Ū|², radius (R³ + r³)^(1/3).
+void Fragmentation::join(State& st, Index p, const Vec3& centre, const Vec3& u, double m,
+                         double radius, double energy) {
+  const Index i = p - st.first_particle;
+  const double big = st.m[p], sum = big + m;
+  const Vec3 x = (big * st.x[p] + m * centre) / sum;
+  const Vec3 v = (big * st.v[p] + m * u) / sum;
+  const double loss = 0.5 * big * m / sum * (st.v[p] - u).squaredNorm();
+  st.x_star[p] += x - st.x[p];
+  st.x[p] = x;
+  st.v_star[p] += v - st.v[p];
+  st.v[p] = v;
+  st.m[p] = sum;
+  const double r = st.particle_radius[i];
+  st.particle_radius[i] = std::cbrt(r * r * r + radius * radius * radius);
+  st.particle_energy[i] += energy + loss;
+  ledger_.cohesion_loss += loss;
 }
 
 long Fragmentation::convert(const Mesh& mesh, const std::vector<Material>& materials, State& st) {
@@ -88,6 +135,12 @@ long Fragmentation::convert(const Mesh& mesh, const std::vector<Material>& mater
     const double volume = tet_signed_volume(x0, x1, x2, x3);
     centre /= area_sum;
 
+    const double radius = 3.0 * std::abs(volume) / area_sum;
+    const double energy = st.e_int[t] + kinetic_before - kinetic_after;
+    const Index cluster = fragments_ == Fragments::clusters
+                              ? cohering(t, st, materials, centre, u, radius)
+                              : Index{-1};
+
     for (Index n : k) {
       st.m[n] -= quarter;
       if (--cells_at_node_[n] == 0) {  // no cell left: nothing to carry
@@ -97,11 +150,16 @@ long Fragmentation::convert(const Mesh& mesh, const std::vector<Material>& mater
       }
       mass_after += st.m[n];
     }
-    add_particle(st, centre, u, m, 3.0 * std::abs(volume) / area_sum,
-                 st.e_int[t] + kinetic_before - kinetic_after, t);
+    ConversionLedger& l = ledger_;
+    if (cluster >= 0) {
+      join(st, cluster, centre, u, m, radius, energy);
+      particle_of_[t] = cluster;
+      ++l.joined;
+    } else {
+      particle_of_[t] = add_particle(st, centre, u, m, radius, energy, t);
+    }
     mass_after += m;
 
-    ConversionLedger& l = ledger_;
     ++l.particles;
     l.mass += m;
     l.internal += st.e_int[t];

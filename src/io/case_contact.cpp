@@ -89,7 +89,7 @@ void read_fracture(const Reader& r, const YAML::Node& root, Case& c) {
   // Fracture (Dobritsa et al.): spall damage and loosening, and destroyed boundary cells turned
   // into particles (on unless `particles: false`: then they stay in the mesh without stress).
   if (const YAML::Node s = root["fracture"]) {
-    r.keys(s, "fracture", {"enabled", "particles", "erosion_step_ratio"});
+    r.keys(s, "fracture", {"enabled", "particles", "erosion_step_ratio", "fragments"});
     c.fracture = s["enabled"] ? r.boolean(s["enabled"], "fracture.enabled") : true;
     c.particles = s["particles"] ? r.boolean(s["particles"], "fracture.particles") : true;
     if (const YAML::Node e = s["erosion_step_ratio"]) {
@@ -100,6 +100,15 @@ void read_fracture(const Reader& r, const YAML::Node& root, Case& c) {
         r.fail(e, "fracture.erosion_step_ratio",
                "erosion turns cells into particles: needs "
                "fracture.particles true");
+    }
+    // What a converted cell becomes: its own particle, or part of a cohering neighbour's.
+    if (const YAML::Node f = s["fragments"]) {
+      const std::string v = r.string(f, "fracture.fragments");
+      if (v != "cells" && v != "clusters")
+        r.fail(f, "fracture.fragments", "must be cells or clusters, not '" + v + "'");
+      c.fragment_clusters = v == "clusters";
+      if (c.fragment_clusters && s["particles"] && !c.particles)
+        r.fail(f, "fracture.fragments", "clusters are of particles: needs fracture.particles true");
     }
   }
 }

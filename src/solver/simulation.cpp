@@ -106,9 +106,11 @@ Simulation::Simulation(Model model, SolverSettings settings)
     modules_.push_back("elements:bulk_viscosity");
   if (model_.element.fracture) modules_.push_back("elements:fracture");
   if (model_.element.fracture && model_.particles) {
-    fragmentation_ = std::make_unique<Fragmentation>(model_.mesh);
+    fragmentation_ = std::make_unique<Fragmentation>(
+        model_.mesh, model_.fragment_clusters ? Fragments::clusters : Fragments::cells);
     particle_contact_ = std::make_unique<ParticleContact>();
     modules_.push_back("fracture:particles");
+    if (model_.fragment_clusters) modules_.push_back("fracture:clusters");
     modules_.push_back("response:particles");
   }
   if (!model_.mesh.symmetry.empty()) modules_.push_back("symmetry");

@@ -1,5 +1,6 @@
 // Destroyed boundary cells turned into particles: the conversion's conservation and the surfaces
-// it exposes (against surfaces built from scratch without those cells). Particle contact:
+// it exposes (against surfaces built from scratch without those cells), and cells that cohere
+// joined into one particle (fracture.fragments: clusters). Particle contact:
 // tests/narrowphase/test_particle_contact.cpp.
 #include <gtest/gtest.h>
 
@@ -174,4 +175,127 @@ TEST(Fragmentation, ErodedInteriorCellLeavesAVoidInTheSurfaces) {
   EXPECT_EQ(got[0].faces.size(), model.surfaces[0].faces.size() + 4);  // the void's four faces
   EXPECT_NEAR(totals(st).mass, before.mass, 1e-14 * before.mass);
   EXPECT_EQ(frag.convert(model.mesh, model.materials, st), 0);  // nothing more to do
+}
+
+namespace {
+
+// Two tets sharing the face (1, 2, 3), both destroyed; node 4 (the second's apex) moves at w
+// along x, so the cells' mean velocities differ by w / 4.
+struct TwoCells {
+  Model model;
+  State st;
+  TwoCells(double w, double spall_strength) {
+    TetMesh two;
+    two.x = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(0, 0, 1), Vec3(1, 1, 1)};
+    two.tets = {{0, 1, 2, 3}, {1, 2, 3, 4}};
+    Material m = test::aluminium();
+    m.spall_strength = spall_strength;
+    model = test::single_body_model(two, m);
+    st = initial_state(model);
+    st.v[4] = Vec3(w, 0, 0);
+    st.e_int = {1.0, 2.0};
+    st.damage[0] = st.damage[1] = Damage::destroyed;
+  }
+};
+
+}  // namespace
+
+TEST(Fragmentation, CoheringCellsJoinOneParticleAsAnInelasticCollision) {
+  const Material al = test::aluminium();
+  const double spall = 1.2e9;
+  const double v_c = 2.0 * spall / (al.density * al.bulk_sound_speed());  // 2σ*/(ρ0 c0)
+  ASSERT_GT(v_c, 50.0);
+  ASSERT_LT(v_c, 500.0);
+
+  // Below the cohesion speed: one particle, of both cells.
+  {
+    TwoCells c(4.0 * 0.5 * v_c, spall);
+    const Totals before = totals(c.st);
+    Fragmentation frag(c.model.mesh, Fragments::clusters);
+    ASSERT_EQ(frag.convert(c.model.mesh, c.model.materials, c.st), 2);
+    ASSERT_EQ(c.st.particle_count(), 1);
+    const Index p = c.st.first_particle;
+    EXPECT_EQ(frag.particle_of(0), p);
+    EXPECT_EQ(frag.particle_of(1), p);
+    EXPECT_EQ(frag.ledger().particles, 2);
+    EXPECT_EQ(frag.ledger().joined, 1);
+    const double m0 = al.density * c.st.vol0[0], m1 = al.density * c.st.vol0[1];
+    EXPECT_NEAR(c.st.m[p], m0 + m1, 1e-15 * (m0 + m1));
+    // Momentum m1 · w/4 along x; the loss ½ m0 m1/(m0+m1) (w/4)².
+    EXPECT_NEAR(c.st.v[p].x(), m1 * 0.5 * v_c / (m0 + m1), 1e-12 * v_c);
+    EXPECT_NEAR(frag.ledger().cohesion_loss, 0.5 * m0 * m1 / (m0 + m1) * std::pow(0.5 * v_c, 2),
+                1e-12 * frag.ledger().cohesion_loss);
+    // The centre of mass of the two inscribed spheres' centres, the volume of both spheres.
+    Fragmentation alone(c.model.mesh);
+    TwoCells d(4.0 * 0.5 * v_c, 0.0);  // the same cells, each its own particle
+    ASSERT_EQ(alone.convert(d.model.mesh, d.model.materials, d.st), 2);
+    const Index q = d.st.first_particle;
+    const Vec3 com = (m0 * d.st.x[q] + m1 * d.st.x[q + 1]) / (m0 + m1);
+    EXPECT_NEAR((c.st.x[p] - com).norm(), 0.0, 1e-15);
+    EXPECT_NEAR(std::pow(c.st.particle_radius[0], 3),
+                std::pow(d.st.particle_radius[0], 3) + std::pow(d.st.particle_radius[1], 3), 1e-15);
+    const Totals after = totals(c.st);
+    EXPECT_NEAR(after.mass, before.mass, 1e-15 * before.mass);
+    EXPECT_NEAR((after.momentum - before.momentum).norm(), 0.0, 1e-15 * before.momentum.norm());
+    EXPECT_NEAR(after.energy, before.energy, 1e-14 * before.energy);
+  }
+  // Above it, or in a material that does not spall: a particle per cell.
+  for (const auto& [w, strength] : {std::pair{4.0 * 2.0 * v_c, spall}, std::pair{0.0, 0.0}}) {
+    TwoCells c(w, strength);
+    const Totals before = totals(c.st);
+    Fragmentation frag(c.model.mesh, Fragments::clusters);
+    ASSERT_EQ(frag.convert(c.model.mesh, c.model.materials, c.st), 2);
+    EXPECT_EQ(c.st.particle_count(), 2);
+    EXPECT_EQ(frag.ledger().joined, 0);
+    EXPECT_EQ(frag.ledger().cohesion_loss, 0.0);
+    EXPECT_NEAR(totals(c.st).energy, before.energy, 1e-14 * before.energy);
+  }
+}
+
+TEST(Fragmentation, ClustersHoldTheirCellsMassAndConserveAWholeBodysBreakUp) {
+  // Every cell of a box destroyed, the nodes' velocities spread about a common drift by less
+  // and by more than the cohesion speed: each particle is the mass of the cells it holds, they
+  // are face-connected, and mass, momentum and energy are those of the cells.
+  for (const double spread : {0.1, 10.0}) {
+    Material m = test::aluminium();
+    m.spall_strength = 1.2e9;
+    const double v_c = 2.0 * m.spall_strength / (m.density * m.bulk_sound_speed());
+    Model model = test::single_body_model(make_box(Vec3(1, 1, 1), {3, 3, 3}, HexSplit::six), m);
+    State st = initial_state(model);
+    for (std::size_t i = 0; i < st.x.size(); ++i)
+      st.v[i] = Vec3(1000.0, 0, 0) + spread * v_c * Vec3(std::sin(3.0 * i), std::cos(5.0 * i), 0.0);
+    for (Damage& d : st.damage) d = Damage::destroyed;
+    const Totals before = totals(st);
+    Fragmentation frag(model.mesh, Fragments::clusters);
+    while (frag.convert(model.mesh, model.materials, st) > 0) {
+    }
+    const Index cells = model.mesh.tet_count();
+    EXPECT_EQ(frag.ledger().particles, cells);
+    EXPECT_EQ(st.particle_count() + frag.ledger().joined, cells);
+    if (spread < 1.0) {
+      EXPECT_LT(st.particle_count(), cells / 4);  // they cohere
+    } else {
+      EXPECT_GT(st.particle_count(), cells / 2);  // most part
+    }
+
+    // Brute force: each particle's members, their mass and their connection through faces.
+    const TetNeighbours nb = tet_neighbours(model.mesh);
+    std::vector<double> held(st.particle_count(), 0.0);
+    for (Index t = 0; t < cells; ++t) {
+      const Index p = frag.particle_of(t);
+      ASSERT_GE(p, st.first_particle);
+      held[p - st.first_particle] += m.density * st.vol0[t];
+      if (st.particle_tet[p - st.first_particle] != t) {  // joined: a neighbour is in it too
+        bool touches = false;
+        for (Index o : nb[t]) touches = touches || (o >= 0 && frag.particle_of(o) == p);
+        EXPECT_TRUE(touches) << "cell " << t;
+      }
+    }
+    for (Index i = 0; i < st.particle_count(); ++i)
+      EXPECT_NEAR(st.m[st.first_particle + i], held[i], 1e-14 * held[i]);
+    const Totals after = totals(st);
+    EXPECT_NEAR(after.mass, before.mass, 1e-14 * before.mass);
+    EXPECT_NEAR((after.momentum - before.momentum).norm(), 0.0, 1e-14 * before.momentum.norm());
+    EXPECT_NEAR(after.energy, before.energy, 1e-13 * before.energy);
+  }
 }

@@ -636,6 +636,23 @@ TEST(Case, ErosionRatioOutOfRangeOrWithoutParticlesIsRefused) {
   }
 }
 
+// fracture.fragments: each cell its own particle by default, clusters on request, and nothing
+// else.
+TEST(Case, FragmentsAreCellsOrClusters) {
+  const std::string file = test::source_path("data/cases/ball-plate.yaml");
+  EXPECT_FALSE(load_case(file).fragment_clusters);
+  EXPECT_TRUE(load_case(file, {"fracture.fragments=clusters"}).fragment_clusters);
+  EXPECT_FALSE(load_case(file, {"fracture.fragments=cells"}).fragment_clusters);
+  try {
+    load_case(file, {"fracture.fragments=cubes"});
+    ADD_FAILURE() << "fracture.fragments=cubes was accepted";
+  } catch (const CaseError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("fracture.fragments"), std::string::npos) << what;
+    EXPECT_NE(what.find("cells or clusters"), std::string::npos) << what;
+  }
+}
+
 // end_when_released: off at 0, refused where nothing could push on a body, and refused when
 // it is not shorter than end_time.
 TEST(CaseFile, EndWhenReleasedNeedsSomethingToPushAndAShorterEnd) {

@@ -315,19 +315,22 @@ def test_whipple_refined_row():
 
 
 def test_whipple_defaults_row():
-    # (measured, the shipped verdict, this setting's cells, the wall's momentum): two P shots,
-    # one NP.
-    shots = [("P", "NP", ("P", 1e-6, 0.30, 200e-6, 40.0), 0.25),
-             ("P", "NP", ("NP", 0.0, 0.50, 100e-6, 20.0), 0.125),
-             ("NP", "NP", ("NP", 0.0, 0.90, 0.0, 60.0), 0.125)]
+    # (measured, the shipped verdict, this setting's cells, the wall's momentum, the largest
+    # fragment): two P shots, one NP.
+    shots = [("P", "NP", ("P", 1e-6, 0.30, 200e-6, 40.0), 0.25, 3e-7),
+             ("P", "NP", ("NP", 0.0, 0.50, 100e-6, 20.0), 0.125, 1e-6),
+             ("NP", "NP", ("NP", 0.0, 0.90, 0.0, 60.0), 0.125, 2e-8)]
     assert cells(T.whipple_defaults_row("erosion", shots)) == [
-        "erosion", "2 of 3", "1", "0.40, 0.90", "300.0 mg", "0.50 kg m/s", "2.0 min (60 s)"]
+        "erosion", "2 of 3", "1", "0.40, 0.90", "300.0 mg", "0.50 kg m/s", "0.30 mg",
+        "2.0 min (60 s)"]
     assert cells(T.whipple_defaults_row("no NP", shots[:2]))[3] == "0.40, –"
     # The whole wall's momentum along −z: the quarter's times four.
     s = fake_summary(bodies=[{"name": "bumper", "mass": 1.0, "velocity": [0, 0, -9.0]},
                              {"name": "wall", "mass": 0.5, "velocity": [0.1, 0.0, -2.0]}],
                      mesh={"multiplicity": 4})
     assert T.wall_momentum(s) == pytest.approx(4.0)
+    s = fake_summary(references=[{"name": "largest fragment", "measured": 2.5e-7}])
+    assert T.largest_fragment(s) == 2.5e-7
 
 
 def test_whipple_limit_helpers(tmp_path):

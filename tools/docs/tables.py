@@ -1016,12 +1016,16 @@ WHIPPLE_DEFAULTS = [  # (folder, label, --set)
     ("wall-ductile-only", "ductile failure in the wall only (the sphere and the bumper fail by "
                           "spall and erosion)",
      ["materials.projectile.ductile_failure=false", "materials.bumper.ductile_failure=false"]),
+    ("clusters", "fragments as clusters (a failed cell joins a neighbour's particle that moves "
+                 "with it)", ["fracture.fragments=clusters"]),
+    ("clusters-sphere12", "fragments as clusters, sphere 12 cells across",
+     ["fracture.fragments=clusters", "parameters.np=12"]),
 ]
 WHIPPLE_DEFAULTS_HEADER = [
     "| setting | right (of the shots) | verdicts unlike the shipped | thickness left, mean: "
     "P shots, NP shots | wall mass to particles, all shots | the wall's momentum along the "
-    "shot, all shots | run time: sum (largest) |",
-    "|---|---|---|---|---|---|---|"]
+    "shot, all shots | largest fragment, median of the shots | run time: sum (largest) |",
+    "|---|---|---|---|---|---|---|---|"]
 
 
 def wall_momentum(s):
@@ -1032,19 +1036,25 @@ def wall_momentum(s):
 
 def whipple_defaults_row(label, shots):
     """One setting's row: `shots` a list of (measured verdict, the shipped run's verdict, this
-    run's whipple_refined_cells, its wall_momentum)."""
-    right = sum(cells[0] == measured for measured, _, cells, _ in shots)
-    unlike = sum(cells[0] != shipped for _, shipped, cells, _ in shots)
+    run's whipple_refined_cells, its wall_momentum, its largest fragment in kg)."""
+    right = sum(cells[0] == measured for measured, _, cells, _, _ in shots)
+    unlike = sum(cells[0] != shipped for _, shipped, cells, _, _ in shots)
 
     def mean_left(verdict):
-        left = [cells[2] for measured, _, cells, _ in shots if measured == verdict]
+        left = [cells[2] for measured, _, cells, _, _ in shots if measured == verdict]
         return f"{statistics.mean(left):.2f}" if left else "–"
-    eroded = sum(cells[3] for _, _, cells, _ in shots)
-    momentum = sum(p for _, _, _, p in shots)
-    seconds = [cells[4] for _, _, cells, _ in shots]
+    eroded = sum(cells[3] for _, _, cells, _, _ in shots)
+    momentum = sum(p for _, _, _, p, _ in shots)
+    largest = statistics.median(f for _, _, _, _, f in shots)
+    seconds = [cells[4] for _, _, cells, _, _ in shots]
     return (f"| {label} | {right} of {len(shots)} | {unlike} | {mean_left('P')}, "
             f"{mean_left('NP')} | {eroded * 1e6:.1f} mg | {momentum:.2f} kg m/s | "
-            f"{sum(seconds) / 60:.1f} min ({max(seconds):.0f} s) |")
+            f"{largest * 1e6:.2f} mg | {sum(seconds) / 60:.1f} min ({max(seconds):.0f} s) |")
+
+
+def largest_fragment(s):
+    """The run's largest fragment through the bumper (the reference's measure), kg."""
+    return next(x[K.MEASURED] for x in get(s, K.REFERENCES) if x[K.NAME] == K.LARGEST_FRAGMENT)
 
 
 def whipple_defaults(binary, work, opts):
@@ -1053,10 +1063,11 @@ def whipple_defaults(binary, work, opts):
     thickness left on the measured P and NP shots, and the cost."""
     from tools.post import whipple_scores as ws
     table_path = os.path.join(VALIDATION, "whipple-shots.csv")
-    runs = {}  # folder → {row: (whipple_refined_cells, wall_momentum)}
+    runs = {}  # folder → {row: (whipple_refined_cells, wall_momentum, largest_fragment)}
     for name, _, sets in WHIPPLE_DEFAULTS:
         out = os.path.join(work, "whipple-defaults-" + name)
-        runs[name] = {n: (whipple_refined_cells(x, s), wall_momentum(s)) for n, (x, s) in
+        runs[name] = {n: (whipple_refined_cells(x, s), wall_momentum(s), largest_fragment(s))
+                      for n, (x, s) in
                       whipple_campaign(binary, table_path, out, WHIPPLE_REFINED_ROWS, sets).items()}
     table = ws.read_table(table_path)
     yield from WHIPPLE_DEFAULTS_HEADER

@@ -5,7 +5,8 @@
 // A particle is a free node appended to the state (State::first_particle onward) with the
 // radius of the sphere inscribed in its cell: it moves ballistically (no force acts on it),
 // and it meets the faces of every body and other particles through the one impulse kernel of
-// node–face contact.
+// node–face contact. With fragments as clusters a converted cell may instead join the particle
+// of a neighbouring cell that moves with it, so that a fragment of several cells strikes as one.
 #pragma once
 
 #include <memory>
@@ -29,6 +30,14 @@ struct ConversionLedger {
   double mass_error = 0.0;      // |Σ nodal mass before − after| / total mass, largest
   long eroded = 0;              // of the particles, cells eroded (their step fell too low, or
                                 // their plastic strain reached the material's limit)
+  long joined = 0;              // of the cells converted, those that joined a cluster
+  double cohesion_loss = 0.0;  // J: ½ M m/(M+m) |V − Ū|² of the joins, kept as particle energy
+};
+
+/// What a converted cell becomes: a particle of its own, or part of a neighbour's cluster.
+enum class Fragments {
+  cells,     // each cell its own particle (the default)
+  clusters,  // a cell joins the particle of a face neighbour that moves with it (cohesion)
 };
 
 /// Appends a particle (a free node with that radius, internal energy and cell of origin) to
@@ -39,7 +48,7 @@ Index add_particle(State& st, const Vec3& x, const Vec3& v, double m, double rad
 /// Turns destroyed boundary cells into particles and keeps the surfaces that result.
 class Fragmentation {
  public:
-  explicit Fragmentation(const Mesh& mesh);
+  explicit Fragmentation(const Mesh& mesh, Fragments fragments = Fragments::cells);
 
   /// Every destroyed cell with a face on the boundary (at the start of the call: one layer
   /// per step) becomes one particle:
@@ -49,6 +58,18 @@ class Fragmentation {
   /// placed at the centre of the cell's inscribed sphere, r = 3V / Σ A_i. A node left without
   /// cells keeps no mass and no velocity. Returns the number converted; when it is not zero
   /// the caller takes the new surfaces().
+  ///
+  /// With Fragments::clusters a cell joins, instead, the particle P (mass M, velocity V) that
+  /// holds a face neighbour of the same material when the two still cohere: their relative
+  /// speed is below the speed at which a tension of the spall strength σ* parts them,
+  ///   |V − Ū| < v_c = 2 σ* / (ρ0 c0)   (two halves parting at v_c load the plane between them
+  ///                                      to ρ0 c0 v_c / 2 = σ*),
+  /// and the cell's centre lies within 2 (R + r) of P's. The join is a perfectly inelastic
+  /// collision: mass M + m, momentum M V + m Ū, position the centre of mass, energy
+  /// E_P + e + ½ M m/(M+m) |V − Ū|², radius that of the sphere of the members' inscribed
+  /// spheres' volume, R = (Σ r_k³)^(1/3). Of several such neighbours the slowest relative one
+  /// (then the lowest node) is taken; the cells are visited in increasing index, so a run is
+  /// repeatable. A material without spall strength does not cohere.
   long convert(const Mesh& mesh, const std::vector<Material>& materials, State& st);
   /// Erosion: these cells are turned into particles at the next convert() wherever they are
   /// (an interior one leaves a void whose faces join the surfaces).
@@ -57,13 +78,22 @@ class Fragmentation {
   /// The bodies' surfaces without the converted cells: the faces they exposed are included.
   std::vector<Surface> surfaces(const Mesh& mesh) const;
   const ConversionLedger& ledger() const { return ledger_; }
+  /// The node of the particle that holds this cell, or −1 while it is a cell.
+  Index particle_of(Index tet) const { return particle_of_[tet]; }
 
  private:
+  Index cohering(Index t, const State& st, const std::vector<Material>& materials,
+                 const Vec3& centre, const Vec3& u, double radius) const;
+  void join(State& st, Index p, const Vec3& centre, const Vec3& u, double m, double radius,
+            double energy);
+
   TetNeighbours neighbours_;
   std::vector<EdgeLengths> lengths_;  // the bodies' tet edge lengths (the surfaces')
   std::vector<char> removed_;         // per tet: turned into a particle
   std::vector<Index> eroding_;        // cells to convert at the next call, wherever they are
   std::vector<int> cells_at_node_;    // remaining cells around each mesh node
+  Fragments fragments_ = Fragments::cells;
+  std::vector<Index> particle_of_;  // per tet: the node of the particle holding it, or −1
   double total_mass_ = 0.0;
   ConversionLedger ledger_;
 };

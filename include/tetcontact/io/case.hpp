@@ -168,6 +168,7 @@ struct Case {
   bool fracture = false;
   bool particles = true;  // fracture.particles: destroyed boundary cells become particles
   double erosion_step_ratio = 0.01;  // fracture.erosion_step_ratio (0: off)
+  bool fragment_clusters = false;    // fracture.fragments: clusters (true) or cells
   /// `expect`: bounds the run must hold (run --check exits 1 otherwise), by summary figure:
   /// momentum_error, energy_balance (balance_error_max), max_depth_over_h, particles_inside
   /// (at the end), in the order given.

@@ -125,6 +125,9 @@ struct Model {
   /// Erosion (with particles): a cell whose stable step falls below this fraction of the
   /// first step's becomes a particle wherever it is (fracture.erosion_step_ratio; 0: off).
   double erosion_step_ratio = 0.0;
+  /// fracture.fragments: clusters — a converted cell joins the particle of a neighbour that
+  /// coheres with it (fracture/particles.hpp); false: each cell its own particle.
+  bool fragment_clusters = false;
   /// Contact heat (contact.heat, response/heat.hpp): also with contact between bodies off, for
   /// the particles' exchanges.
   bool contact_heat = false;
