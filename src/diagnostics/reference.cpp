@@ -124,7 +124,8 @@ Debris debris_beyond(const ReferenceSpec& r, const Model& model, const State& st
 
 // The largest fragment: cells joined through shared nodes (union–find), or one particle. A
 // fragment with a node on a symmetry plane is joined to its mirror image there: its mass
-// doubles for each plane it meets.
+// doubles for each plane it meets; so does a cluster particle's for each plane it spans
+// (State::particle_planes).
 double largest_fragment(const Model& model, const State& st, const Debris& d) {
   const std::vector<SymmetryPlane>& planes = model.mesh.symmetry;
   std::vector<Index> parent(d.cells.size());
@@ -151,7 +152,11 @@ double largest_fragment(const Model& model, const State& st, const Debris& d) {
   double best = 0.0;
   for (std::size_t i = 0; i < d.cells.size(); ++i)
     best = std::max(best, mass[i] * static_cast<double>(1 << std::popcount(meets[i])));
-  for (Index n : d.particles) best = std::max(best, st.m[n]);
+  for (Index n : d.particles) {
+    const std::size_t i = static_cast<std::size_t>(n - st.first_particle);
+    const unsigned spans = i < st.particle_planes.size() ? st.particle_planes[i] : 0u;
+    best = std::max(best, st.m[n] * static_cast<double>(1 << std::popcount(spans)));
+  }
   return best;
 }
 

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "tetcontact/element/element.hpp"
+#include "tetcontact/mesh/symmetry.hpp"
 
 namespace tc {
 
@@ -16,6 +17,19 @@ Fragmentation::Fragmentation(const Mesh& mesh, Fragments fragments)
   cells_at_node_.assign(mesh.x.size(), 0);
   for (const Tet& k : mesh.tets)
     for (Index n : k) ++cells_at_node_[n];
+  if (fragments_ != Fragments::clusters || mesh.symmetry.empty()) return;
+  mirror_planes_.assign(mesh.tets.size(), 0u);
+  for (Index t = 0; t < mesh.tet_count(); ++t)
+    for (int i = 0; i < 4; ++i) {
+      if (neighbours_[t][i] != k_mirror_tet) continue;
+      const Tet& k = mesh.tets[t];
+      const auto& lf = k_tet_faces[i];
+      for (std::size_t p = 0; p < mesh.symmetry.size(); ++p)
+        if (on_plane(mesh.x[k[lf[0]]], mesh.symmetry[p]) &&
+            on_plane(mesh.x[k[lf[1]]], mesh.symmetry[p]) &&
+            on_plane(mesh.x[k[lf[2]]], mesh.symmetry[p]))
+          mirror_planes_[t] |= 1u << p;
+    }
 }
 
 void Fragmentation::erode(const std::vector<Index>& tets) {
@@ -38,7 +52,14 @@ Index add_particle(State& st, const Vec3& x, const Vec3& v, double m, double rad
   st.particle_radius.push_back(radius);
   st.particle_energy.push_back(energy);
   st.particle_tet.push_back(tet);
+  st.particle_planes.push_back(0u);
   return static_cast<Index>(st.x.size() - 1);
+}
+
+// v_c = 2 σ* / (ρ0 c0), c0 = sqrt(K/ρ0); 0 for a material that does not spall (nothing holds
+// its pieces together).
+double cohesion_speed(const Material& m) {
+  return m.spall_strength > 0.0 ? 2.0 * m.spall_strength / (m.density * m.bulk_sound_speed()) : 0.0;
 }
 
 // The particle a converted cell (its centre c, velocity Ū, inscribed radius r) joins, or −1: of
@@ -48,9 +69,7 @@ Index add_particle(State& st, const Vec3& x, const Vec3& v, double m, double rad
 Index Fragmentation::cohering(Index t, const State& st, const std::vector<Material>& materials,
                               const Vec3& centre, const Vec3& u, double radius) const {
   const Index material = st.tet_material[t];
-  const Material& mat = materials[material];
-  if (!(mat.spall_strength > 0.0)) return -1;  // nothing holds its pieces together
-  const double v_c = 2.0 * mat.spall_strength / (mat.density * mat.bulk_sound_speed());
+  const double v_c = cohesion_speed(materials[material]);
   Index best = -1;
   double best_speed = v_c;
   for (Index other : neighbours_[t]) {
@@ -65,6 +84,18 @@ Index Fragmentation::cohering(Index t, const State& st, const std::vector<Materi
   return best;
 }
 
+// The symmetry planes across which cell t coheres with its own mirror image: the image moves at
+// Ū mirrored, so the two part at 2 |Ū·n| along the plane's normal n, below v_c.
+unsigned Fragmentation::spanned_planes(Index t, const Mesh& mesh, const Material& mat,
+                                       const Vec3& u) const {
+  unsigned planes = 0;
+  for (std::size_t p = 0; p < mesh.symmetry.size(); ++p)
+    if (((mirror_planes_[t] >> p) & 1u) &&
+        2.0 * std::abs(u[mesh.symmetry[p].axis]) < cohesion_speed(mat))
+      planes |= 1u << p;
+  return planes;
+}
+
 // A perfectly inelastic join of the cell (mass m, centre c, velocity Ū, energy e, inscribed
 // radius r) to particle P: mass M + m, momentum M V + m Ū, centre of mass, energy
 // E_P + e + ½ M m/(M+m) |V − Ū|², radius (R³ + r³)^(1/3).
@@ -75,10 +106,8 @@ void Fragmentation::join(State& st, Index p, const Vec3& centre, const Vec3& u, 
   const Vec3 x = (big * st.x[p] + m * centre) / sum;
   const Vec3 v = (big * st.v[p] + m * u) / sum;
   const double loss = 0.5 * big * m / sum * (st.v[p] - u).squaredNorm();
-  st.x_star[p] += x - st.x[p];
-  st.x[p] = x;
-  st.v_star[p] += v - st.v[p];
-  st.v[p] = v;
+  st.x[p] = st.x_star[p] = x;  // as a new particle's (the predictor sets the starred ones)
+  st.v[p] = st.v_star[p] = v;
   st.m[p] = sum;
   const double r = st.particle_radius[i];
   st.particle_radius[i] = std::cbrt(r * r * r + radius * radius * radius);
@@ -158,6 +187,9 @@ long Fragmentation::convert(const Mesh& mesh, const std::vector<Material>& mater
     } else {
       particle_of_[t] = add_particle(st, centre, u, m, radius, energy, t);
     }
+    if (!mirror_planes_.empty())
+      st.particle_planes[particle_of_[t] - st.first_particle] |=
+          spanned_planes(t, mesh, materials[st.tet_material[t]], u);
     mass_after += m;
 
     ++l.particles;

@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "../solver/solver_fixture.hpp"
+#include "tetcontact/diagnostics/reference.hpp"
 #include "tetcontact/fracture/particles.hpp"
 #include "tetcontact/solver/integrator.hpp"
 #include "tetcontact/solver/simulation.hpp"
@@ -239,6 +240,29 @@ TEST(Fragmentation, CoheringCellsJoinOneParticleAsAnInelasticCollision) {
     EXPECT_NEAR((after.momentum - before.momentum).norm(), 0.0, 1e-15 * before.momentum.norm());
     EXPECT_NEAR(after.energy, before.energy, 1e-14 * before.energy);
   }
+  // Apart: the first cell's particle carried off beyond 2 (R + r) before the second converts.
+  {
+    TwoCells c(0.0, spall);
+    c.st.damage[1] = Damage::intact;
+    Fragmentation frag(c.model.mesh, Fragments::clusters);
+    ASSERT_EQ(frag.convert(c.model.mesh, c.model.materials, c.st), 1);
+    const Index p = c.st.first_particle;
+    const double reach = 2.0 * 2.0 * c.st.particle_radius[0];  // 2 (R + r), r ≈ R here
+    c.st.x[p] += Vec3(0, 0, -2.0 * reach);
+    c.st.damage[1] = Damage::destroyed;
+    ASSERT_EQ(frag.convert(c.model.mesh, c.model.materials, c.st), 1);
+    EXPECT_EQ(c.st.particle_count(), 2);
+    EXPECT_EQ(frag.ledger().joined, 0);
+  }
+  // Of another material: a particle per cell.
+  {
+    TwoCells c(0.0, spall);
+    c.model.materials.push_back(c.model.materials[0]);
+    c.st.tet_material[1] = 1;
+    Fragmentation frag(c.model.mesh, Fragments::clusters);
+    ASSERT_EQ(frag.convert(c.model.mesh, c.model.materials, c.st), 2);
+    EXPECT_EQ(c.st.particle_count(), 2);
+  }
   // Above it, or in a material that does not spall: a particle per cell.
   for (const auto& [w, strength] : {std::pair{4.0 * 2.0 * v_c, spall}, std::pair{0.0, 0.0}}) {
     TwoCells c(w, strength);
@@ -298,4 +322,44 @@ TEST(Fragmentation, ClustersHoldTheirCellsMassAndConserveAWholeBodysBreakUp) {
     EXPECT_NEAR((after.momentum - before.momentum).norm(), 0.0, 1e-14 * before.momentum.norm());
     EXPECT_NEAR(after.energy, before.energy, 1e-13 * before.energy);
   }
+}
+
+// On a symmetry plane (x = 0, which the first cell's face (0, 2, 3) lies on) a cell coheres with
+// its own mirror image when they part slower than v_c, 2 |Ū_x| < v_c: its cluster spans the
+// plane, and the largest fragment counts the whole, twice the model's part.
+TEST(Fragmentation, AClusterCoheringWithItsMirrorImageSpansTheSymmetryPlane) {
+  const double spall = 1.2e9;
+  const Material al = test::aluminium();
+  const double v_c = 2.0 * spall / (al.density * al.bulk_sound_speed());
+  EXPECT_DOUBLE_EQ(cohesion_speed([&] {
+                     Material m = al;
+                     m.spall_strength = spall;
+                     return m;
+                   }()),
+                   v_c);
+  ReferenceSpec largest;
+  largest.measure = ReferenceSpec::Measure::largest_fragment;
+  largest.body = "body";
+  largest.plane_point = Vec3(0, 0, -10);  // every particle beyond it
+  largest.value = std::numeric_limits<double>::quiet_NaN();
+  for (const double drift : {0.25 * v_c, 0.75 * v_c}) {
+    TwoCells c(0.0, spall);
+    c.model.mesh.symmetry = {SymmetryPlane{0, 0.0}};
+    for (Vec3& v : c.st.v) v = Vec3(drift, 0, 0);
+    Fragmentation frag(c.model.mesh, Fragments::clusters);
+    ASSERT_EQ(frag.convert(c.model.mesh, c.model.materials, c.st), 2);
+    ASSERT_EQ(c.st.particle_count(), 1);          // the two cells move together
+    c.st.surfaces = frag.surfaces(c.model.mesh);  // none left: nothing shields the particle
+    const bool spans = 2.0 * drift < v_c;
+    EXPECT_EQ(c.st.particle_planes[0], spans ? 1u : 0u) << drift;
+    const std::vector<ReferenceResult> r = evaluate_references({largest}, c.model, c.st);
+    ASSERT_EQ(r.size(), 1u);
+    EXPECT_DOUBLE_EQ(r[0].measured, (spans ? 2.0 : 1.0) * c.st.m[c.st.first_particle]) << drift;
+  }
+  // Single cells never span: each image is a particle of its own.
+  TwoCells c(0.0, spall);
+  c.model.mesh.symmetry = {SymmetryPlane{0, 0.0}};
+  Fragmentation frag(c.model.mesh);
+  ASSERT_EQ(frag.convert(c.model.mesh, c.model.materials, c.st), 2);
+  EXPECT_EQ(c.st.particle_planes, (std::vector<unsigned>{0u, 0u}));
 }

@@ -461,6 +461,21 @@ TEST(Validation, WhippleCoarsePerforatesAboveTheLimitAndNotBelow) {
   std::vector<std::string> off = thick;
   off.push_back("contact.enabled=false");
   EXPECT_EQ(run(off).measured("wall perforated"), 1.0);
+
+  // Fragments as clusters (fracture.fragments: clusters): the cells that move together strike
+  // as fewer, heavier particles, and the books stay closed.
+  const CaseRun clusters = run({"parameters.S=15e-3", "parameters.tw=2e-3", "parameters.ww=30e-3",
+                                "fracture.fragments=clusters"});
+  std::printf(
+      "clusters: particles %ld (cells: %ld), largest fragment %.4g kg (cells: %.4g kg), "
+      "perforated %g, balance %.3g\n",
+      clusters.last.particles, above.last.particles, clusters.measured("largest fragment"),
+      above.measured("largest fragment"), clusters.measured("wall perforated"),
+      clusters.balance_error_max);
+  EXPECT_LT(clusters.last.particles, above.last.particles);
+  EXPECT_GT(clusters.measured("largest fragment"), above.measured("largest fragment"));
+  EXPECT_LT(clusters.momentum_error, 1e-12);
+  EXPECT_LT(clusters.balance_error_max, 1e-3);
 }
 
 // An oblique shot: the sphere at 45° touches the bumper at t = 0 instead of starting sunk

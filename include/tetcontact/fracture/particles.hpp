@@ -40,6 +40,10 @@ enum class Fragments {
   clusters,  // a cell joins the particle of a face neighbour that moves with it (cohesion)
 };
 
+/// The speed below which two pieces of a material still cohere: v_c = 2 σ* / (ρ0 c0), at which
+/// they load the plane between them to their spall strength σ* (0 without one).
+double cohesion_speed(const Material& m);
+
 /// Appends a particle (a free node with that radius, internal energy and cell of origin) to
 /// every node array of the state; returns its node index.
 Index add_particle(State& st, const Vec3& x, const Vec3& v, double m, double radius, double energy,
@@ -69,7 +73,9 @@ class Fragmentation {
   /// E_P + e + ½ M m/(M+m) |V − Ū|², radius that of the sphere of the members' inscribed
   /// spheres' volume, R = (Σ r_k³)^(1/3). Of several such neighbours the slowest relative one
   /// (then the lowest node) is taken; the cells are visited in increasing index, so a run is
-  /// repeatable. A material without spall strength does not cohere.
+  /// repeatable. A material without spall strength does not cohere. On a symmetry plane a
+  /// cell coheres with its own mirror image when 2 |Ū·n| < v_c: its particle is then the
+  /// model's part of a cluster spanning the plane (State::particle_planes).
   long convert(const Mesh& mesh, const std::vector<Material>& materials, State& st);
   /// Erosion: these cells are turned into particles at the next convert() wherever they are
   /// (an interior one leaves a void whose faces join the surfaces).
@@ -84,6 +90,7 @@ class Fragmentation {
  private:
   Index cohering(Index t, const State& st, const std::vector<Material>& materials,
                  const Vec3& centre, const Vec3& u, double radius) const;
+  unsigned spanned_planes(Index t, const Mesh& mesh, const Material& mat, const Vec3& u) const;
   void join(State& st, Index p, const Vec3& centre, const Vec3& u, double m, double radius,
             double energy);
 
@@ -93,7 +100,9 @@ class Fragmentation {
   std::vector<Index> eroding_;        // cells to convert at the next call, wherever they are
   std::vector<int> cells_at_node_;    // remaining cells around each mesh node
   Fragments fragments_ = Fragments::cells;
-  std::vector<Index> particle_of_;  // per tet: the node of the particle holding it, or −1
+  std::vector<Index> particle_of_;       // per tet: the node of the particle holding it, or −1
+  std::vector<unsigned> mirror_planes_;  // per tet (clusters with symmetry planes): the planes
+                                         // its faces lie on
   double total_mass_ = 0.0;
   ConversionLedger ledger_;
 };

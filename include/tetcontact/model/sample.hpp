@@ -42,7 +42,7 @@ struct Sample {
   long contacts = 0;           // node–face contacts this step
   long damaged = 0;            // cells spalled (damaged, not destroyed) at t^n
   long destroyed = 0;          // cells destroyed (loosened) at t^n
-  long particles = 0;          // cells turned into particles so far
+  long particles = 0;          // particles so far (a cluster of cells counts once)
   double particle_mass = 0.0;  // kg carried by particles (part of mass)
   double total = 0.0;          // kinetic + internal
   double balance_error = 0.0;  // filled by the Simulation (see balance_error_max)

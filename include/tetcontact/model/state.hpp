@@ -48,11 +48,18 @@ struct State {
   // Particles (P): destroyed boundary cells turned into free points (Dobritsa et al.), appended
   // after the mesh's nodes, so that the node arrays above carry their mass, velocity and impulses
   // and the one impulse kernel moves them. Particle i is node first_particle + i.
-  Index first_particle = 0;             // the mesh's node count
-  std::vector<double> particle_radius;  // m: radius of the sphere inscribed in the cell
-  std::vector<double> particle_energy;  // J: the cell's internal energy, plus the kinetic
-                                        // energy of its nodes' spread of velocity
-  std::vector<Index> particle_tet;      // the cell each came from
+  Index first_particle = 0;  // the mesh's node count
+  // A particle is one cell, or with fracture.fragments: clusters several (Fragmentation).
+  std::vector<double> particle_radius;  // m: radius of the sphere inscribed in the cell (a
+                                        // cluster: of its cells' inscribed spheres' volume)
+  std::vector<double> particle_energy;  // J: the cells' internal energy, plus the kinetic
+                                        // energy of their nodes' spread of velocity (and of
+                                        // the joins of a cluster)
+  std::vector<Index> particle_tet;      // the cell each came from (a cluster: its first)
+  /// Per particle, bit p: a cluster that holds a cell joined to its own mirror image across
+  /// symmetry plane p, i.e. the model's part of one cluster spanning the plane (its mass
+  /// counts 2× per such plane in the whole; 0 for every particle of single cells).
+  std::vector<unsigned> particle_planes;
   Index particle_count() const { return static_cast<Index>(particle_radius.size()); }
 
   // The surfaces of the run: the model's, less the faces of cells turned into particles, plus
