@@ -182,6 +182,17 @@ TEST(Mpi, CoarseBallPlateWithContactHeatIsBitIdenticalOn2And3Ranks) {
             0.5 * -test::number(s, "/energy/contact_work"));
 }
 
+// With fragments as clusters: the joins, made on every rank from the same gathered state, give
+// every rank the same particles.
+TEST(Mpi, CoarseBallPlateWithClustersIsBitIdenticalOn2And3Ranks) {
+  const test::Json s = same_on_any_rank_count(
+      "ball-plate-clusters", "data/cases/ball-plate.yaml",
+      "--set bodies.0.mesh.sphere.cells_across=8 --set 'bodies.1.mesh.box.cells=[24,24,2]' "
+      "--set end_time=1.5e-6 --set fracture.fragments=clusters",
+      {2, 3});
+  EXPECT_GT(test::number(s, "/fracture/cells_joined_to_clusters"), 50);  // 119 of 282
+}
+
 TEST(Mpi, BarsAndATaylorRodWithNodalPressureAreBitIdenticalOn2To4Ranks) {
   const test::Json bars = same_on_any_rank_count("bars", "data/cases/bars-impact.yaml",
                                                  "--set end_time=20.0e-6", {2, 3, 4});
