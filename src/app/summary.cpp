@@ -71,11 +71,15 @@ std::optional<RunSummary::Particles> particles_of(const Simulation& sim) {
   p.particle_contacts = sim.contact_totals().particle_contacts;
   p.particles_moved_out = sim.contact_totals().particles_moved_out;  // a safeguard
   p.particle_move_max = sim.contact_totals().particle_move_max;
-  // Cells failed by Johnson–Cook's ductile damage (D ≥ 1; eroded, so among `eroded`).
-  if (std::any_of(model.materials.begin(), model.materials.end(),
-                  [](const Material& m) { return m.ductile_failure; }))
-    p.ductile_failed = static_cast<long>(
-        std::count_if(st.ductile.begin(), st.ductile.end(), [](double d) { return d >= 1.0; }));
+  // Cells failed by Johnson–Cook's ductile damage (D ≥ 1; eroded, so among `eroded`), and
+  // those whose damage accrued mostly with ε_f at its floor.
+  const bool ductile = std::any_of(model.materials.begin(), model.materials.end(),
+                                   [](const Material& m) { return m.ductile_failure; });
+  const auto failed = [&](std::size_t t) { return st.ductile[t] >= 1.0; };
+  const auto at_floor = [&](std::size_t t) {
+    return failed(t) && st.ductile_floor[t] > 0.5 * st.ductile[t];
+  };
+  if (ductile) p.ductile_failed = 0, p.ductile_failed_at_floor = 0;
   for (Index i = 0; i < st.particle_count(); ++i) {
     const Index n = st.first_particle + i;
     p.particle_kinetic_energy += 0.5 * st.m[n] * centred_velocity(st, n).squaredNorm();
@@ -85,6 +89,13 @@ std::optional<RunSummary::Particles> particles_of(const Simulation& sim) {
     for (Index i = 0; i < st.particle_count(); ++i)
       if (model.mesh.tet_body[st.particle_tet[i]] == static_cast<Index>(b))
         ++from.particles, from.mass += st.m[st.first_particle + i];
+    for (std::size_t t = 0; ductile && t < st.ductile.size(); ++t)
+      if (model.mesh.tet_body[t] == static_cast<Index>(b))
+        from.ductile_failed += failed(t), from.ductile_failed_at_floor += at_floor(t);
+    if (ductile) {
+      *p.ductile_failed += from.ductile_failed;
+      *p.ductile_failed_at_floor += from.ductile_failed_at_floor;
+    }
     p.from_bodies.push_back(from);
   }
   return p;
@@ -354,6 +365,7 @@ Json fracture_json(const RunSummary& s) {
   fr["cells_joined_to_clusters"] = l.joined;  // fracture.fragments: clusters
   fr["cohesion_loss"] = l.cohesion_loss;      // J, kept as the clusters' internal energy
   fr["ductile_failed"] = or_null(p.ductile_failed);
+  fr["ductile_failed_at_floor"] = or_null(p.ductile_failed_at_floor);
   fr["particles_moved_out"] = p.particles_moved_out;  // a safeguard
   fr["particle_move_max"] = p.particle_move_max;
   fr["particle_kinetic_energy"] = p.particle_kinetic_energy;
@@ -363,6 +375,10 @@ Json fracture_json(const RunSummary& s) {
     o["name"] = b.name;
     o["particles"] = b.particles;
     o["mass"] = b.mass;
+    if (p.ductile_failed) {
+      o["ductile_failed"] = b.ductile_failed;
+      o["ductile_failed_at_floor"] = b.ductile_failed_at_floor;
+    }
     by_body.push_back(o);
   }
   fr["from_bodies"] = by_body;

@@ -142,6 +142,7 @@ void share_tets(ElementScratch& scratch, State& st, unsigned what,
       io(st.q[t]);
       io(st.eps_p[t]);
       io(st.ductile[t]);
+      io(st.ductile_floor[t]);
       io(st.sound2[t]);
       io(st.trace_d[t]);
       io(st.vol[t]);

@@ -297,7 +297,8 @@ struct CellKinematics {
 // mid-increment, exact for linear hardening; the other laws at the end of the step, the heating
 // their return assumed), the plastic strain, and the cell listed as eroding when it reaches the
 // strain limit or Johnson–Cook's ductile damage D = 1:
-//   D += Δε̄p / ε_f(σ*, ε̇p, T),  σ* = −p / σ_eq  (the start's pressure, the returned deviator).
+//   D += Δε̄p / ε_f(σ*, ε̇p, T),  σ* = −p / σ_eq  (the start's pressure, the returned deviator);
+// the increments taken with ε_f at its floor are also summed apart (`ductile_floor`).
 [[gnu::always_inline]] inline double deviator_work(Index t, const Material& mat,
                                                    const CellKinematics& c, double rho_mid,
                                                    const ElementOptions& options, double tau,
@@ -324,9 +325,10 @@ struct CellKinematics {
     if (mat.ductile_failure) {
       const double eq = von_mises(s_new);
       const double triax = eq > 0.0 ? -st.p[t] / eq : 0.0;
-      st.ductile[t] +=
-          inc.dplastic / johnson_cook_failure_strain(mat.johnson_cook_failure, triax,
-                                                     inc.dplastic / tau, st.temperature[t]);
+      const double ef = johnson_cook_failure_strain(mat.johnson_cook_failure, triax,
+                                                    inc.dplastic / tau, st.temperature[t]);
+      st.ductile[t] += inc.dplastic / ef;
+      if (ef <= mat.johnson_cook_failure.min_strain) st.ductile_floor[t] += inc.dplastic / ef;
       if (st.ductile[t] >= 1.0) block.eroding.push_back(t);
     }
   }

@@ -47,8 +47,8 @@ State initial_state(const Model& model) {
   st.vol0 = tet_volumes(mesh.x, mesh.tets);
   st.vol = st.vol0;
   st.s.assign(m, Sym6{0, 0, 0, 0, 0, 0});
-  for (auto* field : {&st.p, &st.q, &st.e_int, &st.eps_p, &st.ductile, &st.w_plastic, &st.w_viscous,
-                      &st.sound2, &st.trace_d})
+  for (auto* field : {&st.p, &st.q, &st.e_int, &st.eps_p, &st.ductile, &st.ductile_floor,
+                      &st.w_plastic, &st.w_viscous, &st.sound2, &st.trace_d})
     field->assign(m, 0.0);
   st.tet_material.resize(m);
   st.damage.assign(m, Damage::intact);

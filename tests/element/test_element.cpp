@@ -284,6 +284,9 @@ INSTANTIATE_TEST_SUITE_P(Pressure, Failure, ::testing::Values(false, true),
 // Δε̄p / ε_f(σ*, Δε̄p/τ, T), σ* = −p/σ_eq from the step's starting pressure and the returned
 // deviator, to round-off; the cell is listed for erosion exactly when D reaches 1; the same
 // stretch under compression leaves D far lower (D3 < 0: triaxiality matters, with its sign).
+// The increments taken with ε_f at its floor (the law's own ε_f at or below min_strain) are
+// summed apart: none for a set whose ε_f stays above the floor; for 6061-T6's set (D1 < 0: its
+// ε_f is negative above σ* ≈ 1.35) a faster-growing tension ends failing at the floor.
 TEST(Element, DuctileDamageIsThePlasticStrainOverTheFailureStrain) {
   Material mat = test::aluminium();
   mat.yield_stress = 300e6;
@@ -292,23 +295,27 @@ TEST(Element, DuctileDamageIsThePlasticStrainOverTheFailureStrain) {
   mat.johnson_cook_failure.d2 = 0.5;
   mat.johnson_cook_failure.d3 = -3.0;
   mat.johnson_cook_failure.d4 = 0.01;
-  const Model m =
+  Model m =
       test::single_body_model(make_box(Vec3(0.01, 0.01, 0.01), {1, 1, 1}, HexSplit::six), mat);
   ElementScratch scratch;
-  const double tau = 1e-8, lambda = 1.002;
+  const double tau = 1e-8;
   struct Pulled {
     int steps = 0;
-    double damage = 0.0;
+    double damage = 0.0, floor = 0.0;
     bool listed = false;
   };
-  const auto pull = [&](double j, int max_steps) {
+  const auto pull = [&](double j, int max_steps, double lambda = 1.002) {
     State st = initial_state(m);
     Mat3 F = Mat3::Zero();
     F.diagonal() << lambda, 1.0 / std::sqrt(lambda), 1.0 / std::sqrt(lambda);
     F *= std::cbrt(j);
     Pulled out;
+    const JohnsonCookFailure& f = m.materials[0].johnson_cook_failure;
+    JohnsonCookFailure unfloored = f;
+    unfloored.min_strain = -1e300;
     for (; out.steps < max_steps && !out.listed; ++out.steps) {
       const std::vector<double> p0 = st.p, e0 = st.eps_p, d0 = st.ductile, temp0 = st.temperature;
+      const std::vector<double> floor0 = st.ductile_floor;
       for (std::size_t i = 0; i < st.x.size(); ++i) {
         const Vec3 next = F * st.x[i];
         st.v[i] = (next - st.x[i]) / tau;
@@ -317,21 +324,36 @@ TEST(Element, DuctileDamageIsThePlasticStrainOverTheFailureStrain) {
       const ForceResult r = update_material(m.mesh.tets, m.materials, m.element, tau, st, scratch);
       for (std::size_t t = 0; t < st.p.size(); ++t) {
         const double de = st.eps_p[t] - e0[t];
-        const double expected = de > 0.0 ? de / johnson_cook_failure_strain(
-                                                    mat.johnson_cook_failure,
-                                                    -p0[t] / von_mises(st.s[t]), de / tau, temp0[t])
-                                         : 0.0;
+        const double triax = -p0[t] / von_mises(st.s[t]);
+        const double expected =
+            de > 0.0 ? de / johnson_cook_failure_strain(f, triax, de / tau, temp0[t]) : 0.0;
         EXPECT_NEAR(st.ductile[t] - d0[t], expected, 1e-12) << "step " << out.steps << " tet " << t;
+        const bool floored =
+            johnson_cook_failure_strain(unfloored, triax, de / tau, temp0[t]) <= f.min_strain;
+        EXPECT_NEAR(st.ductile_floor[t] - floor0[t], floored ? expected : 0.0, 1e-12)
+            << "step " << out.steps << " tet " << t;
       }
       out.listed = std::find(r.eroding.begin(), r.eroding.end(), Index{0}) != r.eroding.end();
       EXPECT_EQ(out.listed, st.ductile[0] >= 1.0) << "step " << out.steps;
       out.damage = st.ductile[0];
+      out.floor = st.ductile_floor[0];
     }
     return out;
   };
   const Pulled tension = pull(1.0 + 2e-5, 1000);
   EXPECT_TRUE(tension.listed) << "D " << tension.damage << " after " << tension.steps << " steps";
+  EXPECT_EQ(tension.floor, 0.0);  // ε_f ≥ D1 = 0.1 everywhere
   const Pulled compression = pull(1.0 - 2e-5, tension.steps);
   EXPECT_FALSE(compression.listed);
   EXPECT_LT(compression.damage, 0.5);
+
+  m.materials[0].johnson_cook_failure = {-0.77, 1.45, -0.47, 0.0, 0.0};  // 6061-T6's set
+  const Pulled al6061 =
+      pull(1.0 + 1e-4, 1000,
+           1.0002);  // slower flow, faster tension  // the tension outgrows the deviator sooner
+  EXPECT_TRUE(al6061.listed);
+  std::printf("6061-T6's set: failed after %d steps, D %.3f of which at the floor %.3f\n",
+              al6061.steps, al6061.damage, al6061.floor);
+  EXPECT_GT(al6061.floor, 0.0);
+  EXPECT_LT(al6061.floor, al6061.damage);
 }

@@ -48,15 +48,23 @@ def test_conditional_paths(runs):
                       "MAX_CROSSINGS", "PENETRATION_MEASURED_AT"):
         K.get(runs["cubes"], path, "cubes-edge with contact.verify")
     for path in paths("PARAMETERS", "REFERENCES", "PARTICLES_INSIDE_AT_END",
-                      "FRACTURE_FROM_BODIES", "FRACTURE_DUCTILE_FAILED"):
+                      "FRACTURE_FROM_BODIES", "FRACTURE_DUCTILE_FAILED",
+                      "FRACTURE_DUCTILE_FAILED_AT_FLOOR"):
         K.get(runs["whipple"], path, "whipple")
     K.get(runs["mpi"], K.COMMUNICATION_SECONDS, "cubes-edge under mpirun")
     for item in K.get(runs["cubes"], K.EXPECT):
         assert {K.NAME, K.BOUND, K.MEASURED, K.PASS} <= set(item)
     for body in K.get(runs["cubes"], K.BODIES):
         assert {K.NAME, K.MASS, K.VELOCITY, K.BBOX_MIN, K.BBOX_MAX} <= set(body)
-    for b in K.get(runs["whipple"], K.FRACTURE_FROM_BODIES):
-        assert {K.NAME, K.PARTICLES, K.MASS} <= set(b)
+    by_body = K.get(runs["whipple"], K.FRACTURE_FROM_BODIES)
+    for b in by_body:
+        assert {K.NAME, K.PARTICLES, K.MASS, K.DUCTILE_FAILED, K.DUCTILE_FAILED_AT_FLOOR} <= set(b)
+        assert 0 <= b[K.DUCTILE_FAILED_AT_FLOOR] <= b[K.DUCTILE_FAILED]
+    # The bodies' ductile failures are the run's (each cell counted once, in its body).
+    assert sum(b[K.DUCTILE_FAILED] for b in by_body) == K.get(runs["whipple"],
+                                                               K.FRACTURE_DUCTILE_FAILED) > 0
+    assert sum(b[K.DUCTILE_FAILED_AT_FLOOR] for b in by_body) == K.get(
+        runs["whipple"], K.FRACTURE_DUCTILE_FAILED_AT_FLOOR)
     names = {e[K.NAME] for e in K.get(runs["cubes"], K.EXPECT)}
     assert K.EXPECT_ENERGY in names
     stages = set(K.get(runs["cubes"], K.TIMINGS))

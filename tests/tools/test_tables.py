@@ -281,8 +281,15 @@ WHIPPLE_REFERENCES = [
 
 def test_whipple_rows():
     p = {"d": 4e-3, "v": 6500.0, "tb": 1e-3, "tw": 2e-3, "S": 15e-3, "theta": 0.0}
+    parts = [{"name": "projectile", "particles": 1, "mass": 1e-6, "ductile_failed": 321,
+              "ductile_failed_at_floor": 300},
+             {"name": "bumper", "particles": 2, "mass": 1e-6, "ductile_failed": 3000,
+              "ductile_failed_at_floor": 1234},
+             {"name": "wall", "particles": 2, "mass": 1e-6, "ductile_failed": 1000,
+              "ductile_failed_at_floor": 0}]
     s = fake_summary(parameters=p, references=WHIPPLE_REFERENCES,
-                     fracture={"particles": 5, "mass_to_particles": 1e-4, "ductile_failed": 4321})
+                     fracture={"particles": 5, "mass_to_particles": 1e-4, "ductile_failed": 4321,
+                               "from_bodies": parts})
     dc = christiansen.critical_diameter(6500.0, 1e-3, 2e-3, 15e-3)
     row = cells(T.whipple_row("2 mm wall", s))
     assert row[1] == f"{4e-3 / dc:.2f} (4 / {dc * 1e3:.2f} mm)"
@@ -290,9 +297,11 @@ def test_whipple_rows():
                        "1.25 mg", "yes: 12.3 mg", "1.5e-4"]
     assert cells(T.whipple_mesh_row("coarse", s)) == [
         "coarse", "2,400", "12,345, 10 s", "9.5 mm", "6,123 m/s", "31°", "0.410 g",
-        "yes: 12.3 mg", "4,321", "1.5e-4"]
+        "yes: 12.3 mg", "4,321", "300/321, 1,234/3,000, 0/1,000", "1.5e-4"]
     assert cells(T.whipple_hole_row("fine", s)) == [
-        "fine", "2,400", "12,345, 10 s", "9.5 mm", "6,123 m/s", "4,321", "1.5e-4"]
+        "fine", "2,400", "12,345, 10 s", "9.5 mm", "6,123 m/s", "4,321",
+        "300/321, 1,234/3,000, 0/1,000", "1.5e-4"]
+    assert T.ductile_parts(s) == [(321, 300), (3000, 1234), (1000, 0)]
     with pytest.raises(KeyError):  # a run without the case's measures
         T.whipple_mesh_row("coarse", fake_summary(references=[], fracture=s["fracture"]))
 
@@ -316,13 +325,13 @@ def test_whipple_refined_row():
 
 def test_whipple_defaults_row():
     # (measured, the shipped verdict, this setting's cells, the wall's momentum, the largest
-    # fragment): two P shots, one NP.
-    shots = [("P", "NP", ("P", 1e-6, 0.30, 200e-6, 40.0), 0.25, 3e-7),
-             ("P", "NP", ("NP", 0.0, 0.50, 100e-6, 20.0), 0.125, 1e-6),
-             ("NP", "NP", ("NP", 0.0, 0.90, 0.0, 60.0), 0.125, 2e-8)]
+    # fragment, the parts' ductile failures): two P shots, one NP.
+    shots = [("P", "NP", ("P", 1e-6, 0.30, 200e-6, 40.0), 0.25, 3e-7, [(10, 9), (5, 1), (2, 0)]),
+             ("P", "NP", ("NP", 0.0, 0.50, 100e-6, 20.0), 0.125, 1e-6, [(0, 0), (5, 5), (0, 0)]),
+             ("NP", "NP", ("NP", 0.0, 0.90, 0.0, 60.0), 0.125, 2e-8, [(990, 1), (0, 0), (1, 1)])]
     assert cells(T.whipple_defaults_row("erosion", shots)) == [
         "erosion", "2 of 3", "1", "0.40, 0.90", "300.0 mg", "0.50 kg m/s", "0.30 mg",
-        "2.0 min (60 s)"]
+        "10/1,000, 6/10, 1/3", "2.0 min (60 s)"]
     assert cells(T.whipple_defaults_row("no NP", shots[:2]))[3] == "0.40, –"
     # The whole wall's momentum along −z: the quarter's times four.
     s = fake_summary(bodies=[{"name": "bumper", "mass": 1.0, "velocity": [0, 0, -9.0]},

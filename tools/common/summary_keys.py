@@ -82,6 +82,11 @@ REFERENCES = ("references",)         # a case with `reference:` (items NAME, MEA
 PARTICLES_INSIDE_AT_END = ("penetration", "particles_inside_at_end")  # fracture particles
 FRACTURE_FROM_BODIES = ("fracture", "from_bodies")  # particles (items NAME, PARTICLES, MASS)
 FRACTURE_DUCTILE_FAILED = ("fracture", "ductile_failed")  # a material with ductile failure
+# Of those, the cells whose damage accrued mostly with the failure strain at its floor; each
+# FRACTURE_FROM_BODIES item then has DUCTILE_FAILED and DUCTILE_FAILED_AT_FLOOR, its cells'.
+FRACTURE_DUCTILE_FAILED_AT_FLOOR = ("fracture", "ductile_failed_at_floor")
+DUCTILE_FAILED = "ductile_failed"
+DUCTILE_FAILED_AT_FLOOR = "ductile_failed_at_floor"
 VERIFICATION = ("contact", "verification")  # contact.verify on; its keys below
 VERIFY_FAILED_AFTER_PASSES = VERIFICATION + ("failed_after_passes",)
 VERIFY_STEPS_FAILED = VERIFICATION + ("steps_failed",)

@@ -1024,8 +1024,10 @@ WHIPPLE_DEFAULTS = [  # (folder, label, --set)
 WHIPPLE_DEFAULTS_HEADER = [
     "| setting | right (of the shots) | verdicts unlike the shipped | thickness left, mean: "
     "P shots, NP shots | wall mass to particles, all shots | the wall's momentum along the "
-    "shot, all shots | largest fragment, median of the shots | run time: sum (largest) |",
-    "|---|---|---|---|---|---|---|---|"]
+    "shot, all shots | largest fragment, median of the shots | cells failed ductilely, at the "
+    "failure strain's floor / all, all shots: projectile, bumper, wall | run time: sum "
+    "(largest) |",
+    "|---|---|---|---|---|---|---|---|---|"]
 
 
 def wall_momentum(s):
@@ -1036,20 +1038,39 @@ def wall_momentum(s):
 
 def whipple_defaults_row(label, shots):
     """One setting's row: `shots` a list of (measured verdict, the shipped run's verdict, this
-    run's whipple_refined_cells, its wall_momentum, its largest fragment in kg)."""
-    right = sum(cells[0] == measured for measured, _, cells, _, _ in shots)
-    unlike = sum(cells[0] != shipped for _, shipped, cells, _, _ in shots)
+    run's whipple_refined_cells, its wall_momentum, its largest fragment in kg, its
+    ductile_parts)."""
+    right = sum(cells[0] == measured for measured, _, cells, *_ in shots)
+    unlike = sum(cells[0] != shipped for _, shipped, cells, *_ in shots)
 
     def mean_left(verdict):
-        left = [cells[2] for measured, _, cells, _, _ in shots if measured == verdict]
+        left = [cells[2] for measured, _, cells, *_ in shots if measured == verdict]
         return f"{statistics.mean(left):.2f}" if left else "–"
-    eroded = sum(cells[3] for _, _, cells, _, _ in shots)
-    momentum = sum(p for _, _, _, p, _ in shots)
-    largest = statistics.median(f for _, _, _, _, f in shots)
-    seconds = [cells[4] for _, _, cells, _, _ in shots]
+    eroded = sum(cells[3] for _, _, cells, *_ in shots)
+    momentum = sum(x[3] for x in shots)
+    largest = statistics.median(x[4] for x in shots)
+    ductile = [tuple(map(sum, zip(*parts))) for parts in zip(*(x[5] for x in shots))]
+    seconds = [cells[4] for _, _, cells, *_ in shots]
     return (f"| {label} | {right} of {len(shots)} | {unlike} | {mean_left('P')}, "
             f"{mean_left('NP')} | {eroded * 1e6:.1f} mg | {momentum:.2f} kg m/s | "
-            f"{largest * 1e6:.2f} mg | {sum(seconds) / 60:.1f} min ({max(seconds):.0f} s) |")
+            f"{largest * 1e6:.2f} mg | {ductile_cell(ductile)} | {sum(seconds) / 60:.1f} min "
+            f"({max(seconds):.0f} s) |")
+
+
+WHIPPLE_PARTS = ("projectile", "bumper", "wall")
+
+
+def ductile_parts(s):
+    """Per part of the shield (WHIPPLE_PARTS): (its cells failed by Johnson–Cook's ductile
+    damage, of them those whose damage accrued mostly with the failure strain at its floor, the
+    law's own value below it), the model's cells."""
+    by = {b[K.NAME]: b for b in get(s, K.FRACTURE_FROM_BODIES)}
+    return [(by[p][K.DUCTILE_FAILED], by[p][K.DUCTILE_FAILED_AT_FLOOR]) for p in WHIPPLE_PARTS]
+
+
+def ductile_cell(parts):
+    """'at the floor / all' for each part, in WHIPPLE_PARTS's order."""
+    return ", ".join(f"{floor:,}/{failed:,}" for failed, floor in parts)
 
 
 def largest_fragment(s):
@@ -1063,10 +1084,12 @@ def whipple_defaults(binary, work, opts):
     thickness left on the measured P and NP shots, and the cost."""
     from tools.post import whipple_scores as ws
     table_path = os.path.join(VALIDATION, "whipple-shots.csv")
-    runs = {}  # folder → {row: (whipple_refined_cells, wall_momentum, largest_fragment)}
+    runs = {}  # folder → {row: (whipple_refined_cells, wall_momentum, largest_fragment,
+    #                           ductile_parts)}
     for name, _, sets in WHIPPLE_DEFAULTS:
         out = os.path.join(work, "whipple-defaults-" + name)
-        runs[name] = {n: (whipple_refined_cells(x, s), wall_momentum(s), largest_fragment(s))
+        runs[name] = {n: (whipple_refined_cells(x, s), wall_momentum(s), largest_fragment(s),
+                          ductile_parts(s))
                       for n, (x, s) in
                       whipple_campaign(binary, table_path, out, WHIPPLE_REFINED_ROWS, sets).items()}
     table = ws.read_table(table_path)
@@ -1131,12 +1154,14 @@ WHIPPLE_HOLE_MESHES = WHIPPLE_MESHES + [  # and a fourth: three cells through th
 ]
 WHIPPLE_MESH_HEADER = [
     "| mesh | tets | steps, wall time (2 threads) | hole | leading edge | cone half-angle | "
-    "debris | wall perforated: mass through | cells failed (ductile) | energy balance |",
-    "|---|---|---|---|---|---|---|---|---|---|"]
+    "debris | wall perforated: mass through | cells failed (ductile) | of them at the failure "
+    "strain's floor / all: projectile, bumper, wall | energy balance |",
+    "|---|---|---|---|---|---|---|---|---|---|---|"]
 WHIPPLE_HOLE_HEADER = [
     "| mesh | tets | steps, wall time (2 threads) | hole at 8 µs | leading edge | "
-    "cells failed (ductile) | energy balance |",
-    "|---|---|---|---|---|---|---|"]
+    "cells failed (ductile) | of them at the failure strain's floor / all: projectile, bumper, "
+    "wall | energy balance |",
+    "|---|---|---|---|---|---|---|---|"]
 
 
 def whipple_mesh_row(what, s):
@@ -1145,7 +1170,8 @@ def whipple_mesh_row(what, s):
             f"{get(s, K.WALL_SECONDS):.0f} s | {m[K.HOLE_DIAMETER] * 1e3:.1f} mm | "
             f"{m[K.DEBRIS_SPEED]:,.0f} m/s | {m[K.DEBRIS_CONE_ANGLE]:.0f}° | "
             f"{m[K.DEBRIS_MASS] * 1e3:.3f} g | {perforated(m)} | "
-            f"{get(s, K.FRACTURE_DUCTILE_FAILED):,} | {g(get(s, K.ENERGY_BALANCE_ERROR))} |")
+            f"{get(s, K.FRACTURE_DUCTILE_FAILED):,} | {ductile_cell(ductile_parts(s))} | "
+            f"{g(get(s, K.ENERGY_BALANCE_ERROR))} |")
 
 
 def whipple_hole_row(what, s):
@@ -1153,7 +1179,7 @@ def whipple_hole_row(what, s):
     return (f"| {what} | {get(s, K.MESH_TETS):,} | {get(s, K.STEPS):,}, "
             f"{get(s, K.WALL_SECONDS):.0f} s | {m[K.HOLE_DIAMETER] * 1e3:.1f} mm | "
             f"{m[K.DEBRIS_SPEED]:,.0f} m/s | {get(s, K.FRACTURE_DUCTILE_FAILED):,} | "
-            f"{g(get(s, K.ENERGY_BALANCE_ERROR))} |")
+            f"{ductile_cell(ductile_parts(s))} | {g(get(s, K.ENERGY_BALANCE_ERROR))} |")
 
 
 def whipple_runs(binary, work, meshes, extra, prefix):

@@ -87,12 +87,16 @@ struct RunSummary {
     std::string name;
     long particles = 0;
     double mass = 0.0;
+    long ductile_failed = 0, ductile_failed_at_floor = 0;  // its cells, as the run's below
   };
   struct Particles {
     ConversionLedger ledger;
     long particle_contacts = 0, particles_moved_out = 0;
     double particle_move_max = 0.0, particle_kinetic_energy = 0.0;
     std::optional<long> ductile_failed;  // with Johnson–Cook ductile failure
+    // Of those, the cells whose damage accrued more than half with ε_f at its floor (the
+    // law's own ε_f below it: a set with D1 < 0 at high triaxiality).
+    std::optional<long> ductile_failed_at_floor;
     std::vector<FromBody> from_bodies;
   };
   std::optional<Particles> particles;

@@ -29,19 +29,21 @@ struct State {
   std::vector<Vec3> contact_impulse;  // impulse of contacts between bodies this step
 
   // Tets (M).
-  std::vector<double> vol0;         // reference volume
-  std::vector<double> vol;          // current volume
-  std::vector<Sym6> s;              // deviatoric stress
-  std::vector<double> p;            // pressure from the EOS (positive in compression)
-  std::vector<double> q;            // artificial bulk viscosity (a pressure, ≥ 0)
-  std::vector<double> e_int;        // internal energy, J (elastic + plastic work + viscous heat)
-  std::vector<double> eps_p;        // equivalent plastic strain ε̄p
-  std::vector<double> ductile;      // Johnson–Cook's ductile damage D (failed at 1)
-  std::vector<double> w_plastic;    // plastic work, J
-  std::vector<double> w_viscous;    // viscous dissipation, J
-  std::vector<double> sound2;       // current dilatational sound speed squared, m²/s²
-  std::vector<double> trace_d;      // tr D of the last step (volumetric strain rate), 1/s
-  std::vector<double> temperature;  // K (materials with a specific heat; else their start value)
+  std::vector<double> vol0;           // reference volume
+  std::vector<double> vol;            // current volume
+  std::vector<Sym6> s;                // deviatoric stress
+  std::vector<double> p;              // pressure from the EOS (positive in compression)
+  std::vector<double> q;              // artificial bulk viscosity (a pressure, ≥ 0)
+  std::vector<double> e_int;          // internal energy, J (elastic + plastic work + viscous heat)
+  std::vector<double> eps_p;          // equivalent plastic strain ε̄p
+  std::vector<double> ductile;        // Johnson–Cook's ductile damage D (failed at 1)
+  std::vector<double> ductile_floor;  // the part of D accrued with ε_f at its floor (the law's
+                                      // own ε_f below it: the set outside its fit)
+  std::vector<double> w_plastic;      // plastic work, J
+  std::vector<double> w_viscous;      // viscous dissipation, J
+  std::vector<double> sound2;         // current dilatational sound speed squared, m²/s²
+  std::vector<double> trace_d;        // tr D of the last step (volumetric strain rate), 1/s
+  std::vector<double> temperature;    // K (materials with a specific heat; else their start value)
   std::vector<Index> tet_material;
   std::vector<Damage> damage;  // per tet
 
