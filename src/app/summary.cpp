@@ -89,9 +89,9 @@ std::optional<RunSummary::Particles> particles_of(const Simulation& sim) {
     for (Index i = 0; i < st.particle_count(); ++i)
       if (model.mesh.tet_body[st.particle_tet[i]] == static_cast<Index>(b))
         ++from.particles, from.mass += st.m[st.first_particle + i];
-    for (std::size_t t = 0; ductile && t < st.ductile.size(); ++t)
-      if (model.mesh.tet_body[t] == static_cast<Index>(b))
-        from.ductile_failed += failed(t), from.ductile_failed_at_floor += at_floor(t);
+    const BodyRange& body = model.mesh.bodies[b];
+    for (Index t = body.tet_begin; ductile && t < body.tet_end; ++t)
+      from.ductile_failed += failed(t), from.ductile_failed_at_floor += at_floor(t);
     if (ductile) {
       *p.ductile_failed += from.ductile_failed;
       *p.ductile_failed_at_floor += from.ductile_failed_at_floor;

@@ -298,7 +298,8 @@ struct CellKinematics {
 // their return assumed), the plastic strain, and the cell listed as eroding when it reaches the
 // strain limit or Johnson–Cook's ductile damage D = 1:
 //   D += Δε̄p / ε_f(σ*, ε̇p, T),  σ* = −p / σ_eq  (the start's pressure, the returned deviator);
-// the increments taken with ε_f at its floor are also summed apart (`ductile_floor`).
+// the increments taken with ε_f at its floor are also summed apart (`ductile_floor`), or left
+// out where the material has no ductile failure at the floor.
 [[gnu::always_inline]] inline double deviator_work(Index t, const Material& mat,
                                                    const CellKinematics& c, double rho_mid,
                                                    const ElementOptions& options, double tau,
@@ -327,8 +328,11 @@ struct CellKinematics {
       const double triax = eq > 0.0 ? -st.p[t] / eq : 0.0;
       const double ef = johnson_cook_failure_strain(mat.johnson_cook_failure, triax,
                                                     inc.dplastic / tau, st.temperature[t]);
-      st.ductile[t] += inc.dplastic / ef;
-      if (ef <= mat.johnson_cook_failure.min_strain) st.ductile_floor[t] += inc.dplastic / ef;
+      const bool floored = ef <= mat.johnson_cook_failure.min_strain;
+      if (!floored || mat.ductile_failure_at_floor) {
+        st.ductile[t] += inc.dplastic / ef;
+        if (floored) st.ductile_floor[t] += inc.dplastic / ef;
+      }
       if (st.ductile[t] >= 1.0) block.eroding.push_back(t);
     }
   }

@@ -133,6 +133,8 @@ void read_ductile_failure(const Reader& r, const YAML::Node& m, const std::strin
       r.fail(dn, join(p, "ductile_failure"),
              "ductile failure needs the material's johnson_cook_failure constants (D1 ... D5)");
   }
+  if (const YAML::Node fn = m["ductile_failure_at_floor"])
+    mat.ductile_failure_at_floor = r.boolean(fn, join(p, "ductile_failure_at_floor"));
   if (mat.ductile_failure && f.d5 != 0.0 && !(f.melt_temperature > f.room_temperature))
     r.fail(m["johnson_cook_failure"], join(p, "johnson_cook_failure"),
            "D5 needs a melt temperature above the room temperature: give melt_temperature");
@@ -172,6 +174,7 @@ Material parse_material(const Reader& r, const YAML::Node& m, const std::string&
           "initial_temperature",
           "erosion_plastic_strain",
           "ductile_failure",
+          "ductile_failure_at_floor",
           "johnson_cook_failure"});
   Material mat;
   mat.density = r.positive(require("density"), join(p, "density"), "kg/m^3");

@@ -418,8 +418,13 @@ TEST(MaterialLibrary, CaseTakesAnEntryAndOverridesKeys) {
   EXPECT_EQ(m.specific_heat, 383);
   // So do its fracture constants [JC85]; ductile failure stays off until a case turns it on.
   EXPECT_FALSE(m.ductile_failure);
+  EXPECT_TRUE(m.ductile_failure_at_floor);  // at the floor too, unless a case says not
   EXPECT_EQ(m.johnson_cook_failure.d2, 4.89);
   EXPECT_EQ(m.johnson_cook_failure.melt_temperature, 1356);
+  test::write_text(
+      dir / "floor.yaml",
+      replace(v, "from: ofhc-copper", "from: ofhc-copper\n    ductile_failure_at_floor: false"));
+  EXPECT_FALSE(load_case(dir / "floor.yaml").material("al").ductile_failure_at_floor);
   test::write_text(dir / "jc.yaml", replace(v, "from: ofhc-copper",
                                             "from: ofhc-copper\n    strength: johnson_cook"));
   const Case jc = load_case(dir / "jc.yaml");
@@ -576,6 +581,13 @@ TEST(CaseFile, MaterialAndWallErrors) {
        ":10:",
        "materials.al.johnson_cook.melt_temperature",
        "above the room temperature"},
+      {"ductile failure at the floor not a switch",
+       replace(v, "    poisson_ratio: 0.3",
+               "    poisson_ratio: 0.3\n    ductile_failure_at_floor: sometimes"),
+       {},
+       ":10:",
+       "materials.al.ductile_failure_at_floor",
+       "expected true or false"},
       {"ductile failure without constants",
        replace(v, "    poisson_ratio: 0.3", "    poisson_ratio: 0.3\n    ductile_failure: true"),
        {},

@@ -499,7 +499,7 @@ TEST(Material, JohnsonCookFailureStrainIsItsClosedForm) {
   EXPECT_NEAR(johnson_cook_failure_strain(f, 1.0 / 3.0, 1.0, 1043.0), uniaxial * 1.305, 1e-14);
   EXPECT_NEAR(johnson_cook_failure_strain(f, 1.0 / 3.0, 1.0, 5000.0), uniaxial * 1.61, 1e-14);
   EXPECT_EQ(johnson_cook_failure_strain(f, 1.0 / 3.0, 1.0, 100.0), uniaxial);
-  // 6061-T6 [L01]: D1 = −0.77 makes ε_f negative above σ* ≈ 1.36: floored at min_strain.
+  // 6061-T6 [L01]: D1 = −0.77 makes ε_f negative above σ* ≈ 1.35: floored at min_strain.
   JohnsonCookFailure al;
   al.d1 = -0.77, al.d2 = 1.45, al.d3 = -0.47;
   EXPECT_NEAR(johnson_cook_failure_strain(al, 0.0, 1.0, 293.0), 0.68, 1e-15);

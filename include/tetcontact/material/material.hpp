@@ -118,6 +118,9 @@ struct Material {
   // Ductile failure (needs fracture with particles): Johnson–Cook's damage D, a cell
   // eroded at D = 1. Off unless ductile_failure is set; the constants may come from a library.
   bool ductile_failure = false;
+  // Whether damage accrues where the law's own ε_f is at or below its floor (min_strain), outside
+  // the set's fit: off, tension there is left to the spall strength.
+  bool ductile_failure_at_floor = true;
   JohnsonCookFailure johnson_cook_failure;
 
   bool plastic() const { return strength != StrengthModel::bilinear || yield_stress > 0.0; }
