@@ -50,7 +50,7 @@ NAME, the table:
                   failure in the wall only, fragments as clusters, no ductile damage at the
                   failure strain's floor, the wall's ductile failure with clusters): verdicts right, verdicts changed, the wall's
                   thickness left, the parts' ductile failures (at the floor / all), the cost
-                  (~55 min on 2 cores)
+                  (~60 min on 2 cores)
     hugoniot      the library's aluminium equations of state on their Hugoniot against the
                   measured shock states of data/validation/aluminium-hugoniot.csv, per
                   pressure band (no runs: the EOS's closed form, which the engine reproduces)
