@@ -193,6 +193,17 @@ TEST(Mpi, CoarseBallPlateWithClustersIsBitIdenticalOn2And3Ranks) {
   EXPECT_GT(test::number(s, "/fracture/cells_joined_to_clusters"), 50);  // 119 of 282
 }
 
+// Johnson–Cook ductile failure on the coarse Whipple shield: the damage, its part at the failure
+// strain's floor and the cells it erodes are the one process's on every rank.
+TEST(Mpi, CoarseWhippleShieldWithDuctileFailureIsBitIdenticalOn2And3Ranks) {
+  const test::Json s = same_on_any_rank_count(
+      "whipple-ductile", "data/cases/whipple.yaml",
+      "--set parameters.hb=1.0e-3 --set parameters.hw=2.0e-3 --set parameters.np=6 "
+      "--set parameters.tear=5.0e-6 --set parameters.S=15e-3 --set parameters.ww=30e-3",
+      {2, 3});
+  EXPECT_GT(test::number(s, "/fracture/ductile_failed_at_floor"), 100);  // 277 of 281
+}
+
 TEST(Mpi, BarsAndATaylorRodWithNodalPressureAreBitIdenticalOn2To4Ranks) {
   const test::Json bars = same_on_any_rank_count("bars", "data/cases/bars-impact.yaml",
                                                  "--set end_time=20.0e-6", {2, 3, 4});
