@@ -48,9 +48,9 @@ NAME, the table:
                   hypervelocity user chooses changed alone (average nodal pressure off, erosion
                   at 20 % and 5 % of the first step, the sphere 12 cells across, ductile
                   failure in the wall only, fragments as clusters, no ductile damage at the
-                  failure strain's floor, the wall's ductile failure with clusters): verdicts right, verdicts changed, the wall's
-                  thickness left, the parts' ductile failures (at the floor / all), the cost
-                  (~60 min on 2 cores)
+                  failure strain's floor, the wall's ductile failure with clusters): verdicts
+                  right, verdicts changed, the wall's thickness left, the parts' ductile
+                  failures (at the floor / all), the cost (~60 min on 2 cores)
     hugoniot      the library's aluminium equations of state on their Hugoniot against the
                   measured shock states of data/validation/aluminium-hugoniot.csv, per
                   pressure band (no runs: the EOS's closed form, which the engine reproduces)
@@ -1007,6 +1007,8 @@ def whipple_refined(binary, work, opts):
 
 
 WHIPPLE_PARTS = ("projectile", "bumper", "wall")  # the shield's bodies, as whipple.yaml names them
+WALL_ONLY_DUCTILE = ["materials.projectile.ductile_failure=false",
+                     "materials.bumper.ductile_failure=false"]
 
 # The settings a hypervelocity user has to choose, each changed alone on the same sixteen shots at
 # the shipped mesh (the mesh itself: whipple-refined).
@@ -1018,8 +1020,7 @@ WHIPPLE_DEFAULTS = [  # (folder, label, --set)
     ("erosion-0.05", "erosion at 5 % of the first step", ["fracture.erosion_step_ratio=0.05"]),
     ("sphere12", "sphere 12 cells across", ["parameters.np=12"]),
     ("wall-ductile-only", "ductile failure in the wall only (the sphere and the bumper fail by "
-                          "spall and erosion)",
-     ["materials.projectile.ductile_failure=false", "materials.bumper.ductile_failure=false"]),
+                          "spall and erosion)", WALL_ONLY_DUCTILE),
     ("clusters", "fragments as clusters (a failed cell joins a neighbour's particle that moves "
                  "with it)", ["fracture.fragments=clusters"]),
     ("clusters-sphere12", "fragments as clusters, sphere 12 cells across",
@@ -1028,8 +1029,7 @@ WHIPPLE_DEFAULTS = [  # (folder, label, --set)
                    "the set speaks; tension beyond it left to the spall strength)",
      [f"materials.{x}.ductile_failure_at_floor=false" for x in WHIPPLE_PARTS]),
     ("wall-ductile-only-clusters", "ductile failure in the wall only, fragments as clusters",
-     ["materials.projectile.ductile_failure=false", "materials.bumper.ductile_failure=false",
-      "fracture.fragments=clusters"]),
+     WALL_ONLY_DUCTILE + ["fracture.fragments=clusters"]),
 ]
 WHIPPLE_DEFAULTS_HEADER = [
     "| setting | right (of the shots) | verdicts unlike the shipped | thickness left, mean: "
@@ -1071,9 +1071,8 @@ def ductile_parts(s):
     """Per part of the shield (WHIPPLE_PARTS): (its cells failed by Johnson–Cook's ductile
     damage, of them those whose damage accrued mostly with the failure strain at its floor, the
     law's own value below it), the model's cells."""
-    by = {b[K.NAME]: b for b in get(s, K.FRACTURE_FROM_BODIES)}  # no counts: no ductile failure
-    return [(by[p].get(K.DUCTILE_FAILED, 0), by[p].get(K.DUCTILE_FAILED_AT_FLOOR, 0))
-            for p in WHIPPLE_PARTS]
+    by = {b[K.NAME]: b for b in get(s, K.FRACTURE_FROM_BODIES)}
+    return [(by[p][K.DUCTILE_FAILED], by[p][K.DUCTILE_FAILED_AT_FLOOR]) for p in WHIPPLE_PARTS]
 
 
 def ductile_cell(parts):
