@@ -140,6 +140,34 @@ void read_ductile_failure(const Reader& r, const YAML::Node& m, const std::strin
            "D5 needs a melt temperature above the room temperature: give melt_temperature");
 }
 
+// A material's keys over the library entry it names (`from`): the entry's keys, each of `over`'s
+// (but `from`) in its place. Its own yield_stress or hardening_modulus are the bilinear law's
+// constants: they select it over the entry's law unless it names a law itself.
+YAML::Node merged_over(const YAML::Node& entry, const YAML::Node& over) {
+  YAML::Node merged = YAML::Clone(entry);
+  for (auto kv = over.begin(); kv != over.end(); ++kv)
+    if (kv->first.Scalar() != "from") merged[kv->first.Scalar()] = kv->second;
+  if ((over["yield_stress"] || over["hardening_modulus"]) && !over["strength"])
+    merged["strength"] = "bilinear";
+  return merged;
+}
+
+// A library entry as its material reads it: its own keys over the entry it derives from, when it
+// names one (`from`, one level: that entry does not derive from another).
+YAML::Node library_entry(const Reader& r, const YAML::Node& library, const std::string& name) {
+  const YAML::Node& lib = library;  // const: a lookup must not add the key
+  const YAML::Node entry = lib[name];
+  if (!(entry.IsMap() && entry["from"])) return entry;
+  const std::string p = join(name, "from");
+  const std::string base = r.string(entry["from"], p);
+  const YAML::Node b = lib[base];
+  if (!b) r.fail(entry["from"], p, "no library entry '" + base + "' to derive from");
+  if (b.IsMap() && b["from"])
+    r.fail(entry["from"], p,
+           "'" + base + "' derives from another entry itself: name the one it derives from");
+  return merged_over(b, entry);
+}
+
 }  // namespace
 
 // One material's keys: density; elasticity as (youngs_modulus, poisson_ratio) or
@@ -163,6 +191,7 @@ Material parse_material(const Reader& r, const YAML::Node& m, const std::string&
           "bulk_modulus",
           "yield_stress",
           "hardening_modulus",
+          "initial_plastic_strain",
           "eos",
           "spall_strength",
           "loosening_limit",
@@ -208,6 +237,9 @@ Material parse_material(const Reader& r, const YAML::Node& m, const std::string&
              "hardening needs a yield_stress > 0");
   }
   read_strength(r, m, p, mat);
+  if (m["initial_plastic_strain"])
+    mat.initial_plastic_strain =
+        r.non_negative(m["initial_plastic_strain"], join(p, "initial_plastic_strain"));
   if (const YAML::Node e = m["eos"]) {
     const std::string ep = join(p, "eos");
     r.map(e, ep);
@@ -290,14 +322,10 @@ void read_materials(const Reader& r, const YAML::Node& root, Case& c, const fs::
         r.fail(m["from"], join(p, "from"),
                "no material '" + from + "' in " + library_path + " (it has: " + names + ")");
       }
-      YAML::Node merged = YAML::Clone(lib[from]);
-      for (auto kv = m.begin(); kv != m.end(); ++kv)
-        if (kv->first.Scalar() != "from") merged[kv->first.Scalar()] = kv->second;
-      // The case's own yield_stress or hardening_modulus are the bilinear law's constants: they
-      // select it over the entry's law unless the case names a law itself.
-      if ((m["yield_stress"] || m["hardening_modulus"]) && !m["strength"])
-        merged["strength"] = "bilinear";
-      m.reset(merged);  // rebinds m: the case's own entry stays as written
+      // The library was validated above: its entries, and what each derives from, read.
+      const Reader lr(library_path, {});
+      m.reset(
+          merged_over(library_entry(lr, library, from), m));  // the case's entry stays as written
     }
     Material mat = parse_material(r, m, p, &it->second);
     mat.name = name;
@@ -323,9 +351,8 @@ std::vector<Material> load_material_library(const std::string& path) {
   std::vector<Material> out;
   for (auto it = root.begin(); it != root.end(); ++it) {
     const YAML::Node entry = it->second;
-    if (entry.IsMap() && entry["from"])
-      r.fail(entry["from"], it->first.Scalar() + ".from", "a library entry cannot use from");
-    Material m = parse_material(r, entry, it->first.Scalar());
+    const YAML::Node read = library_entry(r, root, it->first.Scalar());
+    Material m = parse_material(r, read, it->first.Scalar(), &entry);
     m.name = it->first.Scalar();
     out.push_back(m);
   }

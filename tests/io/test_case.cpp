@@ -461,6 +461,59 @@ TEST(MaterialLibrary, CaseTakesAnEntryAndOverridesKeys) {
   }
 }
 
+// A library entry may derive from another (`from`, one level): its keys over the other's. Its
+// material then starts from its cold work (`initial_plastic_strain`).
+TEST(MaterialLibrary, AnEntryDerivesFromAnother) {
+  test::TempDir dir("library-from");
+  const std::string base = R"(base:
+  strength: steinberg_guinan
+  density: 8930
+  shear_modulus: 47.7e9
+  eos: {type: mie_gruneisen, c0: 3940, s: 1.489, gamma0: 2.02}
+  steinberg_guinan: {Y0: 0.12e9, Ymax: 0.64e9, beta: 36, n: 0.45}
+)";
+  test::write_text(dir / "lib.yaml",
+                   base + "worked:\n  from: base\n  initial_plastic_strain: 0.25\n");
+  const auto lib = load_material_library(dir / "lib.yaml");
+  ASSERT_EQ(lib.size(), 2u);
+  EXPECT_EQ(lib[0].initial_plastic_strain, 0.0);
+  EXPECT_EQ(lib[1].name, "worked");
+  EXPECT_EQ(lib[1].initial_plastic_strain, 0.25);
+  EXPECT_EQ(lib[1].density, 8930);  // the rest is the base's
+  EXPECT_EQ(lib[1].strength, StrengthModel::steinberg_guinan);
+  EXPECT_EQ(lib[1].steinberg_guinan.ymax, 0.64e9);
+
+  // A case takes the derived entry, and its own keys go over both.
+  std::string v = replace(k_valid, "materials:", "material_library: lib.yaml\nmaterials:");
+  v = replace(v, R"(  al:
+    density: 2700
+    youngs_modulus: 70.0e9
+    poisson_ratio: 0.3)",
+              "  al:\n    from: worked\n    density: 9000");
+  test::write_text(dir / "c.yaml", v);
+  const Material m = load_case(dir / "c.yaml").material("al");
+  EXPECT_EQ(m.initial_plastic_strain, 0.25);
+  EXPECT_EQ(m.density, 9000);
+  EXPECT_EQ(m.steinberg_guinan.y0, 0.12e9);
+
+  const auto fails = [&](const std::string& text, const std::vector<std::string>& says) {
+    test::write_text(dir / "bad.yaml", text);
+    try {
+      load_material_library(dir / "bad.yaml");
+      FAIL() << text;
+    } catch (const CaseError& e) {
+      const std::string msg = e.what();
+      for (const std::string& want : says) EXPECT_NE(msg.find(want), std::string::npos) << msg;
+    }
+  };
+  fails(base + "worked:\n  from: nothing\n",
+        {"bad.yaml", "worked.from", "no library entry 'nothing'"});
+  fails(base + "worked:\n  from: base\nreworked:\n  from: worked\n",
+        {"reworked.from", "'worked' derives from another entry"});
+  fails(base + "worked:\n  from: base\n  initial_plastic_strain: -0.1\n",
+        {"worked.initial_plastic_strain"});
+}
+
 TEST(CaseFile, MaterialAndWallErrors) {
   const std::string v = k_valid;
   const std::vector<ErrorCase> cases = {

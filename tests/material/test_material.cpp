@@ -477,6 +477,44 @@ TEST(Material, SteinbergGuinanAdiabaticSofteningFollowsTheExponential) {
   EXPECT_NEAR(r.temperature, 300.0 + (1.0 - std::exp(-k * r.eps)) / 6.16e-4, 0.5);
 }
 
+// The metal's cold work ε̄p0 (`initial_plastic_strain`) is where each law's hardening starts: the
+// return from ε̄p is the return of the same metal without it from ε̄p0 + ε̄p, to the last bit, and
+// Steinberg–Guinan's first yield is Y0 [1 + β (εi + ε̄p0)]ⁿ.
+TEST(Material, InitialPlasticStrainIsWhereTheHardeningStarts) {
+  Material bilinear = al6061();
+  bilinear.hardening_modulus = 0.5e9;
+  Material jc = al6061();
+  jc.strength = StrengthModel::johnson_cook;
+  jc.yield_stress = 0.0;
+  jc.johnson_cook.a = 324e6;
+  jc.johnson_cook.b = 114e6;
+  jc.johnson_cook.n = 0.42;
+  jc.johnson_cook.c = 0.002;
+  jc.johnson_cook.m = 1.34;
+  jc.johnson_cook.melt_temperature = 925.0;
+  jc.specific_heat = 885.0;
+  const Material sg = steinberg(125.0, 0.1, 0.68e9, 6.52e-11, 6.16e-4, 1220.0);
+  for (const Material& plain : {bilinear, jc, sg}) {
+    Material worked = plain;
+    worked.initial_plastic_strain = 0.2;
+    for (double eq = 0.2e9; eq <= 0.8e9; eq += 0.05e9) {
+      const PlasticIncrement a = plastic_increment(worked, eq, 0.03, 1e-8, 400.0, 2750.0, 1e9);
+      const PlasticIncrement b = plastic_increment(plain, eq, 0.23, 1e-8, 400.0, 2750.0, 1e9);
+      EXPECT_EQ(a.dplastic, b.dplastic) << plain.name << " " << eq;
+      EXPECT_EQ(a.yield, b.yield) << plain.name << " " << eq;
+    }
+  }
+  // The work-hardened metal yields higher: Y0 (1 + 125 · 0.2)^0.1 = 0.4017 GPa against 0.29 GPa
+  // (no pressure, 300 K: G/G0 = 1); a trial stress 0.1 % above it returns to it (the step's own
+  // hardening is 1e-5 of it), 1 % below it is elastic.
+  Material worked = steinberg(125.0, 0.1, 0.68e9, 0.0, 0.0, 0.0);
+  worked.initial_plastic_strain = 0.2;
+  const double y = 0.29e9 * std::pow(1.0 + 125.0 * 0.2, 0.1);
+  EXPECT_NEAR(plastic_increment(worked, 1.001 * y, 0.0, 1e-8, 300.0, worked.density).yield, y,
+              1e-3 * y);
+  EXPECT_EQ(plastic_increment(worked, 0.99 * y, 0.0, 1e-8, 300.0, worked.density).dplastic, 0.0);
+}
+
 // Johnson–Cook's failure strain against its closed form, with 4340 steel's [JC85]
 // constants: ε_f = [D1 + D2 exp(D3 σ*)] [1 + D4 ln ε̇*] [1 + D5 T*]; no rate term below the
 // reference rate, T* clamped to [0, 1], and the floor where D1 < 0 makes it negative.

@@ -102,8 +102,21 @@ def test_command_line_refuses_before_running(tmp_path):
 def test_every_table_has_a_command():
     assert T.NAMES == ["stability", "micro", "profile", "ccd", "verify", "verify-full", "threads",
                        "mpi", "whipple", "whipple-mesh", "whipple-hole", "strength", "taylor-tests",
-                       "whipple-shots", "whipple-refined", "whipple-defaults", "hugoniot"]
+                       "taylor-temper", "whipple-shots", "whipple-refined", "whipple-defaults", "hugoniot"]
     assert list(T.TABLES) == T.NAMES
+
+
+# taylor-temper: the library's fitted value and a campaign's errors --------------------------------
+def test_temper_reads_the_library_and_the_errors():
+    eps = T.library_value(T.TEMPER_ENTRY, "initial_plastic_strain")
+    assert T.TEMPER_BRACKET[0] < eps < T.TEMPER_BRACKET[1]
+    with pytest.raises(SystemExit, match="no initial_plastic_strain"):
+        T.library_value("ofhc-copper", "initial_plastic_strain")  # the entry it derives from
+    rows = [{"error:final length": "-0.02", "error:footprint radius": "0.10"},
+            {"error:final length": "0.01", "error:footprint radius": ""},
+            {"error:final length": "0.04", "error:footprint radius": "-0.06"}]
+    assert T.temper_row("r", "SG", "0.3", rows) == (
+        "| r | SG | 0.3 | 3 | 2.0 %, 4.0 %, 4.0 % | +1.0 % | 8.0 %, +2.0 % |")
 
 
 # The machine line --------------------------------------------------------------------------------

@@ -35,6 +35,10 @@ NAME, the table:
                   data/figures/taylor-lf.png (Lf/L0 against speed); the computed outlines of
                   the digitised rods, each law's footprint and mean |Δr| / R0, and their
                   figure data/figures/taylor-profiles.png (~80 min on 2 cores)
+    taylor-temper the cold work of House et al.'s copper (library entry ofhc-copper-house):
+                  found by bisection on every other one of their rods under the default law,
+                  checked against the library's value, then the entry on the fitting and the
+                  held-out rods under each law, beside plain ofhc-copper (~10 min on 2 cores)
     whipple-shots the normal-incidence shots of three shields of data/validation/whipple-shots.csv
                   whose shots straddle the limit (`campaign data/cases/whipple.yaml`, the
                   cores at once), the engine's verdicts and Christiansen's against the
@@ -89,7 +93,7 @@ from tools.common.summary_keys import get  # noqa: E402
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 NAMES = ["stability", "micro", "profile", "ccd", "verify", "verify-full", "threads", "mpi",
-         "whipple", "whipple-mesh", "whipple-hole", "strength", "taylor-tests",
+         "whipple", "whipple-mesh", "whipple-hole", "strength", "taylor-tests", "taylor-temper",
          "whipple-shots", "whipple-refined", "whipple-defaults", "hugoniot"]
 
 
@@ -722,6 +726,106 @@ def taylor_outlines(folders):
     tp.plot(table, labels, os.path.join(ROOT, "data", "figures", "taylor-profiles.png"))
 
 
+# taylor-temper -----------------------------------------------------------------------------------
+TEMPER_PROGRAMME = ("Cu OFHC", "House et al. 1995")  # the material and source of the fitted rods
+TEMPER_ENTRY = "ofhc-copper-house"  # the library's entry for them
+TEMPER_BRACKET = (0.0, 0.6)  # the cold work searched, ε̄p0
+TEMPER_TOLERANCE = 0.01  # the bracket's width at which the search stops
+TEMPER_HEADER = [
+    "| rods | law | ε̄p0 | tests | Lf: median, 90 % within, largest \\|ΔLf/Lf\\| | mean ΔLf/Lf | "
+    "footprint: median \\|Δ\\|, mean Δ |",
+    "|---|---|---|---|---|---|---|"]
+
+
+def library_value(name, key):
+    """A number of a library entry, read from its `key:` line in data/materials.yaml."""
+    entry = None
+    with open(os.path.join(ROOT, "data", "materials.yaml")) as f:
+        for line in f:
+            if re.match(r"^[a-z0-9-]+:", line):
+                entry = line.split(":")[0]
+            elif entry == name and line.strip().startswith(key + ":"):
+                return float(line.split(":")[1].split("#")[0])
+    raise SystemExit(f"tables.py: error: data/materials.yaml: entry {name} has no {key}")
+
+
+def temper_campaign(binary, out, rows, keys):
+    """The Taylor campaign on `rows` (row numbers) with --set `keys`: its predictions."""
+    cmd = [binary, "campaign", os.path.join(ROOT, "data/cases/taylor.yaml"),
+           os.path.join(VALIDATION, "taylor-tests.csv"), "--quiet", "--out", out,
+           "--rows", ",".join(str(r) for r in rows)] + sets(keys)
+    r = subprocess.run(cmd, capture_output=True, text=True)
+    if r.returncode != 0:
+        raise SystemExit(f"tables.py: error: {' '.join(cmd)}: exit {r.returncode}\n{r.stderr}")
+    with open(os.path.join(out, "predictions.csv")) as f:
+        return list(csv.DictReader(f))
+
+
+def temper_row(rods, law, eps, predictions):
+    """One campaign's errors: the final length's and the footprint's."""
+    length = [float(r["error:final length"]) for r in predictions]
+    foot = [float(r["error:footprint radius"]) for r in predictions if r["error:footprint radius"]]
+    median, p90 = abs_stats(length)
+    foot_median, _ = abs_stats(foot)
+    return (f"| {rods} | {law} | {eps} | {len(length)} | {pct(median)}, {pct(p90)}, "
+            f"{pct(max(abs(e) for e in length))} | {100 * statistics.mean(length):+.1f} % | "
+            f"{pct(foot_median)}, {100 * statistics.mean(foot):+.1f} % |")
+
+
+def taylor_temper(binary, work, opts):
+    """The cold work of House et al.'s copper (their temper is not stated): ε̄p0 found by
+    bisection, under copper's default law, so that the mean ΔLf/Lf of every other one of their
+    rods (the first, the third, ...) vanishes; then the library's entry for them, which must
+    hold that value, on those rods and on the others, under the default law and Johnson–Cook."""
+    with open(os.path.join(VALIDATION, "taylor-tests.csv")) as f:
+        table = list(csv.DictReader(line for line in f if not line.startswith("#")))
+    rods = [k + 1 for k, r in enumerate(table) if (r["material"], r["source"]) == TEMPER_PROGRAMME]
+    if not rods:
+        raise SystemExit(f"tables.py: error: taylor-tests.csv: no rods of {TEMPER_PROGRAMME}")
+    fit, held = rods[0::2], rods[1::2]
+
+    def mean_error(eps):
+        out = os.path.join(work, f"temper-fit-{eps:.4f}")
+        predictions = temper_campaign(binary, out, fit, [f"materials.rod.initial_plastic_strain={eps}"])
+        return statistics.mean(float(r["error:final length"]) for r in predictions)
+
+    lo, hi = TEMPER_BRACKET
+    f_lo, f_hi = mean_error(lo), mean_error(hi)
+    searched = [(lo, f_lo), (hi, f_hi)]
+    if not (f_lo < 0.0 < f_hi):
+        raise SystemExit(f"tables.py: error: the mean ΔLf/Lf at ε̄p0 = {lo} and {hi} "
+                         f"({f_lo:+.4f}, {f_hi:+.4f}) do not bracket zero")
+    while hi - lo > TEMPER_TOLERANCE:
+        mid = 0.5 * (lo + hi)
+        f_mid = mean_error(mid)
+        searched.append((mid, f_mid))
+        lo, hi = (mid, hi) if f_mid < 0.0 else (lo, mid)
+    f_a, f_b = dict(searched)[lo], dict(searched)[hi]
+    fitted = lo - f_a * (hi - lo) / (f_b - f_a)  # the root, linear inside the last bracket
+    shipped = library_value(TEMPER_ENTRY, "initial_plastic_strain")
+    if abs(shipped - fitted) > TEMPER_TOLERANCE:
+        raise SystemExit(f"tables.py: error: data/materials.yaml: {TEMPER_ENTRY}'s "
+                         f"initial_plastic_strain {shipped} is not the fit's {fitted:.3f}")
+    yield ("The search (ε̄p0: mean ΔLf/Lf of the fitting rods): "
+           + ", ".join(f"{e:.4g}: {100 * f:+.2f} %" for e, f in sorted(searched))
+           + f"; the root {fitted:.3f}, the library's entry `{TEMPER_ENTRY}` {shipped:g}.")
+    yield ""
+    yield from TEMPER_HEADER
+    for label, which in ((f"fitting: {len(fit)} (rows {fit[0]}, {fit[1]}, … {fit[-1]})", fit),
+                         (f"held out: {len(held)} (rows {held[0]}, {held[1]}, … {held[-1]})",
+                          held)):
+        for law, keys in (("Steinberg–Guinan (default)", []),
+                          ("Johnson–Cook", ["materials.rod.strength=johnson_cook"])):
+            tag = "sg" if not keys else "jc"
+            # The entry without its cold work is `ofhc-copper`, the entry it derives from.
+            before = temper_campaign(binary, os.path.join(work, f"temper-{tag}-{which[0]}-ofhc"),
+                                     which, keys + ["materials.rod.initial_plastic_strain=0"])
+            after = temper_campaign(binary, os.path.join(work, f"temper-{tag}-{which[0]}"),
+                                    which, keys)
+            yield temper_row(label, law, "0 (`ofhc-copper`)", before)
+            yield temper_row("", "", f"{shipped:g} (`{TEMPER_ENTRY}`)", after)
+
+
 # hugoniot ----------------------------------------------------------------------------------------
 HUGONIOT_ENTRIES = ["al6061-t6", "al2024-t4", "al1100-o", "al7075-t6"]
 HUGONIOT_BANDS = [(0, 20), (20, 50), (50, 120), (120, 250)]  # GPa
@@ -1215,7 +1319,7 @@ def whipple_hole(binary, work, opts):
 TABLES = {"stability": stability, "micro": micro, "profile": profile, "ccd": ccd, "verify": verify,
           "verify-full": verify_full, "threads": threads, "mpi": mpi, "whipple": whipple,
           "whipple-mesh": whipple_mesh, "whipple-hole": whipple_hole, "strength": strength,
-          "taylor-tests": taylor_tests, "whipple-shots": whipple_shots,
+          "taylor-tests": taylor_tests, "taylor-temper": taylor_temper, "whipple-shots": whipple_shots,
           "whipple-refined": whipple_refined, "whipple-defaults": whipple_defaults,
           "hugoniot": hugoniot}
 assert list(TABLES) == NAMES

@@ -97,6 +97,10 @@ struct Material {
   double hardening_modulus = 0.0;  // H, Pa
   JohnsonCook johnson_cook;
   SteinbergGuinan steinberg_guinan;
+  // The plastic strain the metal carries before the run (its cold work, ε̄p0): every law's
+  // hardening reads ε̄p0 + ε̄p (Steinberg–Guinan's own εi adds to it). ε̄p itself, its output,
+  // erosion by strain and ductile damage count the run's strain alone.
+  double initial_plastic_strain = 0.0;
   // Temperature, tracked per tet when specific_heat > 0: heated by the viscous
   // (shock) work and by the fraction taylor_quinney of the plastic work.
   double specific_heat = 0.0;        // c_v, J/(kg K)
@@ -319,6 +323,7 @@ inline PlasticIncrement plastic_increment(const Material& m, const StrengthState
                                           double eps_p, double tau, double temperature,
                                           double rho) {
   PlasticIncrement r;
+  eps_p += m.initial_plastic_strain;  // the hardening's strain: the cold work and the run's
   const double g = ss.g, g3 = 3.0 * g;
   if (m.strength == StrengthModel::bilinear) {
     r.yield = m.yield_stress + m.hardening_modulus * eps_p;
