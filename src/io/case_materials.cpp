@@ -160,12 +160,15 @@ YAML::Node library_entry(const Reader& r, const YAML::Node& library, const std::
   if (!(entry.IsMap() && entry["from"])) return entry;
   const std::string p = join(name, "from");
   const std::string base = r.string(entry["from"], p);
+  if (base == name) r.fail(entry["from"], p, "an entry cannot derive from itself");
   const YAML::Node b = lib[base];
   if (!b) r.fail(entry["from"], p, "no library entry '" + base + "' to derive from");
-  if (b.IsMap() && b["from"])
+  r.map(b, base);
+  if (b["from"])
     r.fail(entry["from"], p,
            "'" + base + "' derives from another entry itself: name the one it derives from");
-  return merged_over(b, entry);
+  // A clone: the entry's own nodes keep the library's lines, which a case's error must not cite.
+  return merged_over(b, YAML::Clone(entry));
 }
 
 }  // namespace
@@ -322,10 +325,10 @@ void read_materials(const Reader& r, const YAML::Node& root, Case& c, const fs::
         r.fail(m["from"], join(p, "from"),
                "no material '" + from + "' in " + library_path + " (it has: " + names + ")");
       }
-      // The library was validated above: its entries, and what each derives from, read.
+      // The library was validated above, each entry with what it derives from. m is rebound:
+      // the case's own entry stays as written.
       const Reader lr(library_path, {});
-      m.reset(
-          merged_over(library_entry(lr, library, from), m));  // the case's entry stays as written
+      m.reset(merged_over(library_entry(lr, library, from), m));
     }
     Material mat = parse_material(r, m, p, &it->second);
     mat.name = name;

@@ -512,6 +512,11 @@ TEST(MaterialLibrary, AnEntryDerivesFromAnother) {
         {"reworked.from", "'worked' derives from another entry"});
   fails(base + "worked:\n  from: base\n  initial_plastic_strain: -0.1\n",
         {"worked.initial_plastic_strain"});
+  fails(base + "worked:\n  from: worked\n", {"worked.from", "cannot derive from itself"});
+  fails("odd:\n  from: scalar\nscalar: 3\n", {"bad.yaml:3:", "key 'scalar'", "expected a mapping"});
+  // Its own yield_stress selects the bilinear law over the base's, as a case's does.
+  test::write_text(dir / "lib.yaml", base + "soft:\n  from: base\n  yield_stress: 0.1e9\n");
+  EXPECT_EQ(load_material_library(dir / "lib.yaml")[1].strength, StrengthModel::bilinear);
 }
 
 TEST(CaseFile, MaterialAndWallErrors) {
