@@ -84,9 +84,10 @@ bool finished_run(const ChildRun& r) {
 
 namespace {
 
-// Forks and execs argv[0] (a path, or a name looked up in PATH) with its output to `log` and no
-// input: the child's pid, or -1.
-pid_t start_program(std::vector<std::string> args, const std::string& log) {
+// Forks and execs `program` (a path, or a name looked up in PATH) with the arguments `args`
+// (args[0] its name) and its output to `log` and no input: the child's pid, or -1.
+pid_t start_program(const std::string& program, std::vector<std::string> args,
+                    const std::string& log) {
   const pid_t pid = fork();
   if (pid == 0) {  // the child: its output to the log, then the program
     const int fd = open(log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
@@ -96,7 +97,7 @@ pid_t start_program(std::vector<std::string> args, const std::string& log) {
     std::vector<char*> argv;
     for (std::string& a : args) argv.push_back(a.data());
     argv.push_back(nullptr);
-    execvp(args[0].c_str(), argv.data());
+    execvp(program.c_str(), argv.data());
     _exit(127);
   }
   return pid;
@@ -105,7 +106,7 @@ pid_t start_program(std::vector<std::string> args, const std::string& log) {
 }  // namespace
 
 int run_program(const std::vector<std::string>& argv, const std::string& log) {
-  const pid_t pid = start_program(argv, log);
+  const pid_t pid = start_program(argv.at(0), argv, log);
   if (pid < 0) return -1;
   int status = 0;
   if (waitpid(pid, &status, 0) != pid) return -1;
@@ -116,6 +117,7 @@ void run_children(const std::vector<ChildRun*>& todo, int jobs,
                   const std::function<void(ChildRun&)>& on_done) {
   // The children run this very image (a forked child's /proc/self/exe is its parent's), not
   // whatever file now lies at its path, so that their runs are of the build in their key.
+  // Named `tetcontact` (argv[0]), as `ps` and `top` show them.
   const std::string exe = "/proc/self/exe";
   std::map<pid_t, ChildRun*> running;
   std::size_t next = 0;
@@ -124,9 +126,9 @@ void run_children(const std::vector<ChildRun*>& todo, int jobs,
       ChildRun* r = todo[next++];
       fs::create_directories(r->dir);
       write_file_atomic(r->dir + "/run.key", r->key);
-      std::vector<std::string> args{exe};
+      std::vector<std::string> args{"tetcontact"};
       args.insert(args.end(), r->args.begin(), r->args.end());
-      const pid_t pid = start_program(args, r->dir + "/run.log");
+      const pid_t pid = start_program(exe, args, r->dir + "/run.log");
       if (pid < 0) throw std::runtime_error("cannot start a run (fork)");
       running[pid] = r;
     }
