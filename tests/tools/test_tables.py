@@ -102,7 +102,8 @@ def test_command_line_refuses_before_running(tmp_path):
 def test_every_table_has_a_command():
     assert T.NAMES == ["stability", "micro", "profile", "ccd", "verify", "verify-full", "threads",
                        "mpi", "whipple", "whipple-mesh", "whipple-hole", "strength", "taylor-tests",
-                       "taylor-temper", "whipple-shots", "whipple-refined", "whipple-defaults", "hugoniot"]
+                       "taylor-temper", "whipple-shots", "whipple-refined", "whipple-defaults",
+                       "hugoniot"]
     assert list(T.TABLES) == T.NAMES
 
 

@@ -671,6 +671,19 @@ def taylor_rows(folder, label):
                          f"({ft['compared']}) | {max(steps):,} | {seconds:.0f} s |")
 
 
+def taylor_campaign(binary, out, keys, rows=None):
+    """The Taylor campaign of the shared tests into `out` with --set `keys` (on `rows`, a --rows
+    expression, or all): its predictions."""
+    cmd = [binary, "campaign", os.path.join(ROOT, "data/cases/taylor.yaml"),
+           os.path.join(VALIDATION, "taylor-tests.csv"), "--quiet", "--out", out] + sets(keys) \
+        + (["--rows", rows] if rows else [])
+    r = subprocess.run(cmd, capture_output=True, text=True)
+    if r.returncode != 0:
+        raise SystemExit(f"tables.py: error: {' '.join(cmd)}: exit {r.returncode}\n{r.stderr}")
+    with open(os.path.join(out, "predictions.csv")) as f:
+        return list(csv.DictReader(f))
+
+
 def taylor_tests(binary, work, opts):
     """Every shared Taylor test under each law (a campaign each), and the figure."""
     table = os.path.join(VALIDATION, "taylor-tests.csv")
@@ -680,11 +693,7 @@ def taylor_tests(binary, work, opts):
     folders = []
     for name, label, keys, rows in TAYLOR_LAWS:
         out = os.path.join(work, "taylor-" + name)
-        cmd = [binary, "campaign", os.path.join(ROOT, "data/cases/taylor.yaml"), table, "--quiet",
-               "--out", out] + sets(keys) + (["--rows", rows] if rows else [])
-        r = subprocess.run(cmd, capture_output=True, text=True)
-        if r.returncode != 0:
-            raise SystemExit(f"tables.py: error: {' '.join(cmd)}: exit {r.returncode}\n{r.stderr}")
+        taylor_campaign(binary, out, keys, rows)
         folders.append((out, label))
     by_material = {}
     for out, label in folders:
@@ -749,16 +758,9 @@ def library_value(name, key):
     raise SystemExit(f"tables.py: error: data/materials.yaml: entry {name} has no {key}")
 
 
-def temper_campaign(binary, out, rows, keys):
-    """The Taylor campaign on `rows` (row numbers) with --set `keys`: its predictions."""
-    cmd = [binary, "campaign", os.path.join(ROOT, "data/cases/taylor.yaml"),
-           os.path.join(VALIDATION, "taylor-tests.csv"), "--quiet", "--out", out,
-           "--rows", ",".join(str(r) for r in rows)] + sets(keys)
-    r = subprocess.run(cmd, capture_output=True, text=True)
-    if r.returncode != 0:
-        raise SystemExit(f"tables.py: error: {' '.join(cmd)}: exit {r.returncode}\n{r.stderr}")
-    with open(os.path.join(out, "predictions.csv")) as f:
-        return list(csv.DictReader(f))
+def numbers(rows):
+    """Row numbers as a --rows expression."""
+    return ",".join(str(r) for r in rows)
 
 
 def temper_row(rods, law, eps, predictions):
@@ -786,7 +788,8 @@ def taylor_temper(binary, work, opts):
 
     def mean_error(eps):
         out = os.path.join(work, f"temper-fit-{eps:.4f}")
-        predictions = temper_campaign(binary, out, fit, [f"materials.rod.initial_plastic_strain={eps}"])
+        predictions = taylor_campaign(binary, out, [f"materials.rod.initial_plastic_strain={eps}"],
+                                      numbers(fit))
         return statistics.mean(float(r["error:final length"]) for r in predictions)
 
     lo, hi = TEMPER_BRACKET
@@ -818,10 +821,11 @@ def taylor_temper(binary, work, opts):
                           ("Johnson–Cook", ["materials.rod.strength=johnson_cook"])):
             tag = "sg" if not keys else "jc"
             # The entry without its cold work is `ofhc-copper`, the entry it derives from.
-            before = temper_campaign(binary, os.path.join(work, f"temper-{tag}-{which[0]}-ofhc"),
-                                     which, keys + ["materials.rod.initial_plastic_strain=0"])
-            after = temper_campaign(binary, os.path.join(work, f"temper-{tag}-{which[0]}"),
-                                    which, keys)
+            before = taylor_campaign(binary, os.path.join(work, f"temper-{tag}-{which[0]}-ofhc"),
+                                     keys + ["materials.rod.initial_plastic_strain=0"],
+                                     numbers(which))
+            after = taylor_campaign(binary, os.path.join(work, f"temper-{tag}-{which[0]}"), keys,
+                                    numbers(which))
             yield temper_row(label, law, "0 (`ofhc-copper`)", before)
             yield temper_row("", "", f"{shipped:g} (`{TEMPER_ENTRY}`)", after)
 
