@@ -363,7 +363,7 @@ TEST(MaterialLibrary, ShippedLibraryIsValidAndComplete) {
   // The Whipple database's alloys too: every shot of it maps to an entry with failure constants.
   const std::vector<std::string> database{"al2017-t4", "al2024-t3", "al1100-o", "al7075-t6",
                                           "al2219-t87"};
-  for (const std::string& want :
+  for (const char* want :
        {"al6061-t6", "al2024-t4", "amg6", "steel-4340", "ofhc-copper", "tungsten-alloy"})
     EXPECT_NE(std::find(names.begin(), names.end(), want), names.end()) << want;
   for (const std::string& want : database)
@@ -382,7 +382,9 @@ TEST(MaterialLibrary, ShippedLibraryIsValidAndComplete) {
       EXPECT_GT(m.johnson_cook.a, 0.0) << m.name;
       EXPECT_GT(m.johnson_cook.melt_temperature, m.johnson_cook.room_temperature) << m.name;
     }
-    if (m.name != "amg6") EXPECT_GT(m.specific_heat, 0.0) << m.name;
+    if (m.name != "amg6") {
+      EXPECT_GT(m.specific_heat, 0.0) << m.name;
+    }
     if (of_database) {  // one failure model for all: Johnson–Cook's, with its melt
       EXPECT_NE(m.johnson_cook_failure.d2, 0.0) << m.name;
       EXPECT_GT(m.johnson_cook_failure.melt_temperature, m.johnson_cook_failure.room_temperature)

@@ -102,7 +102,9 @@ TEST(ContactHeat, TheKernelsHeatIsTheLostKineticEnergyWithFriction) {
     const double sum = heat[0] + heat[1] + heat[2] + heat[3];
     if (work < 0.0) {
       EXPECT_NEAR(sum, -work, 1e-13 * k0);
-      if (k % 2 == 0) EXPECT_NEAR(sum, c.heat, 1e-13 * k0);
+      if (k % 2 == 0) {
+        EXPECT_NEAR(sum, c.heat, 1e-13 * k0);
+      }
       for (int i = 0; i < 4; ++i) {
         const double w = i == 0 ? 1.0 : c.b_w[i - 1];
         EXPECT_NEAR(heat[i],

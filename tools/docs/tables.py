@@ -55,6 +55,9 @@ NAME, the table:
                   failure strain's floor, the wall's ductile failure with clusters): verdicts
                   right, verdicts changed, the wall's thickness left, the parts' ductile
                   failures (at the floor / all), the cost (~60 min on 2 cores)
+    whipple-wall  eight of those shots on rear walls of 2, 6 and 12 cells through, the wall's
+                  ductile damage at the failure strain's floor off: whether the verdict
+                  converges as the wall is refined (~80 min on 2 cores)
     hugoniot      the library's aluminium equations of state on their Hugoniot against the
                   measured shock states of data/validation/aluminium-hugoniot.csv, per
                   pressure band (no runs: the EOS's closed form, which the engine reproduces)
@@ -94,7 +97,7 @@ from tools.common.summary_keys import get  # noqa: E402
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 NAMES = ["stability", "micro", "profile", "ccd", "verify", "verify-full", "threads", "mpi",
          "whipple", "whipple-mesh", "whipple-hole", "strength", "taylor-tests", "taylor-temper",
-         "whipple-shots", "whipple-refined", "whipple-defaults", "hugoniot"]
+         "whipple-shots", "whipple-refined", "whipple-defaults", "whipple-wall", "hugoniot"]
 
 
 def g(x):
@@ -1215,6 +1218,62 @@ def whipple_defaults(binary, work, opts):
                                             *runs[name][n]) for n in sorted(shipped)])
 
 
+# whipple-wall -------------------------------------------------------------------------------------
+# Eight of the sixteen shots (four NP, four P; 3.0–6.9 km/s, 2.54–4.57 mm walls) on three rear-wall
+# meshes, 2, 6 and 12 cells through it, with no ductile damage at the wall's failure strain's
+# floor: whether the verdict converges as the wall is refined. The finer
+# walls hold their cells uniform over a core 16 mm wide (the cloud's dense centre) instead of
+# the standoff's width, and grow outside it as shipped.
+WHIPPLE_WALL_ROWS = "383,591,693,817,307,444,542,821"
+WALL_FINE = ["parameters.cw=16e-3"]
+NO_FLOOR = ["materials.wall.ductile_failure_at_floor=false"]
+WHIPPLE_WALL = [  # (folder, label, --set)
+    ("wall2-nofloor", "2 through (shipped)", NO_FLOOR),
+    ("wall6-nofloor", "6 through", ['parameters.hw="= tw / 6"'] + WALL_FINE + NO_FLOOR),
+    ("wall12-nofloor", "12 through", ['parameters.hw="= tw / 12"'] + WALL_FINE + NO_FLOOR),
+]
+WHIPPLE_WALL_HEADER = [
+    "| row (line) | wall | speed | measured | equation | " + " | ".join(
+        f"{label}: verdict, thickness left, wall mass to particles"
+        for _, label, _ in WHIPPLE_WALL) + " | run time (each mesh) |",
+    "|---|---|---|---|---|" + "---|" * len(WHIPPLE_WALL) + "---|"]
+
+
+def whipple_wall(binary, work, opts):
+    """The shots of WHIPPLE_WALL_ROWS on each rear-wall mesh of WHIPPLE_WALL: each verdict and
+    the wall's thickness left beside the measured verdict and the equation's, and how many each
+    mesh gets right."""
+    from tools.post import whipple_scores as ws
+    table_path = os.path.join(VALIDATION, "whipple-shots.csv")
+    runs = {name: whipple_campaign(binary, table_path, os.path.join(work, "whipple-wall-" + name),
+                                   WHIPPLE_WALL_ROWS, sets)
+            for name, _, sets in WHIPPLE_WALL}
+    table = ws.read_table(table_path)
+    first = WHIPPLE_WALL[0][0]
+    rows = sorted(runs[first], key=lambda n: (table[n - 1]["result"], float(
+        table[n - 1]["wall_thick"]), -float(table[n - 1]["velocity"])))
+    right = {name: 0 for name, _, _ in WHIPPLE_WALL}
+    right["equation"] = 0
+    yield from WHIPPLE_WALL_HEADER
+    for n in rows:
+        shot = table[n - 1]
+        eq = ws.equation_says(shot)
+        right["equation"] += eq == shot["result"]
+        cells = []
+        for name, _, _ in WHIPPLE_WALL:
+            verdict, through, left, eroded, seconds = whipple_refined_cells(*runs[name][n])
+            right[name] += verdict == shot["result"]
+            shown = f"P ({through * 1e6:.1f} mg)" if verdict == "P" else verdict
+            cells.append((f"{shown}, {left:.2f}, {eroded * 1e6:.1f} mg", seconds))
+        yield (f"| {n} ({runs[first][n][0]['line']}) | {float(shot['wall_thick']) * 10:.2f} mm | "
+               f"{float(shot['velocity']):.1f} km/s | {shot['result']} | {eq} | "
+               + " | ".join(c for c, _ in cells) + " | "
+               + ", ".join(f"{t:.0f} s" for _, t in cells) + " |")
+    yield ""
+    yield (f"Right, of {len(rows)}: the equation {right['equation']}; "
+           + ", ".join(f"{label} {right[name]}" for name, label, _ in WHIPPLE_WALL) + ".")
+
+
 # whipple, whipple-mesh, whipple-hole -------------------------------------------------------------
 WHIPPLE_COARSE = ["parameters.hb=1.0e-3", "parameters.hw=2.0e-3", "parameters.np=6",
                   "parameters.tear=5.0e-6"]
@@ -1325,6 +1384,7 @@ TABLES = {"stability": stability, "micro": micro, "profile": profile, "ccd": ccd
           "whipple-mesh": whipple_mesh, "whipple-hole": whipple_hole, "strength": strength,
           "taylor-tests": taylor_tests, "taylor-temper": taylor_temper, "whipple-shots": whipple_shots,
           "whipple-refined": whipple_refined, "whipple-defaults": whipple_defaults,
+          "whipple-wall": whipple_wall,
           "hugoniot": hugoniot}
 assert list(TABLES) == NAMES
 
