@@ -332,6 +332,10 @@ def test_whipple_refined_row():
     assert cells(T.whipple_refined_row(306, 317, shot, "NP", [shipped, finer])) == [
         "306 (317)", "2.54 mm", "6.9 km/s", "P", "NP", "NP, 0.44, 100.0 mg",
         "P (1.1 mg), 0.00, 384.0 mg", "32 s, 455 s"]
+    # Any number of meshes, each its cell and its time (whipple-wall's three).
+    assert cells(T.whipple_refined_row(306, 317, shot, "NP", [shipped, finer, shipped])) == [
+        "306 (317)", "2.54 mm", "6.9 km/s", "P", "NP", "NP, 0.44, 100.0 mg",
+        "P (1.1 mg), 0.00, 384.0 mg", "NP, 0.44, 100.0 mg", "32 s, 455 s, 32 s"]
     with pytest.raises(KeyError):  # a run of a case without the measure
         T.whipple_refined_cells({"predicted:wall perforated": "NP", "wall_seconds": "1"},
                                 fake_summary(references=WHIPPLE_REFERENCES, fracture=s["fracture"]))

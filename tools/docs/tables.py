@@ -57,7 +57,7 @@ NAME, the table:
                   failures (at the floor / all), the cost (~60 min on 2 cores)
     whipple-wall  eight of those shots on rear walls of 2, 6 and 12 cells through, the wall's
                   ductile damage at the failure strain's floor off: whether the verdict
-                  converges as the wall is refined (~80 min on 2 cores)
+                  converges as the wall is refined (~70 min on 2 cores)
     hugoniot      the library's aluminium equations of state on their Hugoniot against the
                   measured shock states of data/validation/aluminium-hugoniot.csv, per
                   pressure band (no runs: the EOS's closed form, which the engine reproduces)
@@ -1078,12 +1078,14 @@ def whipple_refined_cells(prediction, s):
 
 
 def whipple_refined_row(n, line, shot, equation, cells):
+    """One shot's row: `cells` its whipple_refined_cells on each mesh, in the table's order."""
     def mesh(verdict, through, left, eroded, _):
         shown = f"P ({through * 1e6:.1f} mg)" if verdict == "P" else verdict
         return f"{shown}, {left:.2f}, {eroded * 1e6:.1f} mg"
     return (f"| {n} ({line}) | {float(shot['wall_thick']) * 10:.2f} mm | "
             f"{float(shot['velocity']):.1f} km/s | {shot['result']} | {equation} | "
-            f"{mesh(*cells[0])} | {mesh(*cells[1])} | {cells[0][4]:.0f} s, {cells[1][4]:.0f} s |")
+            + "".join(f"{mesh(*c)} | " for c in cells)
+            + ", ".join(f"{c[4]:.0f} s" for c in cells) + " |")
 
 
 def whipple_refined(binary, work, opts):
@@ -1218,57 +1220,50 @@ def whipple_defaults(binary, work, opts):
                                             *runs[name][n]) for n in sorted(shipped)])
 
 
-# whipple-wall -------------------------------------------------------------------------------------
-# Eight of the sixteen shots (four NP, four P; 3.0–6.9 km/s, 2.54–4.57 mm walls) on three rear-wall
-# meshes, 2, 6 and 12 cells through it, with no ductile damage at the wall's failure strain's
-# floor: whether the verdict converges as the wall is refined. The finer
-# walls hold their cells uniform over a core 16 mm wide (the cloud's dense centre) instead of
-# the standoff's width, and grow outside it as shipped.
+# whipple-wall ------------------------------------------------------------------------------------
+# Eight of the sixteen shots (four NP, four P; 3.0–6.9 km/s, 2.54–4.57 mm walls) on three
+# rear-wall meshes, 2, 6 and 12 cells through it, with no ductile damage at the wall's failure
+# strain's floor: whether the verdict converges as the wall is refined. The finer walls hold
+# their cells uniform over a core 16 mm wide (the cloud's dense centre) instead of the
+# standoff's width, and grow outside it as shipped.
 WHIPPLE_WALL_ROWS = "383,591,693,817,307,444,542,821"
 WALL_FINE = ["parameters.cw=16e-3"]
 NO_FLOOR = ["materials.wall.ductile_failure_at_floor=false"]
 WHIPPLE_WALL = [  # (folder, label, --set)
-    ("wall2-nofloor", "2 through (shipped)", NO_FLOOR),
+    ("wall2-nofloor", "2 through (the shipped mesh)", NO_FLOOR),
     ("wall6-nofloor", "6 through", ['parameters.hw="= tw / 6"'] + WALL_FINE + NO_FLOOR),
     ("wall12-nofloor", "12 through", ['parameters.hw="= tw / 12"'] + WALL_FINE + NO_FLOOR),
 ]
 WHIPPLE_WALL_HEADER = [
     "| row (line) | wall | speed | measured | equation | " + " | ".join(
-        f"{label}: verdict, thickness left, wall mass to particles"
+        f"{label}: verdict (mass through), thickness left, wall mass to particles"
         for _, label, _ in WHIPPLE_WALL) + " | run time (each mesh) |",
     "|---|---|---|---|---|" + "---|" * len(WHIPPLE_WALL) + "---|"]
 
 
 def whipple_wall(binary, work, opts):
-    """The shots of WHIPPLE_WALL_ROWS on each rear-wall mesh of WHIPPLE_WALL: each verdict and
-    the wall's thickness left beside the measured verdict and the equation's, and how many each
-    mesh gets right."""
+    """The shots of WHIPPLE_WALL_ROWS on each rear-wall mesh of WHIPPLE_WALL: each verdict (and
+    mass through), the wall's thickness left and its mass turned into particles beside the
+    measured verdict and the equation's, and how many each mesh gets right."""
     from tools.post import whipple_scores as ws
     table_path = os.path.join(VALIDATION, "whipple-shots.csv")
     runs = {name: whipple_campaign(binary, table_path, os.path.join(work, "whipple-wall-" + name),
                                    WHIPPLE_WALL_ROWS, sets)
-            for name, _, sets in WHIPPLE_WALL}
+            for name, _, sets in WHIPPLE_WALL}  # folder → {row: (prediction row, summary)}
     table = ws.read_table(table_path)
     first = WHIPPLE_WALL[0][0]
     rows = sorted(runs[first], key=lambda n: (table[n - 1]["result"], float(
         table[n - 1]["wall_thick"]), -float(table[n - 1]["velocity"])))
-    right = {name: 0 for name, _, _ in WHIPPLE_WALL}
-    right["equation"] = 0
+    right = {name: 0 for name in ["equation"] + [x[0] for x in WHIPPLE_WALL]}
     yield from WHIPPLE_WALL_HEADER
     for n in rows:
         shot = table[n - 1]
         eq = ws.equation_says(shot)
+        cells = [whipple_refined_cells(*runs[name][n]) for name, _, _ in WHIPPLE_WALL]
         right["equation"] += eq == shot["result"]
-        cells = []
-        for name, _, _ in WHIPPLE_WALL:
-            verdict, through, left, eroded, seconds = whipple_refined_cells(*runs[name][n])
-            right[name] += verdict == shot["result"]
-            shown = f"P ({through * 1e6:.1f} mg)" if verdict == "P" else verdict
-            cells.append((f"{shown}, {left:.2f}, {eroded * 1e6:.1f} mg", seconds))
-        yield (f"| {n} ({runs[first][n][0]['line']}) | {float(shot['wall_thick']) * 10:.2f} mm | "
-               f"{float(shot['velocity']):.1f} km/s | {shot['result']} | {eq} | "
-               + " | ".join(c for c, _ in cells) + " | "
-               + ", ".join(f"{t:.0f} s" for _, t in cells) + " |")
+        for (name, _, _), c in zip(WHIPPLE_WALL, cells):
+            right[name] += c[0] == shot["result"]
+        yield whipple_refined_row(n, runs[first][n][0]["line"], shot, eq, cells)
     yield ""
     yield (f"Right, of {len(rows)}: the equation {right['equation']}; "
            + ", ".join(f"{label} {right[name]}" for name, label, _ in WHIPPLE_WALL) + ".")
