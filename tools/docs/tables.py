@@ -1088,35 +1088,43 @@ def whipple_refined_row(n, line, shot, equation, cells):
             + ", ".join(f"{c[4]:.0f} s" for c in cells) + " |")
 
 
+def whipple_mesh_rows(binary, work, prefix, rows, meshes):
+    """The shots of `rows` (a --rows expression) on each mesh of `meshes` ((folder, label,
+    --set)), a campaign each into work/prefix + folder: the table's rows (NP shots first, then by
+    wall up and speed down: whipple_refined_row) and per shot (the measured verdict, the
+    equation's, each mesh's)."""
+    from tools.post import whipple_scores as ws
+    table_path = os.path.join(VALIDATION, "whipple-shots.csv")
+    runs = [whipple_campaign(binary, table_path, os.path.join(work, prefix + name), rows, sets)
+            for name, _, sets in meshes]  # per mesh {row: (prediction row, summary)}
+    table = ws.read_table(table_path)
+    lines, verdicts = [], []
+    for n in sorted(runs[0], key=lambda n: (table[n - 1]["result"], float(
+            table[n - 1]["wall_thick"]), -float(table[n - 1]["velocity"]))):
+        shot = table[n - 1]
+        eq = ws.equation_says(shot)
+        cells = [whipple_refined_cells(*r[n]) for r in runs]
+        verdicts.append((shot["result"], eq, [c[0] for c in cells]))
+        lines.append(whipple_refined_row(n, runs[0][n][0]["line"], shot, eq, cells))
+    return lines, verdicts
+
+
 def whipple_refined(binary, work, opts):
     """The shots of WHIPPLE_REFINED_ROWS on the shipped mesh and with the rear wall's cells three
     times finer (6 through it instead of 2; the sphere and the bumper as shipped): each verdict
     and the wall's thickness left beside the measured verdict and the equation's."""
-    from tools.post import whipple_scores as ws
-    table_path = os.path.join(VALIDATION, "whipple-shots.csv")
-    runs = {name: whipple_campaign(binary, table_path, os.path.join(work, "whipple-refined-" + name),
-                                   WHIPPLE_REFINED_ROWS, sets)
-            for name, _, sets in WHIPPLE_REFINED}  # folder → {row: (prediction row, summary)}
-    table = ws.read_table(table_path)
+    lines, verdicts = whipple_mesh_rows(binary, work, "whipple-refined-", WHIPPLE_REFINED_ROWS,
+                                        WHIPPLE_REFINED)
     yield from WHIPPLE_REFINED_HEADER
-    rows = sorted(runs["shipped"], key=lambda n: (table[n - 1]["result"], float(
-        table[n - 1]["wall_thick"]), -float(table[n - 1]["velocity"])))
-    right = {"equation": 0, "shipped": 0, "wall6": 0}
-    changed = 0
-    for n in rows:
-        shot = table[n - 1]
-        eq = ws.equation_says(shot)
-        cells = [whipple_refined_cells(*runs[name][n]) for name in ("shipped", "wall6")]
-        right["equation"] += eq == shot["result"]
-        right["shipped"] += cells[0][0] == shot["result"]
-        right["wall6"] += cells[1][0] == shot["result"]
-        changed += cells[0][0] != cells[1][0]
-        yield whipple_refined_row(n, runs["shipped"][n][0]["line"], shot, eq, cells)
-    total = len(rows)
+    yield from lines
+    total = len(verdicts)
+    eq = sum(e == m for m, e, _ in verdicts)
+    shipped = sum(v[0] == m for m, _, v in verdicts)
+    wall6 = sum(v[1] == m for m, _, v in verdicts)
+    changed = sum(v[0] != v[1] for _, _, v in verdicts)
     yield ""
-    yield (f"Right: the equation {right['equation']} of {total}, the shipped mesh "
-           f"{right['shipped']}, the finer wall {right['wall6']}; the verdict changes with the "
-           f"wall's refinement on {changed} of {total}.")
+    yield (f"Right: the equation {eq} of {total}, the shipped mesh {shipped}, the finer wall "
+           f"{wall6}; the verdict changes with the wall's refinement on {changed} of {total}.")
 
 
 WHIPPLE_PARTS = ("projectile", "bumper", "wall")  # the shield's bodies, as whipple.yaml names them
@@ -1245,28 +1253,14 @@ def whipple_wall(binary, work, opts):
     """The shots of WHIPPLE_WALL_ROWS on each rear-wall mesh of WHIPPLE_WALL: each verdict (and
     mass through), the wall's thickness left and its mass turned into particles beside the
     measured verdict and the equation's, and how many each mesh gets right."""
-    from tools.post import whipple_scores as ws
-    table_path = os.path.join(VALIDATION, "whipple-shots.csv")
-    runs = {name: whipple_campaign(binary, table_path, os.path.join(work, "whipple-wall-" + name),
-                                   WHIPPLE_WALL_ROWS, sets)
-            for name, _, sets in WHIPPLE_WALL}  # folder → {row: (prediction row, summary)}
-    table = ws.read_table(table_path)
-    first = WHIPPLE_WALL[0][0]
-    rows = sorted(runs[first], key=lambda n: (table[n - 1]["result"], float(
-        table[n - 1]["wall_thick"]), -float(table[n - 1]["velocity"])))
-    right = {name: 0 for name in ["equation"] + [x[0] for x in WHIPPLE_WALL]}
+    lines, verdicts = whipple_mesh_rows(binary, work, "whipple-wall-", WHIPPLE_WALL_ROWS,
+                                        WHIPPLE_WALL)
     yield from WHIPPLE_WALL_HEADER
-    for n in rows:
-        shot = table[n - 1]
-        eq = ws.equation_says(shot)
-        cells = [whipple_refined_cells(*runs[name][n]) for name, _, _ in WHIPPLE_WALL]
-        right["equation"] += eq == shot["result"]
-        for (name, _, _), c in zip(WHIPPLE_WALL, cells):
-            right[name] += c[0] == shot["result"]
-        yield whipple_refined_row(n, runs[first][n][0]["line"], shot, eq, cells)
+    yield from lines
+    right = [sum(v[i] == m for m, _, v in verdicts) for i in range(len(WHIPPLE_WALL))]
     yield ""
-    yield (f"Right, of {len(rows)}: the equation {right['equation']}; "
-           + ", ".join(f"{label} {right[name]}" for name, label, _ in WHIPPLE_WALL) + ".")
+    yield (f"Right, of {len(verdicts)}: the equation {sum(e == m for m, e, _ in verdicts)}; "
+           + ", ".join(f"{label} {k}" for (_, label, _), k in zip(WHIPPLE_WALL, right)) + ".")
 
 
 # whipple, whipple-mesh, whipple-hole -------------------------------------------------------------
