@@ -268,16 +268,20 @@ double image_sign(const Images& images, int k, int component) {
   return sign;
 }
 
+// The body a reference names, or a message naming both.
+const BodyRange* named_body(const ReferenceSpec& r, const Model& model) {
+  for (const BodyRange& b : model.mesh.bodies)
+    if (b.name == r.body) return &b;
+  throw std::runtime_error("reference '" + r.name + "': no body named '" + r.body + "'");
+}
+
 // thickness_left: the plate's columns along the plane's normal n, on a grid of squares of side
 // h in the plane (axes e1, e2 ⟂ n, from the plane's point, so that a symmetry plane through it
 // is a grid line); a column's share = Σ V0 of its cells still in the body / Σ V0 of all its
 // cells, in reference positions, whatever the plate's bulge. h is the median cell size of the
 // cells centred within `within`; a column counts whole when its square's centre is within it.
 double thickness_left(const ReferenceSpec& r, const Model& model, const State& st) {
-  const auto body = std::find_if(model.mesh.bodies.begin(), model.mesh.bodies.end(),
-                                 [&](const BodyRange& b) { return b.name == r.body; });
-  if (body == model.mesh.bodies.end())
-    throw std::runtime_error("reference '" + r.name + "': no body named '" + r.body + "'");
+  const BodyRange* body = named_body(r, model);
   const Vec3 n = r.plane_normal;
   const Vec3 e1 = (std::abs(n.x()) < 0.9 ? Vec3::UnitX() : Vec3::UnitY()).cross(n).normalized();
   const Vec3 e2 = n.cross(e1);
@@ -323,6 +327,41 @@ double thickness_left(const ReferenceSpec& r, const Model& model, const State& s
     throw std::runtime_error("reference '" + r.name + "': no column of body '" + r.body +
                              "' centred within its distance of the plane's normal");
   return least;
+}
+
+// bulge: of the plate's rear face R (its nodes whose reference distance along n from the plane's
+// point is the largest, to 1e-6 of the plate's extent along n), those attached to a cell still in
+// the body and within `within` of the normal through the plane's point, the largest
+//   max (x − X)·n  over them.
+double bulge(const ReferenceSpec& r, const Model& model, const State& st) {
+  const BodyRange* body = named_body(r, model);
+  const Vec3 n = r.plane_normal;
+  std::vector<char> held(static_cast<std::size_t>(body->node_end - body->node_begin), 0);
+  for (Index t = body->tet_begin; t < body->tet_end; ++t) {
+    const Damage d = st.damage.empty() ? Damage::intact : st.damage[t];
+    if (d == Damage::destroyed || d == Damage::particle) continue;
+    for (Index k : model.mesh.tets[t]) held[static_cast<std::size_t>(k - body->node_begin)] = 1;
+  }
+  double front = std::numeric_limits<double>::infinity(), rear = -front;
+  for (Index i = body->node_begin; i < body->node_end; ++i) {
+    const double s = (model.mesh.x[i] - r.plane_point).dot(n);
+    front = std::min(front, s);
+    rear = std::max(rear, s);
+  }
+  const double tol = 1e-6 * (rear - front);
+  double most = -std::numeric_limits<double>::infinity();
+  for (Index i = body->node_begin; i < body->node_end; ++i) {
+    const Vec3 off = model.mesh.x[i] - r.plane_point;
+    const double s = off.dot(n);
+    if (s < rear - tol || !held[static_cast<std::size_t>(i - body->node_begin)]) continue;
+    if (r.within > 0.0 && (off - s * n).norm() > r.within) continue;
+    most = std::max(most, (st.x[i] - model.mesh.x[i]).dot(n));
+  }
+  if (!std::isfinite(most))
+    throw std::runtime_error("reference '" + r.name + "': no node of body '" + r.body +
+                             "' on its rear face, in a cell still in it, within its distance of "
+                             "the plane's normal");
+  return most;
 }
 
 double measure(const ReferenceSpec& r, const Model& model, const State& st, const RunFigures& run,
@@ -376,6 +415,7 @@ double measure(const ReferenceSpec& r, const Model& model, const State& st, cons
       r.measure == M::largest_fragment)
     return debris_measure(r, model, st, cache);
   if (r.measure == M::thickness_left) return thickness_left(r, model, st);
+  if (r.measure == M::bulge) return bulge(r, model, st);
   if (r.measure == M::hole_diameter) {
     const Vec3 centre = 0.5 * (r.region_min + r.region_max);
     double nearest = std::numeric_limits<double>::infinity();

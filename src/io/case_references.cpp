@@ -39,11 +39,12 @@ void read_references(const Reader& r, const YAML::Node& root, Case& c) {
       for (const char* k : {"plane", "debris_of", "within"})
         if (!debris && n[k])
           r.fail(n[k], join(p, k),
-                 "only the debris measures (perforated, mass_through, ...) and thickness_left "
-                 "take it");
-      if (ref.measure == M::thickness_left && n["debris_of"])
+                 "only the debris measures (perforated, mass_through, ...), thickness_left "
+                 "and bulge take it");
+      if ((ref.measure == M::thickness_left || ref.measure == M::bulge) && n["debris_of"])
         r.fail(n["debris_of"], join(p, "debris_of"),
-               "thickness_left measures the body's own cells: it takes no debris_of");
+               std::string(name_of(ReferenceSpec::k_measure_names, ref.measure)) +
+                   " measures the body itself: it takes no debris_of");
       if (ref.measure == M::contact_duration || ref.measure == M::contact_max_force) {
         // whole-run figures: nothing more to say
       } else if (debris) {

@@ -111,6 +111,52 @@ TEST(Reference, PerforationIsDebrisBehindTheDeformedWall) {
   EXPECT_EQ(perforated(), 0.0);
 }
 
+// The bulge of a plate 4 × 4 × 4 of unit cubes (z from −2 to 2, its front face z = 2, the
+// normal n = −z into it), displaced by u = −a (1 − r²/8) z at every node (r² = x² + y²) and a
+// crater 5a deep at the front face's centre: the rear face's largest (x − X)·n is a, at its
+// centre; the front face's larger push does not count; within 1 of the corner (−2, −2) the
+// nodes at r² = 8 and 5 give 3a/8; with the rear centre's cells all particles, its neighbours at
+// r² = 1 give 7a/8.
+TEST(Reference, BulgeIsTheRearFacesLargestDisplacementAlongTheNormal) {
+  TetMesh plate = make_box(Vec3(4, 4, 4), {4, 4, 4}, HexSplit::six);
+  Model model = test::single_body_model(plate, test::aluminium());
+  State st = initial_state(model);
+  const double a = 0.125;
+  for (Index i = 0; i < model.mesh.node_count(); ++i) {
+    const Vec3& X = model.mesh.x[i];
+    st.x[i] = X - a * (1.0 - (X.x() * X.x() + X.y() * X.y()) / 8.0) * Vec3::UnitZ();
+    if (X.norm() == 2.0 && X.z() == 2.0) st.x[i] = X - 5.0 * a * Vec3::UnitZ();
+  }
+  ReferenceSpec bulge;
+  bulge.name = "bulge";
+  bulge.measure = ReferenceSpec::Measure::bulge;
+  bulge.body = "body";
+  bulge.plane_point = Vec3(0, 0, 2);
+  bulge.plane_normal = Vec3(0, 0, -1);
+  bulge.value = bulge.tolerance = std::nan("");
+  const auto measured = [&] {
+    const auto r = evaluate_references({bulge}, model, st);
+    EXPECT_TRUE(r[0].error.empty()) << r[0].error;
+    return r[0].measured;
+  };
+  EXPECT_NEAR(measured(), a, 1e-15);
+  bulge.plane_point = Vec3(-2, -2, 2);
+  bulge.within = 1.0;
+  EXPECT_NEAR(measured(), 3.0 * a / 8.0, 1e-15);
+  bulge.plane_point = Vec3(0, 0, 2);
+  bulge.within = 0.0;
+  for (Index t = 0; t < model.mesh.tet_count(); ++t)
+    for (Index k : model.mesh.tets[t])
+      if (model.mesh.x[k] == Vec3(0, 0, -2)) st.damage[t] = Damage::particle;
+  EXPECT_NEAR(measured(), 7.0 * a / 8.0, 1e-15);
+  // Nothing within: named.
+  bulge.within = 0.5;
+  bulge.plane_point = Vec3(10, 10, 2);
+  const auto none = evaluate_references({bulge}, model, st);
+  EXPECT_NE(none[0].error.find("no node of body 'body' on its rear face"), std::string::npos)
+      << none[0].error;
+}
+
 // The thickness left of a plate 4 × 4 × 4 of unit cubes split into six tets: 1 intact; the top
 // three layers of one column turned into particles (a crater three cubes deep) leave 1/4 there;
 // a column elsewhere with its rear layer destroyed (a spall) leaves 3/4, which is not the least;

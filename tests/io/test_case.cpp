@@ -390,6 +390,15 @@ TEST(MaterialLibrary, ShippedLibraryIsValidAndComplete) {
       EXPECT_GT(m.johnson_cook_failure.melt_temperature, m.johnson_cook_failure.room_temperature)
           << m.name;
     }
+    // A failure set read in the law's order gives a metal's fracture strain in the tests it is
+    // fitted on, shear (σ* = 0) and a smooth tension bar (σ* = 1/3), quasi-static at room
+    // temperature: above 5 %, not at the floor.
+    if (m.johnson_cook_failure.d2 != 0.0)
+      for (const double triaxiality : {0.0, 1.0 / 3.0}) {
+        const JohnsonCookFailure& f = m.johnson_cook_failure;
+        EXPECT_GT(johnson_cook_failure_strain(f, triaxiality, 0.0, f.room_temperature), 0.05)
+            << m.name << " at σ* = " << triaxiality;
+      }
   }
 }
 
@@ -599,7 +608,14 @@ TEST(CaseFile, MaterialAndWallErrors) {
        {},
        ":24:",
        "reference.0.debris_of",
-       "thickness_left measures the body's own cells"},
+       "thickness_left measures the body itself"},
+      {"debris of a plate's own bulge",
+       v + "reference:\n  - {name: b, measure: bulge, body: block, plane: {point: [0, 0, 0], "
+           "normal: [0, 0, 1]}, debris_of: [block]}\n",
+       {},
+       ":24:",
+       "reference.0.debris_of",
+       "bulge measures the body itself"},
       {"a measure's time after the end",
        v + "reference:\n  - {name: p, measure: perforated, body: block, plane: {point: [0, 0, 0], "
            "normal: [0, 0, 1]}, time: 2.0e-6}\n",

@@ -103,7 +103,7 @@ def test_every_table_has_a_command():
     assert T.NAMES == ["stability", "micro", "profile", "ccd", "verify", "verify-full", "threads",
                        "mpi", "whipple", "whipple-mesh", "whipple-hole", "strength", "taylor-tests",
                        "taylor-temper", "whipple-shots", "whipple-refined", "whipple-defaults",
-                       "whipple-wall", "hugoniot"]
+                       "whipple-wall", "whipple-tear", "hugoniot"]
     assert list(T.TABLES) == T.NAMES
 
 
@@ -339,6 +339,20 @@ def test_whipple_refined_row():
     with pytest.raises(KeyError):  # a run of a case without the measure
         T.whipple_refined_cells({"predicted:wall perforated": "NP", "wall_seconds": "1"},
                                 fake_summary(references=WHIPPLE_REFERENCES, fracture=s["fracture"]))
+
+
+def test_whipple_tear_row():
+    refs = WHIPPLE_REFERENCES + [{"name": "wall thickness left", "measured": 0.4444},
+                                 {"name": "wall bulge", "measured": 0.9876e-3}]
+    s = fake_summary(references=refs)
+    tear = T.whipple_tear_cells({"predicted:wall perforated": "P", "wall_seconds": "40.4"}, s)
+    assert tear == ("P", 12.3e-6, 0.4444, 0.9876e-3, 40.4)
+    shot = {"wall_thick": "0.254", "velocity": "6.9", "result": "P"}
+    assert cells(T.whipple_refined_row(306, 317, shot, "NP", [tear], T.mm)) == [
+        "306 (317)", "2.54 mm", "6.9 km/s", "P", "NP", "P (12.3 mg), 0.44, 0.99 mm", "40 s"]
+    with pytest.raises(KeyError):  # a run of a case without the bulge
+        T.whipple_tear_cells({"predicted:wall perforated": "NP", "wall_seconds": "1"},
+                             fake_summary(references=WHIPPLE_REFERENCES + refs[-2:-1]))
 
 
 def test_whipple_defaults_row():

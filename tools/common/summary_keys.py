@@ -132,6 +132,7 @@ LARGEST_FRAGMENT = "largest fragment"
 WALL_PERFORATED = "wall perforated"
 MASS_THROUGH_WALL = "mass through the wall"
 WALL_THICKNESS_LEFT = "wall thickness left"
+WALL_BULGE = "wall bulge"
 HEL = "elastic precursor (HEL)"                     # plate-impact-1d.yaml
 
 # history.csv: one column per stage's wall-clock seconds, this prefix and the stage's name.

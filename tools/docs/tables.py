@@ -43,8 +43,8 @@ NAME, the table:
                   whose shots straddle the limit (`campaign data/cases/whipple.yaml`, the
                   cores at once), the engine's verdicts and Christiansen's against the
                   measured ones per configuration, and the engine's ballistic limit
-                  (`tetcontact limit`) of the 3.175 mm wall's shield at 3, 5 and 7 km/s;
-                  data/figures/whipple-*.png (~25 min)
+                  (`tetcontact limit`) of each shield at 3, 5 and 7 km/s;
+                  data/figures/whipple-*.png (~60 min on 2 cores)
     whipple-refined   sixteen of those shots (the 6061-T6 shield's) on the shipped mesh and with
                   the rear wall's cells three times finer: each verdict and the wall's thickness
                   left (~35 min on 2 cores)
@@ -58,6 +58,9 @@ NAME, the table:
     whipple-wall  eight of those shots on rear walls of 2, 6 and 12 cells through, the wall's
                   ductile damage at the failure strain's floor off: whether the verdict
                   converges as the wall is refined (~70 min on 2 cores)
+    whipple-tear  the sixteen shots with the run going on 15 µs (shipped) and 60 µs after the
+                  debris reaches the wall, the latter also without ductile damage at the floor:
+                  verdicts, thickness left, the wall's bulge at the end (~16 min on 2 cores)
     hugoniot      the library's aluminium equations of state on their Hugoniot against the
                   measured shock states of data/validation/aluminium-hugoniot.csv, per
                   pressure band (no runs: the EOS's closed form, which the engine reproduces)
@@ -97,7 +100,8 @@ from tools.common.summary_keys import get  # noqa: E402
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 NAMES = ["stability", "micro", "profile", "ccd", "verify", "verify-full", "threads", "mpi",
          "whipple", "whipple-mesh", "whipple-hole", "strength", "taylor-tests", "taylor-temper",
-         "whipple-shots", "whipple-refined", "whipple-defaults", "whipple-wall", "hugoniot"]
+         "whipple-shots", "whipple-refined", "whipple-defaults", "whipple-wall", "whipple-tear",
+         "hugoniot"]
 
 
 def g(x):
@@ -927,13 +931,16 @@ def whipple_shots(binary, work, opts):
            f"each, the cores at once).")
 
 
-# The engine's ballistic limit on the shield whose figure the manual shows: the 6061-T6 shield's
-# 3.175 mm wall (five of its six shots perforated). A search's cost grows with the diameter (the
-# bumper's core is 4 d wide at fixed cells): the other shields' critical diameters (4–14 mm)
-# would cost hours.
-WHIPPLE_LIMITS = [("al6061-0.79mm", "0.3175")]  # (the campaign's folder, the wall's cm)
+# The engine's ballistic limit on each figure's shield: (the campaign's folder, the wall's cm,
+# the search between these multiples of the equation's critical diameter). A search's cost grows
+# with the diameter (the bumper's core is 4 d wide at fixed cells): the 6061-T6 and 2024-T3
+# shields are searched up to 2.5 times their critical diameters (at most 11 and 19 mm, 61,000
+# and 135,000 tets), the 1100-O bumper's up to 1.2 times its 8.6–13.9 mm (2.5 times would reach
+# 35 mm, 650,000 tets a run).
+WHIPPLE_LIMITS = [("al6061-0.79mm", "0.3175", (0.6, 2.5)),
+                  ("al2024-0.81mm", "0.635", (0.6, 2.5)),
+                  ("al1100-0.64mm", "1.27", (0.6, 1.2))]
 WHIPPLE_LIMIT_SPEEDS = [3.0, 5.0, 7.0]  # km/s
-WHIPPLE_LIMIT_RANGE = (0.6, 2.5)  # the search between these multiples of the critical diameter
 WHIPPLE_LIMIT_HEADER = [
     "| shield | speed | equation's critical diameter | engine's limit: largest NP, smallest P | "
     "runs |",
@@ -969,14 +976,14 @@ def whipple_limit_cell(lo, hi, status, at_lo="0", at_hi="1"):
 
 def whipple_limits(binary, work, table, out_csv):
     """The engine's ballistic limit (`tetcontact limit --find parameters.d`, to 15 %) of the
-    shields of WHIPPLE_LIMITS at WHIPPLE_LIMIT_SPEEDS, searched between WHIPPLE_LIMIT_RANGE's
-    multiples of the equation's critical diameter; the brackets into out_csv (the table's units: cm, km/s) for
+    shields of WHIPPLE_LIMITS at WHIPPLE_LIMIT_SPEEDS, each searched between its multiples of
+    the equation's critical diameter; the brackets into out_csv (the table's units: cm, km/s) for
     whipple_scores.py --limits, and the markdown lines."""
     from tools.post import whipple_scores as ws
     shots = ws.read_table(table)
     lines, seconds = list(WHIPPLE_LIMIT_HEADER), 0.0
     rows = []
-    for folder, wall in WHIPPLE_LIMITS:
+    for folder, wall, (f_lo, f_hi) in WHIPPLE_LIMITS:
         campaign = os.path.join(work, "whipple-" + folder)
         with open(os.path.join(campaign, "predictions.csv")) as f:
             first = next((x for x in csv.DictReader(f) if x["wall_thick"] == wall), None)
@@ -993,7 +1000,6 @@ def whipple_limits(binary, work, table, out_csv):
                 float(shot["standoff"]) * cm, rho_p=float(shot["proj_density"]) * 1000.0,
                 rho_b=float(shot["bumper_density"]) * 1000.0,
                 sigma_pa=float(shot["wall_yield"]) * christiansen.KSI)
-            f_lo, f_hi = WHIPPLE_LIMIT_RANGE
             # A folder per search: its runs are this search's (a resumed one's too).
             out = os.path.join(work, f"limit-{folder}-{wall}-{v:g}-{f_lo:g}-{f_hi:g}")
             cmd = [binary, "limit", os.path.join(ROOT, "data/cases/whipple.yaml"), "--quiet",
@@ -1077,22 +1083,27 @@ def whipple_refined_cells(prediction, s):
             m[K.WALL_THICKNESS_LEFT], 4.0 * eroded, float(prediction["wall_seconds"]))
 
 
-def whipple_refined_row(n, line, shot, equation, cells):
-    """One shot's row: `cells` its whipple_refined_cells on each mesh, in the table's order."""
-    def mesh(verdict, through, left, eroded, _):
-        shown = f"P ({through * 1e6:.1f} mg)" if verdict == "P" else verdict
-        return f"{shown}, {left:.2f}, {eroded * 1e6:.1f} mg"
+def mg(kg):
+    return f"{kg * 1e6:.1f} mg"
+
+
+def whipple_refined_row(n, line, shot, equation, cells, fourth=mg):
+    """One shot's row: `cells` its whipple_refined_cells (or whipple_tear_cells) on each mesh or
+    setting, in the table's order; `fourth` shows each one's fourth number."""
+    def mesh(verdict, through, left, x, _):
+        shown = f"P ({mg(through)})" if verdict == "P" else verdict
+        return f"{shown}, {left:.2f}, {fourth(x)}"
     return (f"| {n} ({line}) | {float(shot['wall_thick']) * 10:.2f} mm | "
             f"{float(shot['velocity']):.1f} km/s | {shot['result']} | {equation} | "
             + "".join(f"{mesh(*c)} | " for c in cells)
             + ", ".join(f"{c[4]:.0f} s" for c in cells) + " |")
 
 
-def whipple_mesh_rows(binary, work, prefix, rows, meshes):
+def whipple_mesh_rows(binary, work, prefix, rows, meshes, of=whipple_refined_cells, fourth=mg):
     """The shots of `rows` (a --rows expression) on each mesh of `meshes` ((folder, label,
     --set)), a campaign each into work/prefix + folder: the table's rows (NP shots first, then by
-    wall up and speed down: whipple_refined_row) and per shot (the measured verdict, the
-    equation's, each mesh's)."""
+    wall up and speed down: whipple_refined_row, each run's cells `of` its prediction and
+    summary) and per shot (the measured verdict, the equation's, each mesh's)."""
     from tools.post import whipple_scores as ws
     table_path = os.path.join(VALIDATION, "whipple-shots.csv")
     runs = [whipple_campaign(binary, table_path, os.path.join(work, prefix + name), rows, sets)
@@ -1103,10 +1114,18 @@ def whipple_mesh_rows(binary, work, prefix, rows, meshes):
             table[n - 1]["wall_thick"]), -float(table[n - 1]["velocity"]))):
         shot = table[n - 1]
         eq = ws.equation_says(shot)
-        cells = [whipple_refined_cells(*r[n]) for r in runs]
+        cells = [of(*r[n]) for r in runs]
         verdicts.append((shot["result"], eq, [c[0] for c in cells]))
-        lines.append(whipple_refined_row(n, runs[0][n][0]["line"], shot, eq, cells))
+        lines.append(whipple_refined_row(n, runs[0][n][0]["line"], shot, eq, cells, fourth))
     return lines, verdicts
+
+
+def settings_header(settings, measures, times):
+    """The header of a table of shots under several settings ((folder, label, --set)): each
+    setting's `measures`, then the run times'."""
+    return ["| row (line) | wall | speed | measured | equation | " + " | ".join(
+        f"{label}: {measures}" for _, label, _ in settings) + f" | {times} |",
+        "|---|---|---|---|---|" + "---|" * len(settings) + "---|"]
 
 
 def whipple_refined(binary, work, opts):
@@ -1130,6 +1149,7 @@ def whipple_refined(binary, work, opts):
 WHIPPLE_PARTS = ("projectile", "bumper", "wall")  # the shield's bodies, as whipple.yaml names them
 WALL_ONLY_DUCTILE = ["materials.projectile.ductile_failure=false",
                      "materials.bumper.ductile_failure=false"]
+WITHIN_FIT = [f"materials.{x}.ductile_failure_at_floor=false" for x in WHIPPLE_PARTS]
 
 # The settings a hypervelocity user has to choose, each changed alone on the same sixteen shots at
 # the shipped mesh (the mesh itself: whipple-refined).
@@ -1147,8 +1167,7 @@ WHIPPLE_DEFAULTS = [  # (folder, label, --set)
     ("clusters-sphere12", "fragments as clusters, sphere 12 cells across",
      ["fracture.fragments=clusters", "parameters.np=12"]),
     ("within-fit", "no ductile damage at the failure strain's floor (ductile failure only where "
-                   "the set speaks; tension beyond it left to the spall strength)",
-     [f"materials.{x}.ductile_failure_at_floor=false" for x in WHIPPLE_PARTS]),
+                   "the set speaks; tension beyond it left to the spall strength)", WITHIN_FIT),
     ("wall-ductile-only-clusters", "ductile failure in the wall only, fragments as clusters",
      WALL_ONLY_DUCTILE + ["fracture.fragments=clusters"]),
 ]
@@ -1242,25 +1261,66 @@ WHIPPLE_WALL = [  # (folder, label, --set)
     ("wall6-nofloor", "6 through", ['parameters.hw="= tw / 6"'] + WALL_FINE + NO_FLOOR),
     ("wall12-nofloor", "12 through", ['parameters.hw="= tw / 12"'] + WALL_FINE + NO_FLOOR),
 ]
-WHIPPLE_WALL_HEADER = [
-    "| row (line) | wall | speed | measured | equation | " + " | ".join(
-        f"{label}: verdict (mass through), thickness left, wall mass to particles"
-        for _, label, _ in WHIPPLE_WALL) + " | run time (each mesh) |",
-    "|---|---|---|---|---|" + "---|" * len(WHIPPLE_WALL) + "---|"]
+WHIPPLE_WALL_HEADER = settings_header(
+    WHIPPLE_WALL, "verdict (mass through), thickness left, wall mass to particles",
+    "run time (each mesh)")
+
+
+def whipple_settings_rows(binary, work, prefix, rows, settings, header, of=whipple_refined_cells,
+                          fourth=mg):
+    """The table of the shots of `rows` under each of `settings` (whipple_mesh_rows, its cells
+    `of` each run and `fourth` shown), then how many each setting gets right beside the
+    equation."""
+    lines, verdicts = whipple_mesh_rows(binary, work, prefix, rows, settings, of, fourth)
+    yield from header
+    yield from lines
+    right = [sum(v[i] == m for m, _, v in verdicts) for i in range(len(settings))]
+    yield ""
+    yield (f"Right, of {len(verdicts)}: the equation {sum(e == m for m, e, _ in verdicts)}; "
+           + ", ".join(f"{label} {k}" for (_, label, _), k in zip(settings, right)) + ".")
 
 
 def whipple_wall(binary, work, opts):
     """The shots of WHIPPLE_WALL_ROWS on each rear-wall mesh of WHIPPLE_WALL: each verdict (and
     mass through), the wall's thickness left and its mass turned into particles beside the
     measured verdict and the equation's, and how many each mesh gets right."""
-    lines, verdicts = whipple_mesh_rows(binary, work, "whipple-wall-", WHIPPLE_WALL_ROWS,
-                                        WHIPPLE_WALL)
-    yield from WHIPPLE_WALL_HEADER
-    yield from lines
-    right = [sum(v[i] == m for m, _, v in verdicts) for i in range(len(WHIPPLE_WALL))]
-    yield ""
-    yield (f"Right, of {len(verdicts)}: the equation {sum(e == m for m, e, _ in verdicts)}; "
-           + ", ".join(f"{label} {k}" for (_, label, _), k in zip(WHIPPLE_WALL, right)) + ".")
+    yield from whipple_settings_rows(binary, work, "whipple-wall-", WHIPPLE_WALL_ROWS,
+                                     WHIPPLE_WALL, WHIPPLE_WALL_HEADER)
+
+
+# whipple-tear ------------------------------------------------------------------------------------
+# How long the run goes on once the debris has reached the wall (`tear`): the sixteen shots with
+# the shipped 15 µs, and with 60 µs, with and without ductile damage at the failure strain's
+# floor. Beside each verdict the wall's bulge at the end: whether the wall was still moving
+# when the shipped run stopped, and how far it went.
+WHIPPLE_TEAR = [  # (folder, label, --set)
+    ("tear15", "tear 15 µs (shipped)", []),
+    ("tear60", "tear 60 µs", ["parameters.tear=60e-6"]),
+    ("tear60-within-fit", "tear 60 µs, no ductile damage at the floor",
+     ["parameters.tear=60e-6"] + WITHIN_FIT),
+]
+WHIPPLE_TEAR_HEADER = settings_header(
+    WHIPPLE_TEAR, "verdict (mass through), thickness left, bulge", "run time (each setting)")
+
+
+def whipple_tear_cells(prediction, s):
+    """(verdict, mass through the wall, wall thickness left, the wall's bulge in m, run
+    seconds) of one campaign run."""
+    m = {x[K.NAME]: x[K.MEASURED] for x in get(s, K.REFERENCES)}
+    return (prediction["predicted:wall perforated"], m[K.MASS_THROUGH_WALL],
+            m[K.WALL_THICKNESS_LEFT], m[K.WALL_BULGE], float(prediction["wall_seconds"]))
+
+
+def mm(m):
+    return f"{m * 1e3:.2f} mm"
+
+
+def whipple_tear(binary, work, opts):
+    """The shots of WHIPPLE_REFINED_ROWS with each `tear` of WHIPPLE_TEAR: each verdict (and mass
+    through), the wall's thickness left and its bulge at the end beside the measured verdict and
+    the equation's, and how many each setting gets right."""
+    yield from whipple_settings_rows(binary, work, "whipple-tear-", WHIPPLE_REFINED_ROWS,
+                                     WHIPPLE_TEAR, WHIPPLE_TEAR_HEADER, whipple_tear_cells, mm)
 
 
 # whipple, whipple-mesh, whipple-hole -------------------------------------------------------------
@@ -1373,7 +1433,7 @@ TABLES = {"stability": stability, "micro": micro, "profile": profile, "ccd": ccd
           "whipple-mesh": whipple_mesh, "whipple-hole": whipple_hole, "strength": strength,
           "taylor-tests": taylor_tests, "taylor-temper": taylor_temper, "whipple-shots": whipple_shots,
           "whipple-refined": whipple_refined, "whipple-defaults": whipple_defaults,
-          "whipple-wall": whipple_wall,
+          "whipple-wall": whipple_wall, "whipple-tear": whipple_tear,
           "hugoniot": hugoniot}
 assert list(TABLES) == NAMES
 

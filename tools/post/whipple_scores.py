@@ -225,7 +225,8 @@ def draw(groups, folder, limits):
                         color="tab:green", ms=9)
         if marks:
             ax.plot([], [], "-", color="tab:green", lw=3,
-                    label="the engine's limit (▲: above the search's largest diameter)")
+                    label="the engine's limit (▲ above the search's largest diameter, "
+                          "▼ below its smallest)")
         ax.plot([], [], "o", color="tab:red", label="perforated (P)")
         ax.plot([], [], "o", mfc="none", color="tab:blue", label="not perforated (NP)")
         ax.plot([], [], "kx", label="the engine calls it wrong")

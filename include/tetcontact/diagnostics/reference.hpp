@@ -48,10 +48,16 @@ struct ReferenceSpec {
                      // `within`; a column's share is the reference volume of its cells still in
                      // the body (not destroyed, not particles; a scab of intact cells counts
                      // until it is particles) over that of all its cells; 1 untouched, 0 holed
+    bulge,           // how far the plate's rear face has moved along the normal: the largest
+                     // (x − X)·n over its nodes (the nodes farthest along n in reference
+                     // positions) within `within` of the normal through the plane's point, of a
+                     // cell still in the body (not destroyed, not particles: a plug or scab of
+                     // intact cells that has come off counts until it is particles), m; the
+                     // plane's point on the symmetry planes (mirror images are not searched)
   };
   /// Each measure's name in a case file and a summary, and its unit (SI; "" for a verdict or a
   /// ratio).
-  static constexpr NameTable<Measure, 17> k_measure_names{
+  static constexpr NameTable<Measure, 18> k_measure_names{
       {{Measure::length, "length"},
        {Measure::radius, "radius"},
        {Measure::mean_stress, "mean_stress"},
@@ -68,8 +74,9 @@ struct ReferenceSpec {
        {Measure::debris_cone_angle, "debris_cone_angle"},
        {Measure::debris_particle_mass, "debris_particle_mass"},
        {Measure::largest_fragment, "largest_fragment"},
-       {Measure::thickness_left, "thickness_left"}}};
-  static constexpr NameTable<Measure, 17> k_measure_units{{{Measure::length, "m"},
+       {Measure::thickness_left, "thickness_left"},
+       {Measure::bulge, "bulge"}}};
+  static constexpr NameTable<Measure, 18> k_measure_units{{{Measure::length, "m"},
                                                            {Measure::radius, "m"},
                                                            {Measure::mean_stress, "Pa"},
                                                            {Measure::mean_pressure, "Pa"},
@@ -85,7 +92,8 @@ struct ReferenceSpec {
                                                            {Measure::debris_cone_angle, "deg"},
                                                            {Measure::debris_particle_mass, "kg"},
                                                            {Measure::largest_fragment, "kg"},
-                                                           {Measure::thickness_left, ""}}};
+                                                           {Measure::thickness_left, ""},
+                                                           {Measure::bulge, "m"}}};
   std::string name;  // shown in tables
   Measure measure = Measure::length;
   std::string body;   // length, radius, velocity, hole_diameter, the debris measures
