@@ -566,13 +566,17 @@ int campaign_command(const CampaignOptions& o) {
     return 0;
   }
   const std::string dir = o.out_dir.empty() ? "results/" + c.name + "-campaign" : o.out_dir;
+  RunsFolderLock lock;
   try {
-    prepare_runs_folder(dir);
+    lock = prepare_runs_folder(dir);
   } catch (const OutputError& e) {
     std::cerr << "tetcontact: error: " << e.what() << "\n";
     return 2;
   }
 
+  InputFiles inputs;  // the text the runs' keys hold: an edit meanwhile stops the campaign
+  inputs.add(o.case_path);
+  for (const RowRun& r : runs) inputs.add(r.library);
   std::vector<ChildRun*> todo;
   for (RowRun& r : runs) {
     r.child.key = run_key(o.case_path, r.sets, r.library);
@@ -596,20 +600,29 @@ int campaign_command(const CampaignOptions& o) {
     std::cerr << "campaign: " << runs.size() << " rows of " << t.path << ", " << reused
               << " read from earlier runs, " << todo.size() << " to run, " << jobs
               << " at a time, into " << dir << "\n";
-  run_children(todo, jobs, [&](ChildRun& child) {
-    for (RowRun& r : runs)
-      if (&r.child == &child) {
-        read_summary(c.campaign, r);
-        failed += r.status != "ok";
-      }
-    ++done;
-    if (o.quiet) return;
-    const double s =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
-    std::cerr << (tty ? "\r" : "") << "campaign: " << done << "/" << todo.size() << " run, "
-              << failed << " failed, " << fmt(s, "%.0f") << " s, about "
-              << fmt(s / done * (todo.size() - done), "%.0f") << " s left" << (tty ? "   " : "\n");
-  });
+  try {
+    run_children(
+        todo, jobs,
+        [&](ChildRun& child) {
+          for (RowRun& r : runs)
+            if (&r.child == &child) {
+              read_summary(c.campaign, r);
+              failed += r.status != "ok";
+            }
+          ++done;
+          if (o.quiet) return;
+          const double s =
+              std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+          std::cerr << (tty ? "\r" : "") << "campaign: " << done << "/" << todo.size() << " run, "
+                    << failed << " failed, " << fmt(s, "%.0f") << " s, about "
+                    << fmt(s / done * (todo.size() - done), "%.0f") << " s left"
+                    << (tty ? "   " : "\n");
+        },
+        &inputs);
+  } catch (const InputsChanged& e) {
+    std::cerr << (tty && !o.quiet ? "\n" : "") << "tetcontact: error: " << e.what() << "\n";
+    return 2;
+  }
   if (tty && !o.quiet && !todo.empty()) std::cerr << "\n";
 
   const Json stats = statistics_json(c, t, runs);

@@ -89,7 +89,8 @@ struct Bracket {
 // ("" without --vary), by rounds of `jobs` runs at once between the ends, each run kept under
 // DIR/runs/ and read back, not run again, when its summary is there.
 Bracket search_bracket(const LimitOptions& o, const std::string& w, const std::string& dir,
-                       int jobs, const std::string& measure_name, const std::string& library) {
+                       int jobs, const std::string& measure_name, const std::string& library,
+                       const InputFiles& inputs) {
   Bracket br;
   br.vary_value = w;
   const auto started = std::chrono::steady_clock::now();
@@ -123,12 +124,15 @@ Bracket search_bracket(const LimitOptions& o, const std::string& w, const std::s
     }
     std::vector<ChildRun*> children;
     for (Run* r : todo) children.push_back(&r->child);
-    run_children(children, jobs, [&](ChildRun& c) {
-      for (Run* r : todo)
-        if (&r->child == &c && !read_run(*r, measure_name))
-          r->error = "the run wrote no summary (exit status " + std::to_string(c.exit_code) +
-                     "; see " + c.dir + "/run.log)";
-    });
+    run_children(
+        children, jobs,
+        [&](ChildRun& c) {
+          for (Run* r : todo)
+            if (&r->child == &c && !read_run(*r, measure_name))
+              r->error = "the run wrote no summary (exit status " + std::to_string(c.exit_code) +
+                         "; see " + c.dir + "/run.log)";
+        },
+        &inputs);
   };
   const auto value = [&](double x) -> Run& { return known[fmt(x)]; };
   const auto failed = [&](const std::vector<double>& xs) {
@@ -227,9 +231,13 @@ int limit_command(const LimitOptions& o) {
     std::cerr << "tetcontact: error: " << e.what() << "\n";
     return 2;
   }
+  InputFiles inputs;  // the text the runs' keys hold: an edit meanwhile stops the search
+  inputs.add(o.case_path);
+  inputs.add(library);
   const std::string dir = o.out_dir.empty() ? "results/" + case_name + "-limit" : o.out_dir;
+  RunsFolderLock lock;
   try {
-    prepare_runs_folder(dir);
+    lock = prepare_runs_folder(dir);
   } catch (const OutputError& e) {
     std::cerr << "tetcontact: error: " << e.what() << "\n";
     return 2;
@@ -238,9 +246,14 @@ int limit_command(const LimitOptions& o) {
 
   std::vector<Bracket> brackets;
   int code = 0;
-  for (const std::string& w : values) {
-    brackets.push_back(search_bracket(o, w, dir, jobs, measure_name, library));
-    if (brackets.back().status != "ok") code = 1;
+  try {
+    for (const std::string& w : values) {
+      brackets.push_back(search_bracket(o, w, dir, jobs, measure_name, library, inputs));
+      if (brackets.back().status != "ok") code = 1;
+    }
+  } catch (const InputsChanged& e) {
+    std::cerr << "tetcontact: error: " << e.what() << "\n";
+    return 2;
   }
 
   std::ostringstream csv;

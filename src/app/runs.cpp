@@ -2,6 +2,7 @@
 #include "tetcontact/app/runs.hpp"
 
 #include <fcntl.h>
+#include <sys/file.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -113,16 +114,40 @@ int run_program(const std::vector<std::string>& argv, const std::string& log) {
   return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
 
+void InputFiles::add(const std::string& path) {
+  if (path.empty()) return;
+  for (const auto& f : files_)
+    if (f.first == path) return;
+  files_.emplace_back(path, canonical_case_text(path));
+}
+
+std::string InputFiles::changed() const {
+  for (const auto& [path, text] : files_) {
+    try {
+      if (canonical_case_text(path) != text) return path;
+    } catch (const std::exception&) {
+      return path;  // unreadable now, or no longer valid YAML
+    }
+  }
+  return "";
+}
+
 void run_children(const std::vector<ChildRun*>& todo, int jobs,
-                  const std::function<void(ChildRun&)>& on_done) {
+                  const std::function<void(ChildRun&)>& on_done, const InputFiles* inputs) {
   // The children run this very image (a forked child's /proc/self/exe is its parent's), not
   // whatever file now lies at its path, so that their runs are of the build in their key.
   // Named `tetcontact` (argv[0]), as `ps` and `top` show them.
   const std::string exe = "/proc/self/exe";
   std::map<pid_t, ChildRun*> running;
   std::size_t next = 0;
-  while (next < todo.size() || !running.empty()) {
-    while (next < todo.size() && static_cast<int>(running.size()) < std::max(1, jobs)) {
+  std::string changed;  // the input file found edited: nothing more starts
+  std::size_t set_aside = 0;
+  const auto check = [&] {
+    if (changed.empty() && inputs) changed = inputs->changed();
+    return changed.empty();
+  };
+  while ((next < todo.size() && changed.empty()) || !running.empty()) {
+    while (next < todo.size() && static_cast<int>(running.size()) < std::max(1, jobs) && check()) {
       ChildRun* r = todo[next++];
       fs::create_directories(r->dir);
       write_file_atomic(r->dir + "/run.key", r->key);
@@ -140,12 +165,69 @@ void run_children(const std::vector<ChildRun*>& todo, int jobs,
     ChildRun* r = it->second;
     running.erase(it);
     r->exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    if (!check()) {  // it may have read the new text: not a run of its key
+      std::error_code ec;
+      if (fs::exists(r->dir + "/summary.json"))
+        fs::rename(r->dir + "/summary.json", r->dir + "/summary.json.stale", ec);
+      ++set_aside;
+      continue;
+    }
     if (on_done) on_done(*r);
+  }
+  if (!changed.empty())
+    throw InputsChanged(
+        changed + ": changed while its runs went on (each run is keyed by the text it had when " +
+        "they started); " + std::to_string(set_aside) +
+        " run(s) that ended after the change set aside (summary.json.stale), the ones before it " +
+        "kept; start again to run the rest with the new text");
+}
+
+RunsFolderLock::RunsFolderLock(const std::string& dir) {
+  const std::string path = dir + "/runs/.lock";
+  fd_ = open(path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+  if (fd_ < 0) throw OutputError(path + ": cannot open the folder's lock");
+  if (flock(fd_, LOCK_EX | LOCK_NB) != 0) {
+    char pid[32] = {};
+    const ssize_t n = pread(fd_, pid, sizeof pid - 1, 0);
+    close(fd_);
+    fd_ = -1;
+    throw OutputError(dir + ": another search or campaign is running in this folder (process " +
+                      std::string(pid, n > 0 ? static_cast<std::size_t>(n) : 0) +
+                      ", runs/.lock); wait for it to end, or choose another --out");
+  }
+  const std::string me = std::to_string(getpid());
+  if (ftruncate(fd_, 0) != 0 || pwrite(fd_, me.data(), me.size(), 0) < 0) {
+    close(fd_);
+    fd_ = -1;
+    throw OutputError(path + ": cannot write the folder's lock");
   }
 }
 
-void prepare_runs_folder(const std::string& dir) {
-  if (!fs::exists(dir + "/runs")) prepare_output_dir(dir, false);
+RunsFolderLock::RunsFolderLock(RunsFolderLock&& other) noexcept : fd_(other.fd_) {
+  other.fd_ = -1;
+}
+
+RunsFolderLock& RunsFolderLock::operator=(RunsFolderLock&& other) noexcept {
+  if (this != &other) {
+    if (fd_ >= 0) close(fd_);
+    fd_ = other.fd_;
+    other.fd_ = -1;
+  }
+  return *this;
+}
+
+RunsFolderLock::~RunsFolderLock() {
+  if (fd_ >= 0) close(fd_);  // closing the last descriptor drops the lock
+}
+
+RunsFolderLock prepare_runs_folder(const std::string& dir) {
+  if (!fs::exists(dir + "/runs")) {
+    prepare_output_dir(dir, false);
+    std::error_code ec;
+    fs::create_directories(dir + "/runs", ec);
+    if (ec) throw OutputError(dir + "/runs: cannot create it: " + ec.message());
+  }
+  return RunsFolderLock(dir);
 }
 
 }  // namespace tc

@@ -1,5 +1,6 @@
 // `tetcontact campaign`: a case run per row of a table, predictions against measurements.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <filesystem>
@@ -9,6 +10,7 @@
 
 #include "../test_util.hpp"
 #include "plate_case.hpp"
+#include "tetcontact/app/runs.hpp"
 
 using namespace tc;
 
@@ -79,7 +81,7 @@ std::vector<std::map<std::string, std::string>> read_csv(const std::string& path
 
 std::size_t run_folders(const std::string& dir) {
   std::size_t n = 0;
-  for ([[maybe_unused]] const auto& e : fs::directory_iterator(dir + "/runs")) ++n;
+  for (const auto& e : fs::directory_iterator(dir + "/runs")) n += e.is_directory();
   return n;
 }
 
@@ -153,6 +155,81 @@ TEST(Campaign, RowsMapToParametersAndMaterialsAndTheErrorsAreExact) {
   const auto picked = read_csv(out + "/predictions.csv");
   ASSERT_EQ(picked.size(), 1u);
   EXPECT_EQ(picked[0].at("row"), "2");
+
+  // A folder another campaign or search is running in is refused, naming its process, and
+  // nothing in it changes; once that one has ended (its lock dropped), the folder is free.
+  {
+    const RunsFolderLock held = prepare_runs_folder(out);
+    const auto busy = test::run_cli("campaign '" + dir / "box.yaml" + "' '" + dir / "boxes.csv" +
+                                        "' --out '" + out + "' --set end_time=3.0e-7",
+                                    dir.str());
+    EXPECT_EQ(busy.code, 2) << busy.err;
+    EXPECT_NE(busy.err.find("another search or campaign is running in this folder (process " +
+                            std::to_string(getpid())),
+              std::string::npos)
+        << busy.err;
+    EXPECT_EQ(run_folders(out), 8u);
+    EXPECT_EQ(read_csv(out + "/predictions.csv").size(), 1u);
+  }
+  const auto after = test::run_cli("campaign '" + dir / "box.yaml" + "' '" + dir / "boxes.csv" +
+                                       "' --out '" + out + "' --rows 1",
+                                   dir.str());
+  EXPECT_EQ(after.code, 0) << after.err;
+}
+
+// A case edited while its campaign runs: the runs still to start would read the new text under
+// keys of the old one. The campaign stops (exit 2, naming the file) before any of them starts,
+// sets aside a run that ended after the edit, writes no predictions, and every run it keeps ran
+// the text of its key; started again it runs the rest with the new text.
+TEST(Campaign, ACaseEditedWhileItsRunsGoOnStopsTheCampaign) {
+  test::TempDir dir("campaign-edited");
+  test::write_text(dir / "box.yaml", k_box);
+  std::string table = "metal,L_mm,speed,Lf_mm\n";
+  for (int i = 0; i < 40; ++i) table += "Al,1.0," + std::to_string(10 + i) + ",1.0\n";
+  test::write_text(dir / "boxes.csv", table);
+  const std::string out = dir / "out";
+  // Start it, wait for its first finished run, then edit the case's end time.
+  test::write_text(dir / "edit.sh",
+                   "('" + std::string(TETCONTACT_BINARY) + "' campaign '" + dir / "box.yaml" +
+                       "' '" + dir / "boxes.csv" + "' --jobs 1 --quiet --out '" + out + "' >'" +
+                       dir / "out.txt" + "' 2>'" + dir / "err.txt" + "'; echo $? >'" +
+                       dir / "code.txt" + "') &\n" +
+                       "for i in $(seq 1 3000); do\n"
+                       "  [ -n \"$(find '" +
+                       out +
+                       "' -name summary.json 2>/dev/null)\" ] && break; sleep 0.01\n"
+                       "done\n"
+                       "sed -i 's/^end_time: 1.0e-7$/end_time: 2.0e-7/' '" +
+                       dir / "box.yaml" + "'\nwait\n");
+  ASSERT_EQ(std::system(("bash '" + dir / "edit.sh" + "'").c_str()), 0);
+  ASSERT_NE(test::read_text(dir / "box.yaml").find("end_time: 2.0e-7"), std::string::npos);
+  EXPECT_EQ(test::read_text(dir / "code.txt"), "2\n");
+  const std::string err = test::read_text(dir / "err.txt");
+  EXPECT_NE(err.find(dir / "box.yaml" + ": changed while its runs went on"), std::string::npos)
+      << err;
+  EXPECT_FALSE(fs::exists(out + "/predictions.csv"));
+  std::size_t kept = 0;
+  for (const auto& e : fs::directory_iterator(out + "/runs")) {
+    if (!fs::exists(e.path() / "summary.json")) continue;
+    ++kept;
+    EXPECT_EQ(test::read_json((e.path() / "summary.json").string())["end_time"].get<double>(),
+              1.0e-7)
+        << e.path();
+  }
+  EXPECT_GE(kept, 1u);
+  EXPECT_LT(kept, 40u);
+
+  const auto again = test::run_cli("campaign '" + dir / "box.yaml" + "' '" + dir / "boxes.csv" +
+                                       "' --jobs 2 --out '" + out + "'",
+                                   dir.str());
+  ASSERT_EQ(again.code, 0) << again.err;
+  EXPECT_NE(again.err.find("0 read from earlier runs, 40 to run"), std::string::npos) << again.err;
+  const auto rows = read_csv(out + "/predictions.csv");
+  ASSERT_EQ(rows.size(), 40u);
+  for (const auto& row : rows)
+    EXPECT_EQ(test::read_json(out + "/runs/" + row.at("folder") + "/summary.json")["end_time"]
+                  .get<double>(),
+              2.0e-7);
 }
 
 // A table without the measured column still predicts (nothing compared); a bad table stops

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <functional>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -38,19 +39,62 @@ struct ChildRun {
 /// that holds another key (a hash collision, or a folder written by hand) is an error naming it.
 bool finished_run(const ChildRun& r);
 
+/// The files a set of runs reads (the case, the material library) with their text when it
+/// started (canonical_case_text, as in run_key): a file edited while the runs go on would have
+/// the later runs read other inputs than their keys say.
+class InputFiles {
+ public:
+  /// Holds `path` and its text now; "" and a path already held are ignored.
+  void add(const std::string& path);
+  /// The first file whose text is no longer the one held (or that cannot be read), or "".
+  std::string changed() const;
+
+ private:
+  std::vector<std::pair<std::string, std::string>> files_;  // path, text
+};
+
+/// A set of runs stopped because one of its input files changed while they went on.
+struct InputsChanged : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
 /// Runs `todo`, `jobs` at a time, each `this program ARGS` in its folder (created, run.key written
 /// first, the run's output to run.log); `on_done` is called as each ends, in the order they end.
 /// The children execute this process's own image (/proc/self/exe), so a program rebuilt at its
-/// path meanwhile does not run under the key of the build that started them.
+/// path meanwhile does not run under the key of the build that started them. With `inputs`, the
+/// files are checked before each start and at each end: once one has changed no run starts, a
+/// run that ends after the change (it may have read the new text under the old key) has its
+/// summary.json set aside as summary.json.stale (not reused: it runs again next time), and when
+/// the runs under way have ended InputsChanged names the file.
 void run_children(const std::vector<ChildRun*>& todo, int jobs,
-                  const std::function<void(ChildRun&)>& on_done = {});
+                  const std::function<void(ChildRun&)>& on_done = {},
+                  const InputFiles* inputs = nullptr);
 
 /// Starts `argv` (argv[0] a path) with its output to `log` and waits: its exit status, or -1
 /// when it could not start or was killed.
 int run_program(const std::vector<std::string>& argv, const std::string& log);
 
-/// Makes DIR ready for a search's or campaign's runs: a folder that holds earlier runs (DIR/runs)
-/// is kept as it is, to be resumed; any other non-empty folder is refused (OutputError).
-void prepare_runs_folder(const std::string& dir);
+/// Holds a runs folder for one search or campaign while it lives: an exclusive lock (flock) on
+/// DIR/runs/.lock, which the system drops when the process ends however it ends, so a killed
+/// campaign leaves nothing to clean up. Movable, not copyable.
+class RunsFolderLock {
+ public:
+  RunsFolderLock() = default;
+  explicit RunsFolderLock(const std::string& dir);
+  RunsFolderLock(RunsFolderLock&& other) noexcept;
+  RunsFolderLock& operator=(RunsFolderLock&& other) noexcept;
+  RunsFolderLock(const RunsFolderLock&) = delete;
+  RunsFolderLock& operator=(const RunsFolderLock&) = delete;
+  ~RunsFolderLock();
+
+ private:
+  int fd_ = -1;
+};
+
+/// Makes DIR ready for a search's or campaign's runs and locks it: a folder that holds earlier
+/// runs (DIR/runs) is kept as it is, to be resumed; any other non-empty folder is refused, and so
+/// is a folder another live search or campaign holds (OutputError, naming its process), so that
+/// two never write the same runs and results.
+RunsFolderLock prepare_runs_folder(const std::string& dir);
 
 }  // namespace tc
