@@ -522,7 +522,9 @@ int campaign_command(const CampaignOptions& o) {
   Case c;
   Table t;
   std::vector<RowRun> runs;
+  InputFiles inputs;  // the text the runs' keys hold: an edit meanwhile stops the campaign
   try {
+    if (fs::is_regular_file(o.case_path)) inputs.add(o.case_path);  // else load_case says why
     c = load_case(o.case_path, o.overrides);
     if (!c.campaign.declared)
       throw CaseError(o.case_path +
@@ -554,6 +556,7 @@ int campaign_command(const CampaignOptions& o) {
       } catch (const CaseError& e) {
         throw CaseError(t.where(*row) + ": " + e.what());
       }
+      inputs.add(r.library);
       runs.push_back(std::move(r));
     }
   } catch (const CaseError& e) {
@@ -574,9 +577,6 @@ int campaign_command(const CampaignOptions& o) {
     return 2;
   }
 
-  InputFiles inputs;  // the text the runs' keys hold: an edit meanwhile stops the campaign
-  inputs.add(o.case_path);
-  for (const RowRun& r : runs) inputs.add(r.library);
   std::vector<ChildRun*> todo;
   for (RowRun& r : runs) {
     r.child.key = run_key(o.case_path, r.sets, r.library);
@@ -625,6 +625,12 @@ int campaign_command(const CampaignOptions& o) {
   }
   if (tty && !o.quiet && !todo.empty()) std::cerr << "\n";
 
+  try {
+    inputs.require_unchanged();  // an edit after the last run started, or before any did
+  } catch (const InputsChanged& e) {
+    std::cerr << "tetcontact: error: " << e.what() << "\n";
+    return 2;
+  }
   const Json stats = statistics_json(c, t, runs);
   write_file_atomic(dir + "/predictions.csv", predictions_csv(c, t, runs));
   write_file_atomic(dir + "/statistics.json", stats.dump(2) + "\n");

@@ -208,7 +208,9 @@ int limit_command(const LimitOptions& o) {
   const std::vector<std::string> values =
       o.vary.empty() ? std::vector<std::string>{""} : o.vary.front().second;
   std::string measure_name, case_name, library;
+  InputFiles inputs;  // the text the runs' keys hold: an edit meanwhile stops the search
   try {
+    if (fs::is_regular_file(o.case_path)) inputs.add(o.case_path);  // else load_case says why
     for (const std::string& w : values)
       for (const double x : {o.lo, o.hi}) {
         std::vector<std::string> sets = o.overrides;
@@ -227,13 +229,11 @@ int limit_command(const LimitOptions& o) {
                           " (the criterion " + o.criterion + ")");
         measure_name = it->name;
       }
+    inputs.add(library);
   } catch (const CaseError& e) {
     std::cerr << "tetcontact: error: " << e.what() << "\n";
     return 2;
   }
-  InputFiles inputs;  // the text the runs' keys hold: an edit meanwhile stops the search
-  inputs.add(o.case_path);
-  inputs.add(library);
   const std::string dir = o.out_dir.empty() ? "results/" + case_name + "-limit" : o.out_dir;
   RunsFolderLock lock;
   try {
@@ -251,6 +251,7 @@ int limit_command(const LimitOptions& o) {
       brackets.push_back(search_bracket(o, w, dir, jobs, measure_name, library, inputs));
       if (brackets.back().status != "ok") code = 1;
     }
+    inputs.require_unchanged();  // an edit after the last run started
   } catch (const InputsChanged& e) {
     std::cerr << "tetcontact: error: " << e.what() << "\n";
     return 2;

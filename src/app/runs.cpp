@@ -6,6 +6,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <cerrno>
 #include <cstdint>
 #include <cstdio>
 #include <filesystem>
@@ -132,6 +133,21 @@ std::string InputFiles::changed() const {
   return "";
 }
 
+namespace {
+
+std::string changed_message(const std::string& path) {
+  return path + ": changed while its runs went on (each run is keyed by the text it had when " +
+         "they started)";
+}
+
+}  // namespace
+
+void InputFiles::require_unchanged() const {
+  if (const std::string path = changed(); !path.empty())
+    throw InputsChanged(changed_message(path) + "; nothing written: start again to run with " +
+                        "the new text");
+}
+
 void run_children(const std::vector<ChildRun*>& todo, int jobs,
                   const std::function<void(ChildRun&)>& on_done, const InputFiles* inputs) {
   // The children run this very image (a forked child's /proc/self/exe is its parent's), not
@@ -146,6 +162,7 @@ void run_children(const std::vector<ChildRun*>& todo, int jobs,
     if (changed.empty() && inputs) changed = inputs->changed();
     return changed.empty();
   };
+  check();  // also when nothing is left to run: its results would be read under the old text
   while ((next < todo.size() && changed.empty()) || !running.empty()) {
     while (next < todo.size() && static_cast<int>(running.size()) < std::max(1, jobs) && check()) {
       ChildRun* r = todo[next++];
@@ -157,9 +174,13 @@ void run_children(const std::vector<ChildRun*>& todo, int jobs,
       if (pid < 0) throw std::runtime_error("cannot start a run (fork)");
       running[pid] = r;
     }
+    if (running.empty()) break;  // stopped by a change before anything more started
     int status = 0;
     const pid_t done = waitpid(-1, &status, 0);
-    if (done < 0) break;
+    if (done < 0) {
+      if (errno == EINTR) continue;
+      break;
+    }
     const auto it = running.find(done);
     if (it == running.end()) continue;
     ChildRun* r = it->second;
@@ -176,8 +197,7 @@ void run_children(const std::vector<ChildRun*>& todo, int jobs,
   }
   if (!changed.empty())
     throw InputsChanged(
-        changed + ": changed while its runs went on (each run is keyed by the text it had when " +
-        "they started); " + std::to_string(set_aside) +
+        changed_message(changed) + "; " + std::to_string(set_aside) +
         " run(s) that ended after the change set aside (summary.json.stale), the ones before it " +
         "kept; start again to run the rest with the new text");
 }
@@ -195,8 +215,10 @@ RunsFolderLock::RunsFolderLock(const std::string& dir) {
                       std::string(pid, n > 0 ? static_cast<std::size_t>(n) : 0) +
                       ", runs/.lock); wait for it to end, or choose another --out");
   }
+  // The pid first, then the length: a reader never finds the file empty.
   const std::string me = std::to_string(getpid());
-  if (ftruncate(fd_, 0) != 0 || pwrite(fd_, me.data(), me.size(), 0) < 0) {
+  if (pwrite(fd_, me.data(), me.size(), 0) != static_cast<ssize_t>(me.size()) ||
+      ftruncate(fd_, static_cast<off_t>(me.size())) != 0) {
     close(fd_);
     fd_ = -1;
     throw OutputError(path + ": cannot write the folder's lock");

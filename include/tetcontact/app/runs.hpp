@@ -48,6 +48,8 @@ class InputFiles {
   void add(const std::string& path);
   /// The first file whose text is no longer the one held (or that cannot be read), or "".
   std::string changed() const;
+  /// Throws InputsChanged naming the file when one has changed: before results are written.
+  void require_unchanged() const;
 
  private:
   std::vector<std::pair<std::string, std::string>> files_;  // path, text
@@ -62,8 +64,8 @@ struct InputsChanged : std::runtime_error {
 /// first, the run's output to run.log); `on_done` is called as each ends, in the order they end.
 /// The children execute this process's own image (/proc/self/exe), so a program rebuilt at its
 /// path meanwhile does not run under the key of the build that started them. With `inputs`, the
-/// files are checked before each start and at each end: once one has changed no run starts, a
-/// run that ends after the change (it may have read the new text under the old key) has its
+/// files are checked first, before each start and at each end: once one has changed no run starts,
+/// a run that ends after the change (it may have read the new text under the old key) has its
 /// summary.json set aside as summary.json.stale (not reused: it runs again next time), and when
 /// the runs under way have ended InputsChanged names the file.
 void run_children(const std::vector<ChildRun*>& todo, int jobs,
