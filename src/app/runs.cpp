@@ -3,10 +3,12 @@
 
 #include <fcntl.h>
 #include <sys/file.h>
+#include <sys/prctl.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <cerrno>
+#include <csignal>
 #include <cstdint>
 #include <cstdio>
 #include <filesystem>
@@ -87,11 +89,16 @@ bool finished_run(const ChildRun& r) {
 namespace {
 
 // Forks and execs `program` (a path, or a name looked up in PATH) with the arguments `args`
-// (args[0] its name) and its output to `log` and no input: the child's pid, or -1.
+// (args[0] its name) and its output to `log` and no input: the child's pid, or -1. The child
+// ends (SIGTERM) when this process does, however it ends: a run left going without the search
+// or campaign that holds its folder would race a new one started on the same folder.
 pid_t start_program(const std::string& program, std::vector<std::string> args,
                     const std::string& log) {
+  const pid_t parent = getpid();
   const pid_t pid = fork();
   if (pid == 0) {  // the child: its output to the log, then the program
+    prctl(PR_SET_PDEATHSIG, SIGTERM);
+    if (getppid() != parent) _exit(127);  // the parent ended before the line above
     const int fd = open(log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
     const int in = open("/dev/null", O_RDONLY);
     if (fd >= 0) dup2(fd, 1), dup2(fd, 2);

@@ -238,6 +238,34 @@ TEST(Campaign, ACaseEditedWhileItsRunsGoOnStopsTheCampaign) {
               2.0e-7);
 }
 
+// A campaign killed outright (SIGKILL: no handler runs) takes its runs with it, so that none
+// goes on without the lock on its folder and races a campaign started again on it.
+TEST(Campaign, ItsRunsEndWithIt) {
+  test::TempDir dir("campaign-killed");
+  test::write_text(dir / "box.yaml", k_box);
+  test::write_text(dir / "boxes.csv", k_boxes);
+  const std::string out = dir / "out";
+  // Each run would take some 20 s (5 × 10^6 steps). Both start, the campaign is killed, and its
+  // runs get about a second to end (those that end with it end at once); then whatever is left
+  // is killed, so that the test leaves nothing behind.
+  test::write_text(dir / "kill.sh",
+                   "runs='" + out + "/runs/'\n'" + std::string(TETCONTACT_BINARY) + "' campaign '" +
+                       dir / "box.yaml" + "' '" + dir / "boxes.csv" +
+                       "' --rows 1-2 --jobs 2 --quiet --out '" + out +
+                       "' --set end_time=0.5 --set output.interval=0.5 >/dev/null 2>&1 &\n"
+                       R"sh(pid=$!
+for i in $(seq 1 1000); do [ "$(pgrep -f -c "$runs")" -ge 2 ] && break; sleep 0.01; done
+started=$(pgrep -f -c "$runs")
+kill -9 $pid; wait $pid 2>/dev/null
+for i in $(seq 1 50); do pgrep -f "$runs" >/dev/null || break; sleep 0.02; done
+left=$(pgrep -f -c "$runs")
+pkill -9 -f "$runs"
+echo "$started $left" >')sh" +
+                       dir / "counts.txt" + "'\n");
+  ASSERT_EQ(std::system(("bash '" + dir / "kill.sh" + "'").c_str()), 0);
+  EXPECT_EQ(test::read_text(dir / "counts.txt"), "2 0\n");  // two runs going, none after
+}
+
 // A table without the measured column still predicts (nothing compared); a bad table stops
 // before any run with exit 2, naming the row and the column.
 TEST(Campaign, BadTablesAreRefusedAndUnmeasuredTablesPredict) {

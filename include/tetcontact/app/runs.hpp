@@ -62,12 +62,13 @@ struct InputsChanged : std::runtime_error {
 
 /// Runs `todo`, `jobs` at a time, each `this program ARGS` in its folder (created, run.key written
 /// first, the run's output to run.log); `on_done` is called as each ends, in the order they end.
-/// The children execute this process's own image (/proc/self/exe), so a program rebuilt at its
-/// path meanwhile does not run under the key of the build that started them. With `inputs`, the
+/// The children execute this process's own image (/proc/self/exe), so a program rebuilt at its path
+/// meanwhile does not run under the key of the build that started them; they end (SIGTERM) when
+/// this process ends, however it ends, so none outlives the lock on its folder. With `inputs`, the
 /// files are checked first, before each start and at each end: once one has changed no run starts,
 /// a run that ends after the change (it may have read the new text under the old key) has its
-/// summary.json set aside as summary.json.stale (not reused: it runs again next time), and when
-/// the runs under way have ended InputsChanged names the file.
+/// summary.json set aside as summary.json.stale (not reused: it runs again next time), and when the
+/// runs under way have ended InputsChanged names the file.
 void run_children(const std::vector<ChildRun*>& todo, int jobs,
                   const std::function<void(ChildRun&)>& on_done = {},
                   const InputFiles* inputs = nullptr);
