@@ -18,7 +18,7 @@ OUT        ?= results/$(basename $(notdir $(CASE)))
 DEB_PACKAGES := cmake make g++ pkg-config libeigen3-dev libyaml-cpp-dev libfcl-dev libccd-dev \
                 libcgal-dev libgmp-dev libmpfr-dev zlib1g-dev libtbb-dev nlohmann-json3-dev libcli11-dev libgtest-dev libgmock-dev libbenchmark-dev \
                 libmetis-dev libopenmpi-dev openmpi-bin \
-                clang-format python3 python3-numpy python3-vtk9 python3-matplotlib python3-pytest
+                clang-format python3 python3-numpy python3-vtk9 python3-matplotlib python3-pytest procps
 
 .PHONY: all deps configure build run test bench format clean
 
