@@ -111,6 +111,30 @@ TEST(Reference, PerforationIsDebrisBehindTheDeformedWall) {
   EXPECT_EQ(perforated(), 0.0);
 }
 
+namespace {
+
+// A reference of `measure` on the body "body" of a plate whose front face is z = 2 (the normal
+// n = −z into it), with no value to compare with.
+ReferenceSpec front_face_reference(ReferenceSpec::Measure measure) {
+  ReferenceSpec r;
+  r.name = "measure";
+  r.measure = measure;
+  r.body = "body";
+  r.plane_point = Vec3(0, 0, 2);
+  r.plane_normal = Vec3(0, 0, -1);
+  r.value = r.tolerance = std::nan("");
+  return r;
+}
+
+// What `spec` measures on its own, which must be no error.
+double measured_alone(const ReferenceSpec& spec, const Model& model, const State& st) {
+  const auto r = evaluate_references({spec}, model, st);
+  EXPECT_TRUE(r[0].error.empty()) << r[0].error;
+  return r[0].measured;
+}
+
+}  // namespace
+
 // The bulge of a plate 4 × 4 × 4 of unit cubes (z from −2 to 2, its front face z = 2, the
 // normal n = −z into it), displaced by u = −a (1 − r²/8) z at every node (r² = x² + y²) and a
 // crater 5a deep at the front face's centre: the rear face's largest (x − X)·n is a, at its
@@ -127,18 +151,8 @@ TEST(Reference, BulgeIsTheRearFacesLargestDisplacementAlongTheNormal) {
     st.x[i] = X - a * (1.0 - (X.x() * X.x() + X.y() * X.y()) / 8.0) * Vec3::UnitZ();
     if (X.norm() == 2.0 && X.z() == 2.0) st.x[i] = X - 5.0 * a * Vec3::UnitZ();
   }
-  ReferenceSpec bulge;
-  bulge.name = "bulge";
-  bulge.measure = ReferenceSpec::Measure::bulge;
-  bulge.body = "body";
-  bulge.plane_point = Vec3(0, 0, 2);
-  bulge.plane_normal = Vec3(0, 0, -1);
-  bulge.value = bulge.tolerance = std::nan("");
-  const auto measured = [&] {
-    const auto r = evaluate_references({bulge}, model, st);
-    EXPECT_TRUE(r[0].error.empty()) << r[0].error;
-    return r[0].measured;
-  };
+  ReferenceSpec bulge = front_face_reference(ReferenceSpec::Measure::bulge);
+  const auto measured = [&] { return measured_alone(bulge, model, st); };
   EXPECT_NEAR(measured(), a, 1e-15);
   bulge.plane_point = Vec3(-2, -2, 2);
   bulge.within = 1.0;
@@ -165,18 +179,8 @@ TEST(Reference, ThicknessLeftIsTheDeepestColumnsShare) {
   TetMesh plate = make_box(Vec3(4, 4, 4), {4, 4, 4}, HexSplit::six);  // z from −2 to 2
   Model model = test::single_body_model(plate, test::aluminium());
   State st = initial_state(model);
-  ReferenceSpec left;
-  left.name = "left";
-  left.measure = ReferenceSpec::Measure::thickness_left;
-  left.body = "body";
-  left.plane_point = Vec3(0, 0, 2);
-  left.plane_normal = Vec3(0, 0, -1);
-  left.value = left.tolerance = std::nan("");
-  const auto measured = [&] {
-    const auto r = evaluate_references({left}, model, st);
-    EXPECT_TRUE(r[0].error.empty()) << r[0].error;
-    return r[0].measured;
-  };
+  ReferenceSpec left = front_face_reference(ReferenceSpec::Measure::thickness_left);
+  const auto measured = [&] { return measured_alone(left, model, st); };
   EXPECT_EQ(measured(), 1.0);
   // Column (x, y) in (0, 1) × (0, 1): the cubes above z = −1 turned into particles.
   const auto in_column = [&](Index t, double x0, double y0, double zmin) {
