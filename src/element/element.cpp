@@ -1,6 +1,5 @@
 #include "tetcontact/element/element.hpp"
 
-#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -9,6 +8,7 @@
 #include <sstream>
 
 #include "tetcontact/element/distributed.hpp"
+#include "tetcontact/element/material_point.hpp"
 #include "tetcontact/parallel/parallel.hpp"
 
 namespace tc {
@@ -19,54 +19,6 @@ namespace {
   std::ostringstream os;
   os << "inverted " << when << " (volume " << vol << " m^3, reference " << vol0 << " m^3)";
   throw InvertedElement(t, os.str());
-}
-
-// Dobritsa et al.'s spall criterion: the largest principal stress σ1 = λmax(s) − p exceeds σ*. For
-// a deviator λmax(s) ≤ √(2/3) |s|, which clears most cells without an eigenvalue solve.
-bool spalls(const Material& m, const Sym6& s, double p) {
-  if (!(m.spall_strength > 0.0)) return false;
-  const double n2 =
-      s[0] * s[0] + s[1] * s[1] + s[2] * s[2] + 2.0 * (s[3] * s[3] + s[4] * s[4] + s[5] * s[5]);
-  if (std::sqrt(2.0 / 3.0 * n2) * (1.0 + 1e-9) - p <= m.spall_strength) return false;
-  Eigen::SelfAdjointEigenSolver<Mat3> es;
-  es.computeDirect(to_mat3(s), Eigen::EigenvaluesOnly);
-  return es.eigenvalues().maxCoeff() - p > m.spall_strength;
-}
-
-// Failure at the end of the step (Dobritsa et al.): an intact cell that spalls is damaged, its
-// deviator dropped; a damaged cell loosened past χ = 1 − V0/V > χ* is destroyed. Returns the
-// pressure the cell may carry: none in tension once damaged; a destroyed cell none while it
-// is loosened (χ > 0), and its EOS pressure again only once pressed back below its reference
-// volume (μ > 0): with no pressure at all, destroyed cells that neighbours compress again
-// collapse, and the spall plate's step fell to 3e-14 s.
-double fail(const Material& m, Index t, double vol, double p, State& st) {
-  Damage& dmg = st.damage[t];
-  if (dmg == Damage::intact && spalls(m, st.s[t], p)) {
-    dmg = Damage::damaged;
-    st.s[t] = Sym6{0, 0, 0, 0, 0, 0};
-  }
-  const double chi = 1.0 - st.vol0[t] / vol;
-  if (dmg == Damage::damaged && chi > m.loosening_limit) dmg = Damage::destroyed;
-  if (dmg == Damage::intact) return p;
-  if (p < 0.0 || (dmg == Damage::destroyed && chi > 0.0)) return 0.0;
-  return p;
-}
-
-// The energy at the end of the step with the EOS pressure it implies:
-//   E^{n+1} = E + W − ½ (pⁿ + p^{n+1}) ΔV,  p^{n+1} = A(μ) + B E^{n+1}/V0,
-// solved for E^{n+1}; `e` holds Eⁿ and the work done before the pressure's, `w` the rest.
-inline double implicit_energy(double e, double w, double p_old, const EosTerms& eos, double dvol,
-                              double vol0) {
-  return (e - 0.5 * (p_old + eos.a) * dvol + w) / (1.0 + 0.5 * eos.b * dvol / vol0);
-}
-
-// Squared dilatational sound speed of the current state: (ρ c_b² + 4G/3) / ρ, with G at the
-// state (Steinberg–Guinan's G(P, T) rises with pressure).
-inline double sound_speed2(const Material& m, double mu, double p, const EosTerms& t,
-                           double temperature) {
-  const double rho = m.density * (1.0 + mu);
-  const double g = shear_modulus_at(m, p, temperature, 1.0 + mu);
-  return (bulk_stiffness(m, mu, p, t) + 4.0 / 3.0 * g) / rho;
 }
 
 // The geometry of a tet in plain doubles: edge vectors from node 0, the outward area vectors
@@ -249,9 +201,7 @@ void prepare_averages(const std::vector<Tet>& tets, const ElementOptions& option
 // at mid-step.
 struct CellKinematics {
   TetGeometry gm, ge;
-  Sym6 d;
-  std::array<double, 3> w;
-  double trD;
+  PointMotion m;  // D, the spin and tr D from the velocity gradient; the volumes gm's and ge's
 };
 
 [[gnu::always_inline]] inline void cell_kinematics(Index ti, const Tet& k, double tau,
@@ -282,111 +232,18 @@ struct CellKinematics {
     for (int col = 0; col < 3; ++col)
       L[r][col] = inv3v * (du[0][r] * c.gm.a[1][col] + du[1][r] * c.gm.a[2][col] +
                            du[2][r] * c.gm.a[3][col]);
-  c.d = Sym6{L[0][0],
-             L[1][1],
-             L[2][2],
-             0.5 * (L[0][1] + L[1][0]),
-             0.5 * (L[1][2] + L[2][1]),
-             0.5 * (L[0][2] + L[2][0])};
-  c.w = {0.5 * (L[2][1] - L[1][2]), 0.5 * (L[0][2] - L[2][0]), 0.5 * (L[1][0] - L[0][1])};
-  c.trD = c.d[0] + c.d[1] + c.d[2];
+  set_rates(L, c.m);
+  c.m.vol_mid = c.gm.vol;
+  c.m.vol_end = c.ge.vol;
 }
 
-// The deviator (Jaumann rate, radial return; none in a failed cell) and its trapezoidal work
-// τ V ½(sⁿ + sⁿ⁺¹) : D, returned; the plastic work V σy Δε̄p into `w_p` (bilinear with σy at
-// mid-increment, exact for linear hardening; the other laws at the end of the step, the heating
-// their return assumed), the plastic strain, and the cell listed as eroding when it reaches the
-// strain limit or Johnson–Cook's ductile damage D = 1:
-//   D += Δε̄p / ε_f(σ*, ε̇p, T),  σ* = −p / σ_eq  (the start's pressure, the returned deviator);
-// the increments taken with ε_f at its floor are also summed apart (`ductile_floor`), or left
-// out where the material has no ductile failure at the floor.
-[[gnu::always_inline]] inline double deviator_work(Index t, const Material& mat,
-                                                   const CellKinematics& c, double rho_mid,
-                                                   const ElementOptions& options, double tau,
-                                                   State& st, ForceResult& block, double& w_p) {
-  const Sym6 s_old = st.s[t];
-  const bool failed = options.fracture && st.damage[t] != Damage::intact;
-  const DeviatorIncrement inc = failed ? DeviatorIncrement{}
-                                       : update_deviator6(mat, st.s[t], c.d, c.w, tau, st.eps_p[t],
-                                                          st.temperature[t], rho_mid, st.p[t]);
-  const Sym6& s_new = st.s[t];
-  double sd = 0.0;
-  for (int k = 0; k < 6; ++k) sd += (k < 3 ? 1.0 : 2.0) * (s_old[k] + s_new[k]) * c.d[k];
-  const double w_dev = 0.5 * tau * c.gm.vol * sd;
-  w_p = 0.0;
-  if (inc.dplastic > 0.0) {
-    const double y = mat.strength == StrengthModel::bilinear
-                         ? inc.yield - 0.5 * mat.hardening_modulus * inc.dplastic
-                         : inc.yield;
-    w_p = c.gm.vol * y * inc.dplastic;
-    st.w_plastic[t] += w_p;
-    st.eps_p[t] += inc.dplastic;
-    if (mat.erosion_plastic_strain > 0.0 && st.eps_p[t] >= mat.erosion_plastic_strain)
-      block.eroding.push_back(t);
-    if (mat.ductile_failure) {
-      const double eq = von_mises(s_new);
-      const double triax = eq > 0.0 ? -st.p[t] / eq : 0.0;
-      const double ef = johnson_cook_failure_strain(mat.johnson_cook_failure, triax,
-                                                    inc.dplastic / tau, st.temperature[t]);
-      const bool floored = ef <= mat.johnson_cook_failure.min_strain;
-      if (!floored || mat.ductile_failure_at_floor) {
-        st.ductile[t] += inc.dplastic / ef;
-        if (floored) st.ductile_floor[t] += inc.dplastic / ef;
-      }
-      if (st.ductile[t] >= 1.0) block.eroding.push_back(t);
-    }
-  }
-  return w_dev;
-}
-
-// Viscosity from the mid-step strain rate, in compression only; its work, returned, is the
-// trapezoid of the values at both ends of the step (q^{n+1/2} is what the forces at t^{n+1}
-// carry), as for the pressure. The cell takes its end volume (`dvol` the change) and the heat:
-// the viscous (shock) heat and the fraction χ of the plastic work.
-[[gnu::always_inline]] inline double viscous_work(Index t, const Material& mat,
-                                                  const CellKinematics& c, double rho_mid,
-                                                  double w_p, const ElementOptions& options,
-                                                  State& st, double& dvol) {
-  double q = 0.0;
-  if (c.trD < 0.0) {
-    const double l = 3.0 * c.gm.vol / std::sqrt(c.gm.amax2);
-    q = bulk_viscosity(rho_mid, l, std::sqrt(st.sound2[t]), c.trD, options.viscosity_linear,
-                       options.viscosity_quadratic);
-  }
-  dvol = c.ge.vol - st.vol[t];
-  const double w_q = -0.5 * (st.q[t] + q) * dvol;
-  st.q[t] = q;
-  st.trace_d[t] = c.trD;
-  st.w_viscous[t] += w_q;
-  st.vol[t] = c.ge.vol;
-  if (mat.thermal())
-    st.temperature[t] +=
-        (mat.taylor_quinney * w_p + w_q) / (mat.density * st.vol0[t] * mat.specific_heat);
-  return w_q;
-}
-
-// Per-tet pressure, p^{n+1} = A(μ) + B E^{n+1}/V0 with
-//   E^{n+1} = E^n + W_dev − ½ (p^n + p^{n+1}) ΔV + W_q, solved for E^{n+1},
-// failure (the pressure a failed cell carries, its energy with it), the sound speed, and the
+// Per-tet pressure (point_pressure: the EOS, the energy, failure, the sound speed) and the
 // cell's forces from its end geometry.
 [[gnu::always_inline]] inline void cell_pressure(Index t, const Material& mat,
                                                  const CellKinematics& c, double w_dev, double w_q,
                                                  double dvol, const ElementOptions& options,
                                                  State& st, Vec3* f, ForceResult& block) {
-  const double mu = st.vol0[t] / c.ge.vol - 1.0;
-  const EosTerms eos = eos_terms(mat, mu);
-  double e_new = implicit_energy(st.e_int[t] + w_dev, w_q, st.p[t], eos, dvol, st.vol0[t]);
-  double p_new = eos.a + eos.b * e_new / st.vol0[t];
-  if (options.fracture) {
-    const double carried = fail(mat, t, c.ge.vol, p_new, st);
-    if (carried != p_new) {
-      p_new = carried;
-      e_new = st.e_int[t] + w_dev - 0.5 * (st.p[t] + p_new) * dvol + w_q;
-    }
-  }
-  st.e_int[t] = e_new;
-  st.p[t] = p_new;
-  st.sound2[t] = sound_speed2(mat, mu, st.p[t], eos, st.temperature[t]);
+  point_pressure(mat, w_dev, w_q, dvol, options.fracture, tet_point(st, t));
   tet_forces(t, c.ge, options, st, f, block);
 }
 
@@ -404,10 +261,21 @@ struct CellKinematics {
   const Material& mat = materials[mi];
   CellKinematics c;
   cell_kinematics(ti, k, tau, st, c);
+  const MaterialPoint pt = tet_point(st, ti);
   const double rho_mid = mat.density * st.vol0[t] / c.gm.vol;
   double w_p = 0.0, dvol = 0.0;
-  const double w_dev = deviator_work(ti, mat, c, rho_mid, options, tau, st, block, w_p);
-  const double w_q = viscous_work(ti, mat, c, rho_mid, w_p, options, st, dvol);
+  bool eroding = false;
+  const bool failed = options.fracture && st.damage[t] != Damage::intact;
+  const double w_dev = deviator_work(mat, c.m, rho_mid, failed, tau, pt, w_p, eroding);
+  if (eroding) block.eroding.push_back(ti);
+  // Viscosity from the mid-step strain rate, in compression only, over the smallest altitude.
+  double q = 0.0;
+  if (c.m.trace < 0.0) {
+    const double l = 3.0 * c.gm.vol / std::sqrt(c.gm.amax2);
+    q = bulk_viscosity(rho_mid, l, std::sqrt(st.sound2[t]), c.m.trace, options.viscosity_linear,
+                       options.viscosity_quadratic);
+  }
+  const double w_q = viscous_work(mat, c.m, q, w_p, pt, dvol);
   if (averages_pressure(options, mi)) {
     scratch.tet_averaged[t] = !options.fracture || st.damage[t] == Damage::intact;
     scratch.tet_energy[t] = st.e_int[t];
@@ -473,7 +341,7 @@ void nodal_pressures(const std::vector<Material>& materials, const ElementOption
     p_new = eos.a +
             eos.b * implicit_energy(st.e_int[t], 0.0, st.p[t], eos, dvol, st.vol0[t]) / st.vol0[t];
   }
-  if (options.fracture) p_new = fail(mat, ti, st.vol[t], p_new, st);
+  if (options.fracture) p_new = fail(mat, st.vol[t], p_new, tet_point(st, ti));
   st.e_int[t] -= 0.5 * (st.p[t] + p_new) * dvol;
   st.p[t] = p_new;
   st.sound2[t] = sound_speed2(mat, mu, p_new, eos, st.temperature[t]);

@@ -16,6 +16,24 @@ namespace tc {
 /// particle (it then leaves the element pass, the surfaces and the output mesh).
 enum class Damage : std::uint8_t { intact = 0, damaged = 1, destroyed = 2, particle = 3 };
 
+/// The material of SPH particles (sph/): per particle, what a tet carries of its material's
+/// state, updated by the same material-point update (element/material_point.hpp), plus the
+/// density and smoothing length of the kernel. Particle i's mass, position and velocity are
+/// node first_particle + i's. Empty where the particles are point masses.
+struct ParticleMatter {
+  std::vector<double> h;        // smoothing length, m (the kernel reaches 2h)
+  std::vector<double> spacing;  // Δp: the particle's own size, V0^(1/3) (artificial stress)
+  std::vector<double> rho;      // density, kg/m³
+  std::vector<double> vol0;     // reference volume m/ρ0
+  std::vector<double> vol;      // current volume m/ρ
+  std::vector<Sym6> s;          // deviatoric stress
+  std::vector<double> p, q, e_int, eps_p, ductile, ductile_floor, w_plastic, w_viscous, sound2,
+      trace_d, temperature;  // as the tets' arrays of the same names
+  std::vector<Index> material;
+  std::vector<Damage> damage;
+  Index size() const { return static_cast<Index>(h.size()); }
+};
+
 struct State {
   // Nodes (N).
   std::vector<Vec3> x;             // x^n, current positions
@@ -63,6 +81,7 @@ struct State {
   /// counts 2× per such plane in the whole; 0 for every particle of single cells).
   std::vector<unsigned> particle_planes;
   Index particle_count() const { return static_cast<Index>(particle_radius.size()); }
+  ParticleMatter sph;  // SPH particles' material (empty: point masses)
 
   // The surfaces of the run: the model's, less the faces of cells turned into particles, plus
   // the faces those exposed (fracture rebuilds them; everything else reads them).

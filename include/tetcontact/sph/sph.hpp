@@ -1,0 +1,136 @@
+// Solid SPH for debris: particles that are material (Libersky and Petschek's formulation, with
+// Monaghan's viscosity and artificial stress). Each particle carries mass, density, volume,
+// velocity, deviatoric stress, internal energy, temperature, plastic strain and damage
+// (State::sph, ParticleMatter); its material law is the tets' own, through the one
+// material-point update (element/material_point.hpp).
+//
+// With ∇_i W_ij = ∇_i W(|x_i − x_j|, h_ij), h_ij = ½ (h_i + h_j), v_ij = v_i − v_j,
+// σ = s − p I the Cauchy stress (tension > 0):
+//
+//   velocity gradient   L_i = −(1/ρ_i) Σ_j m_j v_ij ⊗ ∇_i W_ij           (∂v^a/∂x^b)
+//   continuity          dρ_i/dt = Σ_j m_j v_ij · ∇_i W_ij = −ρ_i tr L_i
+//   momentum            dv_i/dt = Σ_j m_j (σ_i/ρ_i² + σ_j/ρ_j² + A_ij) ∇_i W_ij,
+//                       A_ij = −Π_ij I + f_ijⁿ (R_i + R_j)
+//   energy              de_i/dt = σ_i : D_i / ρ_i − ½ Σ_j m_j v_ij · A_ij ∇_i W_ij
+//
+// Π_ij is Monaghan's viscosity, (−α c̄ μ_ij + β μ_ij²) / ρ̄ with μ_ij = h_ij v_ij·x_ij /
+// (|x_ij|² + 0.01 h_ij²) when the pair approaches (0 otherwise); R_i Monaghan's artificial
+// stress against the tensile instability (J. J. Monaghan, J. Comput. Phys. 159, 290, 2000;
+// J. P. Gray, J. J. Monaghan, R. P. Swift, Comput. Methods Appl. Mech. Eng. 190, 6641, 2001):
+// in the principal frame of σ_i, R'_aa = −ε σ'_aa / ρ_i² where σ'_aa > 0 (tension), else 0,
+// and f_ij = W(|x_ij|, h_ij) / W(Δp, h_ij) with Δp the mean particle spacing. The pair terms
+// are equal and opposite to the bit, so momentum is kept to the round-off of the sums; the
+// energy's pair term is the work of A_ij, so the total energy is kept but for the integrator's
+// O(τ²).
+//
+// The step (the engine's: velocities at half steps, positions at whole ones):
+//   update: from U^{n+1/2} at the mid-step positions x^{n+1} − τ/2 U: L_i, then the material
+//           point's update (deviator, equation of state, temperature, failure) with the volume
+//           solved from dV/dt = V tr D by the trapezoid, Vⁿ⁺¹ = Vⁿ (1 + τ tr D/2) / (1 − τ tr D/2),
+//           so that ΔV = τ tr D V^{n+1/2} and the pressure work −½(pⁿ + pⁿ⁺¹) ΔV is the rate
+//           form's; ρ = m / V. The pair heat of the last forces (A_ij's work over the kick
+//           that applied them) goes in here, as viscous heat.
+//   forces: at x^{n+1} from σ^{n+1}: m_i dv_i/dt, the pair heat rate, and the stable step
+//           τ_i = k h_i / (c_i + 1.2 (α c_i + β max_j μ_ij)).
+//
+// Symmetry planes act through mirror images ("ghosts") of the particles within reach of a
+// plane: a ghost has its particle's fields reflected (position, velocity, the stress's
+// off-diagonal terms that change sign), so a particle meets its image as the whole would.
+//
+// Determinism: every particle gathers its own sums over its neighbours in ascending order, on
+// the threads block by block; the step's minimum is taken in block order. Results are the same
+// bit for bit for any number of threads.
+#pragma once
+
+#include <vector>
+
+#include "tetcontact/material/material.hpp"
+#include "tetcontact/model/state.hpp"
+
+namespace tc::sph {
+
+struct Options {
+  double alpha = 1.0;              // α of Monaghan's viscosity (linear in μ)
+  double beta = 2.0;               // β (quadratic)
+  double artificial_stress = 0.3;  // ε of the artificial stress (0: off)
+  double stress_exponent = 4.0;    // n of f_ijⁿ
+  bool fracture = false;           // spall damage and loosening, as the tets'
+  double step_factor = 0.6;        // k of the stable step (× the solver's cfl 0.5: 0.3 h / c)
+  double reach = 1.2;              // neighbour lists hold the pairs within reach × 2 h_ij
+};
+
+/// A plane the particles are mirrored across: they lie where side (x[axis] − at) ≥ 0. A
+/// symmetry plane of the model has side +1; two planes of one axis (a column between walls)
+/// bound a slab, whose width must be at least the kernel's reach.
+struct MirrorPlane {
+  int axis = 0;
+  double at = 0.0;
+  double side = 1.0;
+};
+
+/// The points a particle meets: the particles 0 … n−1, then mirror images (ghosts), each of a
+/// particle (`ghost_source`) across a set of planes (`ghost_planes`, bit k: plane k). For
+/// particle i, its neighbours are list[begin[i] … begin[i + 1]), ascending, itself excluded.
+struct Neighbours {
+  std::vector<Index> begin, list;
+  std::vector<Index> ghost_source;
+  std::vector<unsigned> ghost_planes;
+  Index particles = 0;
+  Index pairs() const { return static_cast<Index>(list.size()); }
+};
+
+/// The neighbours within reach × 2 h_ij of every particle at positions x (one per particle),
+/// found by a uniform grid and sorted (the brute-force search gives the same lists; tested).
+Neighbours find_neighbours(const std::vector<Vec3>& x, const std::vector<double>& h,
+                           const std::vector<MirrorPlane>& planes, double reach);
+
+/// Image of a point, a direction and a stress across the planes of `mask`.
+Vec3 mirror_point(Vec3 x, const std::vector<MirrorPlane>& planes, unsigned mask);
+Vec3 mirror_direction(Vec3 v, const std::vector<MirrorPlane>& planes, unsigned mask);
+Sym6 mirror_stress(Sym6 s, const std::vector<MirrorPlane>& planes, unsigned mask);
+
+/// What a force pass found: the stable step (before the solver's cfl) and the particle that
+/// sets it.
+struct StepLimit {
+  double dt_stable = 0.0;
+  Index critical = -1;
+};
+
+/// The SPH stage of a run: its options, planes and working arrays over State::sph.
+class Stage {
+ public:
+  Stage(Options options, std::vector<MirrorPlane> planes)
+      : options_(options), planes_(std::move(planes)) {}
+
+  /// The material update over the step τ (see above), from st.v (U^{n+1/2}) and st.x
+  /// (x^{n+1}); tau_kick: the step over which the last forces were applied to the velocities
+  /// (the pair heat's). Throws RunFailure naming the particle for a non-finite state.
+  void update(const std::vector<Material>& materials, double tau, double tau_kick, State& st);
+
+  /// The forces at the current state into st.f (the particles' nodes), the pair heat rate kept
+  /// for the next update, and the stable step.
+  StepLimit forces(State& st);
+
+  const Neighbours& neighbours() const { return neighbours_; }
+  const Options& options() const { return options_; }
+
+ private:
+  void find(const State& st);
+  Options options_;
+  std::vector<MirrorPlane> planes_;
+  Neighbours neighbours_;
+  std::vector<Vec3> x_, v_;         // the points: the particles, then the ghosts
+  std::vector<Sym6> stress_, art_;  // per point: σ/ρ², and R (the artificial stress)
+  std::vector<Vec3> acc_;           // per point: the acceleration of the last forces
+  std::vector<double> heat_rate_;   // per particle: −½ Σ_j m_i m_j v_ij·A_ij ∇W, J/s
+  std::vector<double> heat_curve_;  // per particle: its part in τ_v² (the kick's mean velocity)
+  bool fresh_ = false;              // the lists are of the current positions (update's)
+};
+
+/// Appends a particle of `material` (m its law) at its reference state (ρ0, no stress, no
+/// energy, its start temperature) with reference volume vol0 and smoothing length h to the
+/// particles' material; returns its index. Its node (mass ρ0 vol0, position, velocity) is the
+/// caller's to append.
+Index append_matter(ParticleMatter& pm, const Material& m, Index material, double vol0, double h);
+
+}  // namespace tc::sph

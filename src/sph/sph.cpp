@@ -1,0 +1,382 @@
+#include "tetcontact/sph/sph.hpp"
+
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <sstream>
+#include <tuple>
+
+#include "tetcontact/element/element.hpp"
+#include "tetcontact/element/material_point.hpp"
+#include "tetcontact/parallel/parallel.hpp"
+#include "tetcontact/sph/kernel.hpp"
+
+namespace tc::sph {
+
+namespace {
+
+MaterialPoint particle_point(ParticleMatter& pm, Index i) {
+  return {pm.s[i],
+          pm.p[i],
+          pm.q[i],
+          pm.e_int[i],
+          pm.eps_p[i],
+          pm.ductile[i],
+          pm.ductile_floor[i],
+          pm.w_plastic[i],
+          pm.w_viscous[i],
+          pm.sound2[i],
+          pm.trace_d[i],
+          pm.temperature[i],
+          pm.vol[i],
+          pm.vol0[i],
+          pm.damage[i]};
+}
+
+// Whether a set of planes holds two of one axis (their joint image is a translation far beyond
+// any kernel's reach: not a neighbour).
+bool same_axis_twice(const std::vector<MirrorPlane>& planes, unsigned mask) {
+  unsigned axes = 0;
+  for (std::size_t k = 0; k < planes.size(); ++k) {
+    if (!(mask >> k & 1u)) continue;
+    const unsigned bit = 1u << planes[k].axis;
+    if (axes & bit) return true;
+    axes |= bit;
+  }
+  return false;
+}
+
+// The sign each axis takes under the planes of `mask`.
+std::array<double, 3> axis_signs(const std::vector<MirrorPlane>& planes, unsigned mask) {
+  std::array<double, 3> r{1.0, 1.0, 1.0};
+  for (std::size_t k = 0; k < planes.size(); ++k)
+    if (mask >> k & 1u) r[planes[k].axis] = -r[planes[k].axis];
+  return r;
+}
+
+using CellKey = std::array<long, 3>;
+
+CellKey cell_of(const Vec3& x, double size) {
+  return {static_cast<long>(std::floor(x[0] / size)), static_cast<long>(std::floor(x[1] / size)),
+          static_cast<long>(std::floor(x[2] / size))};
+}
+
+[[noreturn]] void bad_particle(Index i, const char* what, double value) {
+  std::ostringstream os;
+  os << "SPH particle " << i << ": " << what << " " << value;
+  throw RunFailure(os.str());
+}
+
+}  // namespace
+
+Vec3 mirror_point(Vec3 x, const std::vector<MirrorPlane>& planes, unsigned mask) {
+  for (std::size_t k = 0; k < planes.size(); ++k)
+    if (mask >> k & 1u) x[planes[k].axis] = 2.0 * planes[k].at - x[planes[k].axis];
+  return x;
+}
+
+Vec3 mirror_direction(Vec3 v, const std::vector<MirrorPlane>& planes, unsigned mask) {
+  const std::array<double, 3> r = axis_signs(planes, mask);
+  return Vec3(r[0] * v[0], r[1] * v[1], r[2] * v[2]);
+}
+
+// σ' = R σ R with R = diag(r): σ'_ab = r_a r_b σ_ab.
+Sym6 mirror_stress(Sym6 s, const std::vector<MirrorPlane>& planes, unsigned mask) {
+  const std::array<double, 3> r = axis_signs(planes, mask);
+  s[3] *= r[0] * r[1];
+  s[4] *= r[1] * r[2];
+  s[5] *= r[0] * r[2];
+  return s;
+}
+
+Neighbours find_neighbours(const std::vector<Vec3>& x, const std::vector<double>& h,
+                           const std::vector<MirrorPlane>& planes, double reach) {
+  Neighbours nb;
+  const std::size_t n = x.size();
+  nb.particles = static_cast<Index>(n);
+  nb.begin.assign(n + 1, 0);
+  if (n == 0) return nb;
+  const double hmax = *std::max_element(h.begin(), h.end());
+  const double radius = reach * k_support * hmax;
+  // The points: the particles, then the images of those within reach of every plane of a set.
+  std::vector<Vec3> pts(x);
+  for (std::size_t i = 0; i < n; ++i)
+    for (unsigned mask = 1; mask < (1u << planes.size()); ++mask) {
+      if (same_axis_twice(planes, mask)) continue;
+      bool near = true;
+      for (std::size_t k = 0; k < planes.size() && near; ++k)
+        if (mask >> k & 1u) near = planes[k].side * (x[i][planes[k].axis] - planes[k].at) < radius;
+      if (!near) continue;
+      nb.ghost_source.push_back(static_cast<Index>(i));
+      nb.ghost_planes.push_back(mask);
+      pts.push_back(mirror_point(x[i], planes, mask));
+    }
+  const auto source = [&](std::size_t k) {
+    return k < n ? static_cast<Index>(k) : nb.ghost_source[k - n];
+  };
+  // A uniform grid of cells of the largest reach: the points sorted by cell, then by index.
+  std::vector<std::pair<CellKey, Index>> cells(pts.size());
+  for (std::size_t k = 0; k < pts.size(); ++k) {
+    if (!pts[k].allFinite()) bad_particle(source(k), "position not finite:", pts[k].norm());
+    cells[k] = {cell_of(pts[k], radius), static_cast<Index>(k)};
+  }
+  std::sort(cells.begin(), cells.end());
+  std::vector<std::vector<Index>> lists(n);
+  parallel::for_each(n, [&](std::size_t i) {
+    const CellKey c = cell_of(x[i], radius);
+    std::vector<Index>& out = lists[i];
+    for (long dx = -1; dx <= 1; ++dx)
+      for (long dy = -1; dy <= 1; ++dy)
+        for (long dz = -1; dz <= 1; ++dz) {
+          const CellKey key{c[0] + dx, c[1] + dy, c[2] + dz};
+          auto it = std::lower_bound(cells.begin(), cells.end(), std::make_pair(key, Index{-1}));
+          for (; it != cells.end() && it->first == key; ++it) {
+            const std::size_t k = static_cast<std::size_t>(it->second);
+            if (k == i) continue;
+            const double hij = 0.5 * (h[i] + h[source(k)]);
+            if ((x[i] - pts[k]).norm() < reach * k_support * hij) out.push_back(it->second);
+          }
+        }
+    std::sort(out.begin(), out.end());
+  });
+  for (std::size_t i = 0; i < n; ++i)
+    nb.begin[i + 1] = nb.begin[i] + static_cast<Index>(lists[i].size());
+  nb.list.reserve(static_cast<std::size_t>(nb.begin[n]));
+  for (const std::vector<Index>& l : lists) nb.list.insert(nb.list.end(), l.begin(), l.end());
+  return nb;
+}
+
+void Stage::find(const State& st) {
+  const std::size_t n = static_cast<std::size_t>(st.sph.size());
+  std::vector<Vec3> x(n);
+  for (std::size_t i = 0; i < n; ++i) x[i] = st.x[st.first_particle + i];
+  neighbours_ = find_neighbours(x, st.sph.h, planes_, options_.reach);
+}
+
+void Stage::update(const std::vector<Material>& materials, double tau, double tau_kick, State& st) {
+  ParticleMatter& pm = st.sph;
+  const std::size_t n = static_cast<std::size_t>(pm.size());
+  const Index fp = st.first_particle;
+  find(st);
+  fresh_ = true;
+  const Neighbours& nb = neighbours_;
+  // The points at mid-step, x^{n+1} − τ/2 U^{n+1/2}, with their velocities.
+  const std::size_t points = n + nb.ghost_source.size();
+  x_.resize(points);
+  v_.resize(points);
+  for (std::size_t i = 0; i < n; ++i) {
+    v_[i] = st.v[fp + i];
+    x_[i] = st.x[fp + i] - 0.5 * tau * v_[i];
+  }
+  for (std::size_t g = 0; g < nb.ghost_source.size(); ++g) {
+    const Index i = nb.ghost_source[g];
+    x_[n + g] = mirror_point(x_[i], planes_, nb.ghost_planes[g]);
+    v_[n + g] = mirror_direction(v_[i], planes_, nb.ghost_planes[g]);
+  }
+  const bool heat = heat_rate_.size() == n;
+  parallel::for_each(n, [&](std::size_t i) {
+    // L_i = −(1/ρ_i) Σ_j m_j v_ij ⊗ ∇_i W_ij.
+    double L[3][3] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}};
+    for (Index e = nb.begin[i]; e < nb.begin[i + 1]; ++e) {
+      const std::size_t k = static_cast<std::size_t>(nb.list[e]);
+      const Index src = k < n ? static_cast<Index>(k) : nb.ghost_source[k - n];
+      const Vec3 g = kernel_gradient(x_[i] - x_[k], 0.5 * (pm.h[i] + pm.h[src]));
+      const Vec3 dv = v_[i] - v_[k];
+      const double mj = st.m[fp + src];
+      for (int a = 0; a < 3; ++a)
+        for (int b = 0; b < 3; ++b) L[a][b] += mj * dv[a] * g[b];
+    }
+    const double scale = -1.0 / pm.rho[i];
+    for (auto& row : L)
+      for (double& v : row) v *= scale;
+    PointMotion c;
+    set_rates(L, c);
+    // dV/dt = V tr D by the trapezoid: ΔV = τ tr D V^{n+1/2}.
+    const double half = 0.5 * tau * c.trace;
+    if (!(half < 1.0) || !(half > -1.0))
+      bad_particle(static_cast<Index>(i), "volume rate", c.trace);
+    c.vol_end = pm.vol[i] * (1.0 + half) / (1.0 - half);
+    c.vol_mid = 0.5 * (pm.vol[i] + c.vol_end);
+    const Material& mat = materials[pm.material[i]];
+    const MaterialPoint pt = particle_point(pm, static_cast<Index>(i));
+    const double mass = st.m[fp + i];
+    double w_p = 0.0, dvol = 0.0;
+    bool eroding = false;
+    const bool failed = options_.fracture && pm.damage[i] != Damage::intact;
+    const double w_dev = deviator_work(mat, c, mass / c.vol_mid, failed, tau, pt, w_p, eroding);
+    double w_q = viscous_work(mat, c, 0.0, w_p, pt, dvol);
+    // The pair heat of the last forces over the kick that applied them.
+    if (heat) {
+      const double w_pair = (heat_rate_[i] + heat_curve_[i] * tau_kick) * tau_kick;
+      pt.w_viscous += w_pair;
+      if (mat.thermal()) pt.temperature += w_pair / (mat.density * pt.vol0 * mat.specific_heat);
+      w_q += w_pair;
+    }
+    point_pressure(mat, w_dev, w_q, dvol, options_.fracture, pt);
+    // Ductile failure or the strain limit: the particle keeps its pressure in compression only.
+    if (eroding && options_.fracture && pm.damage[i] == Damage::intact) {
+      pm.damage[i] = Damage::damaged;
+      pm.s[i] = Sym6{0, 0, 0, 0, 0, 0};
+      if (pm.p[i] < 0.0) pm.p[i] = 0.0;
+    }
+    pm.rho[i] = mass / pm.vol[i];
+    if (!std::isfinite(pm.p[i]) || !std::isfinite(pm.e_int[i]))
+      bad_particle(static_cast<Index>(i), "pressure not finite:", pm.p[i]);
+  });
+}
+
+StepLimit Stage::forces(State& st) {
+  ParticleMatter& pm = st.sph;
+  const std::size_t n = static_cast<std::size_t>(pm.size());
+  const Index fp = st.first_particle;
+  if (!fresh_ || neighbours_.particles != static_cast<Index>(n)) find(st);
+  fresh_ = false;
+  const Neighbours& nb = neighbours_;
+  const std::size_t points = n + nb.ghost_source.size();
+  const auto source = [&](std::size_t k) {
+    return k < n ? static_cast<Index>(k) : nb.ghost_source[k - n];
+  };
+  x_.resize(points);
+  v_.resize(points);
+  stress_.resize(points);
+  art_.resize(points);
+  acc_.resize(points);
+  // Per particle: σ/ρ² and the artificial stress R.
+  const double eps = options_.artificial_stress;
+  parallel::for_each(n, [&](std::size_t i) {
+    x_[i] = st.x[fp + i];
+    v_[i] = st.v[fp + i];
+    const double r2 = pm.rho[i] * pm.rho[i];
+    Sym6 s = pm.s[i];
+    const double pq = pm.p[i] + pm.q[i];
+    for (int a = 0; a < 3; ++a) s[a] -= pq;
+    art_[i] = Sym6{0, 0, 0, 0, 0, 0};
+    if (eps > 0.0) {
+      Eigen::SelfAdjointEigenSolver<Mat3> es;
+      es.computeDirect(to_mat3(s));
+      const Vec3 lam = es.eigenvalues();
+      if (lam.maxCoeff() > 0.0) {
+        Vec3 r = Vec3::Zero();
+        for (int a = 0; a < 3; ++a)
+          if (lam[a] > 0.0) r[a] = -eps * lam[a] / r2;
+        const Mat3& q = es.eigenvectors();
+        art_[i] = to_sym6(q * r.asDiagonal() * q.transpose());
+      }
+    }
+    for (double& c : s) c /= r2;
+    stress_[i] = s;
+  });
+  for (std::size_t g = 0; g < nb.ghost_source.size(); ++g) {
+    const Index i = nb.ghost_source[g];
+    const unsigned mask = nb.ghost_planes[g];
+    x_[n + g] = mirror_point(x_[i], planes_, mask);
+    v_[n + g] = mirror_direction(v_[i], planes_, mask);
+    stress_[n + g] = mirror_stress(stress_[i], planes_, mask);
+    art_[n + g] = mirror_stress(art_[i], planes_, mask);
+  }
+  heat_rate_.assign(n, 0.0);
+  heat_curve_.assign(n, 0.0);
+  const double alpha = options_.alpha, beta = options_.beta, expo = options_.stress_exponent;
+  // The pair's ∇_i W_ij and A_ij = −Π_ij I + f_ijⁿ (R_i + R_j); μ_ij where it approaches.
+  struct PairTerms {
+    Vec3 g;
+    Sym6 a;
+    double mu;
+    bool extra;  // A_ij ≠ 0
+  };
+  const auto pair_terms = [&](std::size_t i, std::size_t k, Index j, const Vec3& r,
+                              const Vec3& dv) {
+    PairTerms t{Vec3::Zero(), Sym6{0, 0, 0, 0, 0, 0}, 0.0, false};
+    const double hij = 0.5 * (pm.h[i] + pm.h[j]);
+    t.g = kernel_gradient(r, hij);
+    const double vr = dv.dot(r);
+    if (vr < 0.0) {
+      t.mu = hij * vr / (r.squaredNorm() + 0.01 * hij * hij);
+      const double cbar = 0.5 * (std::sqrt(pm.sound2[i]) + std::sqrt(pm.sound2[j]));
+      const double rhobar = 0.5 * (pm.rho[i] + pm.rho[j]);
+      const double pi = (-alpha * cbar * t.mu + beta * t.mu * t.mu) / rhobar;
+      for (int c = 0; c < 3; ++c) t.a[c] -= pi;
+      t.extra = true;
+    }
+    if (eps > 0.0) {
+      const double dp = 0.5 * (pm.spacing[i] + pm.spacing[j]);
+      const double f = std::pow(kernel(r.norm(), hij) / kernel(dp, hij), expo);
+      if (f > 0.0) {
+        for (int c = 0; c < 6; ++c) t.a[c] += f * (art_[i][c] + art_[k][c]);
+        t.extra = true;
+      }
+    }
+    return t;
+  };
+  std::vector<StepLimit> blocks(parallel::block_count(n),
+                                StepLimit{std::numeric_limits<double>::infinity(), -1});
+  parallel::for_blocks(n, [&](std::size_t blk, std::size_t begin, std::size_t end) {
+    for (std::size_t i = begin; i < end; ++i) {
+      const double mi = st.m[fp + i], ci = std::sqrt(pm.sound2[i]);
+      Vec3 acc = Vec3::Zero();
+      double heat = 0.0, mu_max = 0.0;
+      for (Index e = nb.begin[i]; e < nb.begin[i + 1]; ++e) {
+        const std::size_t k = static_cast<std::size_t>(nb.list[e]);
+        const Index j = source(k);
+        const Vec3 r = x_[i] - x_[k], dv = v_[i] - v_[k];
+        const PairTerms t = pair_terms(i, k, j, r, dv);
+        if (t.g.isZero(0.0)) continue;
+        Sym6 sum;
+        for (int c = 0; c < 6; ++c) sum[c] = stress_[i][c] + stress_[k][c] + t.a[c];
+        const double mj = st.m[fp + j];
+        acc += mj * (to_mat3(sum) * t.g);
+        if (t.extra) heat -= 0.5 * mi * mj * dv.dot(to_mat3(t.a) * t.g);
+        mu_max = std::max(mu_max, -t.mu);
+      }
+      st.f[fp + i] = mi * acc;
+      heat_rate_[i] = heat;
+      const double dt = options_.step_factor * pm.h[i] / (ci + 1.2 * (alpha * ci + beta * mu_max));
+      if (dt < blocks[blk].dt_stable) blocks[blk] = {dt, static_cast<Index>(i)};
+    }
+  });
+  // The pair work at the kick's mean velocity, U^{n+1/2} + ½ τ_v a: the heat's part in τ_v²,
+  // −¼ Σ_j m_i m_j (a_i − a_j) · A_ij ∇_i W_ij (update multiplies it by τ_v²). With U^{n+1/2}
+  // alone the heat ran ahead of the kinetic energy the pairs take, by 0.5 % of it in a
+  // collision of two blocks.
+  for (std::size_t i = 0; i < n; ++i) acc_[i] = st.f[fp + i] / st.m[fp + i];
+  for (std::size_t g = 0; g < nb.ghost_source.size(); ++g)
+    acc_[n + g] = mirror_direction(acc_[nb.ghost_source[g]], planes_, nb.ghost_planes[g]);
+  parallel::for_each(n, [&](std::size_t i) {
+    const double mi = st.m[fp + i];
+    double curve = 0.0;
+    for (Index e = nb.begin[i]; e < nb.begin[i + 1]; ++e) {
+      const std::size_t k = static_cast<std::size_t>(nb.list[e]);
+      const Index j = source(k);
+      const PairTerms t = pair_terms(i, k, j, x_[i] - x_[k], v_[i] - v_[k]);
+      if (!t.extra) continue;
+      curve -= 0.25 * mi * st.m[fp + j] * (acc_[i] - acc_[k]).dot(to_mat3(t.a) * t.g);
+    }
+    heat_curve_[i] = curve;
+  });
+  StepLimit limit{std::numeric_limits<double>::infinity(), -1};
+  for (const StepLimit& b : blocks)
+    if (b.dt_stable < limit.dt_stable) limit = b;
+  return limit;
+}
+
+Index append_matter(ParticleMatter& pm, const Material& m, Index material, double vol0, double h) {
+  const double t0 = m.start_temperature();
+  pm.h.push_back(h);
+  pm.spacing.push_back(std::cbrt(vol0));
+  pm.rho.push_back(m.density);
+  pm.vol0.push_back(vol0);
+  pm.vol.push_back(vol0);
+  pm.s.push_back(Sym6{0, 0, 0, 0, 0, 0});
+  for (std::vector<double>* a : {&pm.p, &pm.q, &pm.e_int, &pm.eps_p, &pm.ductile, &pm.ductile_floor,
+                                 &pm.w_plastic, &pm.w_viscous, &pm.trace_d})
+    a->push_back(0.0);
+  pm.sound2.push_back(sound_speed2(m, 0.0, 0.0, eos_terms(m, 0.0), t0));
+  pm.temperature.push_back(t0);
+  pm.material.push_back(material);
+  pm.damage.push_back(Damage::intact);
+  return pm.size() - 1;
+}
+
+}  // namespace tc::sph

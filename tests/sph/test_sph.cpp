@@ -1,0 +1,325 @@
+// The SPH stage (sph/): its kernel, its neighbour search against brute force, a uniform state
+// at rest, conservation in a collision, the shock state of a plate impact against the
+// material's Hugoniot and aluminium's measured shocks, and bit-identical threads.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <numbers>
+#include <random>
+#include <set>
+#include <sstream>
+#include <tuple>
+
+#include "../test_util.hpp"
+#include "sph_run.hpp"
+#include "tetcontact/parallel/parallel.hpp"
+#include "tetcontact/sph/kernel.hpp"
+
+using namespace tc;
+
+namespace {
+
+// ∫ W dV = 4π ∫ W r² dr, by Simpson's rule on 2,000 intervals of [0, 2h].
+double kernel_integral(double h) {
+  const int n = 2000;
+  const double b = sph::k_support * h, dr = b / n;
+  double s = 0.0;
+  for (int i = 0; i <= n; ++i) {
+    const double r = i * dr, w = (i == 0 || i == n) ? 1.0 : (i % 2 ? 4.0 : 2.0);
+    s += w * sph::kernel(r, h) * r * r;
+  }
+  return 4.0 * std::numbers::pi * s * dr / 3.0;
+}
+
+}  // namespace
+
+TEST(Sph, KernelIsNormalisedAndItsSlopeIsItsDerivative) {
+  for (double h : {1e-4, 0.37, 2.0}) {
+    EXPECT_NEAR(kernel_integral(h), 1.0, 1e-9) << h;
+    EXPECT_EQ(sph::kernel(2.0 * h, h), 0.0);
+    EXPECT_EQ(sph::kernel_slope(2.0 * h, h), 0.0);
+    for (double q : {0.1, 0.5, 0.99, 1.0, 1.01, 1.5, 1.9}) {
+      const double r = q * h, d = 1e-6 * h;
+      const double fd = (sph::kernel(r + d, h) - sph::kernel(r - d, h)) / (2.0 * d);
+      EXPECT_NEAR(sph::kernel_slope(r, h), fd, 1e-6 * std::abs(fd) + 1e-9 / std::pow(h, 4))
+          << "q = " << q;
+      EXPECT_LT(sph::kernel_slope(r, h), 0.0);
+    }
+  }
+  // The gradient is antisymmetric to the bit.
+  const Vec3 r(0.3, -0.1, 0.7);
+  EXPECT_EQ(sph::kernel_gradient(r, 0.5), -sph::kernel_gradient(-r, 0.5));
+}
+
+// Random particles in a box with three symmetry planes (and one opposite plane): the grid's
+// lists equal a brute-force search over every particle and every image.
+TEST(Sph, NeighboursAreTheBruteForcePairsWithMirrorImages) {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(0.0, 1.0), hs(0.04, 0.08);
+  const std::vector<sph::MirrorPlane> planes{
+      {0, 0.0, 1.0}, {1, 0.0, 1.0}, {2, 0.0, 1.0}, {0, 1.0, -1.0}};
+  const std::size_t n = 600;
+  std::vector<Vec3> x(n);
+  std::vector<double> h(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    x[i] = Vec3(u(rng), u(rng), u(rng));
+    h[i] = hs(rng);
+  }
+  const double reach = 1.2;
+  const sph::Neighbours nb = sph::find_neighbours(x, h, planes, reach);
+  long pairs = 0, images = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    std::set<std::pair<Index, unsigned>> found, expected;
+    for (Index e = nb.begin[i]; e < nb.begin[i + 1]; ++e) {
+      const Index k = nb.list[e];
+      found.insert(k < static_cast<Index>(n)
+                       ? std::make_pair(k, 0u)
+                       : std::make_pair(nb.ghost_source[k - n], nb.ghost_planes[k - n]));
+    }
+    for (std::size_t j = 0; j < n; ++j)
+      for (unsigned mask = 0; mask < 16; ++mask) {
+        if ((mask & 1u) && (mask & 8u)) continue;  // two planes of one axis
+        if (mask == 0 && j == i) continue;
+        const Vec3 y = sph::mirror_point(x[j], planes, mask);
+        if ((x[i] - y).norm() < reach * 2.0 * 0.5 * (h[i] + h[j]))
+          expected.insert({static_cast<Index>(j), mask});
+      }
+    EXPECT_EQ(found, expected) << "particle " << i;
+    pairs += static_cast<long>(expected.size());
+    for (const auto& [j, mask] : expected) images += mask != 0;
+  }
+  EXPECT_GT(pairs, 5 * static_cast<long>(n));
+  EXPECT_GT(images, 500);
+}
+
+// A block under uniform stress (a pressure and a diagonal deviator, in tension so that the
+// artificial stress acts) closed by mirror planes on every side is the inside of an endless
+// body: no force on any particle. Open one side and the particles there are pulled.
+TEST(Sph, UniformStressInAMirrorBoxExertsNoForce) {
+  for (bool open : {false, true}) {
+    std::vector<sph::MirrorPlane> planes{
+        {0, 0.0, 1.0}, {1, 0.0, 1.0}, {2, 0.0, 1.0}, {1, 6e-3, -1.0}, {2, 6e-3, -1.0}};
+    if (!open) planes.push_back({0, 6e-3, -1.0});
+    test::ParticleRun run({test::library_material("al6061-t6")}, sph::Options{}, planes);
+    run.lattice(Vec3::Zero(), 6, 6, 6, 1e-3, Vec3::Zero());
+    for (Index i = 0; i < run.st.sph.size(); ++i) {
+      run.st.sph.p[i] = -0.3e9;
+      run.st.sph.s[i] = Sym6{0.2e9, -0.1e9, -0.1e9, 0, 0, 0};
+    }
+    run.stage.forces(run.st);
+    // The scale of one neighbour's term: m σ/ρ² m |∇W| ~ m σ / (ρ h).
+    const double scale = run.st.m[0] * 0.5e9 / (2700.0 * 1.3e-3);
+    double largest = 0.0, at_open_face = 0.0;
+    for (Index i = 0; i < run.st.sph.size(); ++i) {
+      largest = std::max(largest, run.st.f[i].norm());
+      if (run.st.x[i][0] > 5e-3) at_open_face = std::max(at_open_face, run.st.f[i].norm());
+    }
+    if (!open) {
+      EXPECT_LT(largest, 1e-12 * scale);
+    } else {
+      EXPECT_GT(at_open_face, 0.1 * scale);
+    }
+  }
+}
+
+// Two aluminium blocks meet at 1 km/s: momentum kept to round-off; energy (kinetic at the
+// whole step, U^{n+1/2} + ½ τ F/m, plus internal, the pair heat included) to 5e-3 of the
+// kinetic energy at every step (measured: 3.2e-3 at most, while the blocks are crushed, 0.8e-3
+// at the end: the integrator's O(τ) between the forces' work and the material update's).
+TEST(Sph, CollisionKeepsMomentumAndEnergy) {
+  test::ParticleRun run({test::library_material("al6061-t6")}, sph::Options{}, {});
+  const double dx = 1e-3;
+  run.lattice(Vec3(0, 0, 0), 6, 6, 6, dx, Vec3(0, 0, 500.0));
+  run.lattice(Vec3(0.5 * dx, 0.3 * dx, 8.7 * dx), 6, 6, 6, dx, Vec3(0, 0, -500.0));
+  const Vec3 p0 = run.momentum();
+  const double e0 = run.kinetic() + run.internal(), k0 = run.kinetic();
+  double mv = 0.0;
+  for (std::size_t i = 0; i < run.st.x.size(); ++i) mv += run.st.m[i] * run.st.v[i].norm();
+  run.start();
+  double worst = 0.0, kinetic = 0.0;
+  while (run.t < 2.7 * dx / 1000.0 + 2.0 * 6 * dx / 5000.0) {
+    run.step();
+    kinetic = 0.0;
+    for (std::size_t i = 0; i < run.st.x.size(); ++i)
+      kinetic += 0.5 * run.st.m[i] *
+                 (run.st.v[i] + (0.5 * run.dt_prev / run.st.m[i]) * run.st.f[i]).squaredNorm();
+    worst = std::max(worst, std::abs(kinetic + run.internal() - e0));
+  }
+  const Vec3 p1 = run.momentum();
+  EXPECT_LT((p1 - p0).norm(), 1e-13 * mv) << (p1 - p0).transpose();
+  EXPECT_LT(worst, 5e-3 * k0) << "kinetic " << kinetic << " internal " << run.internal();
+  // The collision happened: much of the kinetic energy went into the blocks.
+  EXPECT_LT(kinetic, 0.5 * k0);
+}
+
+namespace {
+
+struct Shock {
+  double v_over_v0, pressure;
+};
+
+std::vector<Shock> measured(const std::string& source) {
+  std::ifstream in(test::source_path("data/validation/aluminium-hugoniot.csv"));
+  EXPECT_TRUE(in) << "data/validation/aluminium-hugoniot.csv";
+  std::vector<Shock> out;
+  for (std::string line; std::getline(in, line);) {
+    if (line.empty() || line[0] == '#' || line.rfind("V_over_V0", 0) == 0) continue;
+    if (line.find(source) == std::string::npos) continue;
+    std::stringstream ss(line);
+    std::string v, p;
+    std::getline(ss, v, ',');
+    std::getline(ss, p, ',');
+    out.push_back({std::stod(v), std::stod(p) * 1e9});
+  }
+  return out;
+}
+
+// The measured pressure at V/V0 = v: a straight line through the six points nearest in V/V0.
+double measured_pressure(std::vector<Shock> s, double v) {
+  std::sort(s.begin(), s.end(), [&](const Shock& a, const Shock& b) {
+    return std::abs(a.v_over_v0 - v) < std::abs(b.v_over_v0 - v);
+  });
+  s.resize(6);
+  double mx = 0, my = 0;
+  for (const Shock& p : s) mx += p.v_over_v0 / 6, my += p.pressure / 6;
+  double sxy = 0, sxx = 0;
+  for (const Shock& p : s) {
+    sxy += (p.v_over_v0 - mx) * (p.pressure - my);
+    sxx += (p.v_over_v0 - mx) * (p.v_over_v0 - mx);
+  }
+  return my + sxy / sxx * (v - mx);
+}
+
+// The material's own Hugoniot pressure at V/V0 (Mie–Grüneisen with E = ½ p (1 − V/V0)).
+double eos_hugoniot(const Material& m, double v) {
+  const double eta = 1.0 - v;
+  const EosTerms t = eos_terms(m, eta / v);
+  return t.a / (1.0 - 0.5 * t.b * eta);
+}
+
+}  // namespace
+
+// A symmetric plate impact of 2024-T4 aluminium, particles only, in uniaxial strain (a column
+// between mirror planes): behind each shock the material is at rest, and its state lies on the
+// material's Hugoniot (p against V/V0 within 2 %; −σzz = ρ0 Us up with Us = c0 + s up within
+// 4 %). Against McQueen et al.'s measured shocks of 2024 aluminium the particles' pressure
+// is as close as the equation of state itself is at that V/V0 (within 3 % more).
+TEST(Sph, PlateImpactShockStateLiesOnTheHugoniot) {
+  const Material al = test::library_material("al2024-t4");
+  const std::vector<Shock> mcqueen = measured("McQueen");
+  ASSERT_GT(mcqueen.size(), 20u);
+  const double dx = 1e-4, w = 4 * dx;
+  const int layers = 60;
+  for (double speed : {1000.0, 2000.0, 4000.0, 6000.0}) {
+    const std::vector<sph::MirrorPlane> column{
+        {0, 0.0, 1.0}, {1, 0.0, 1.0}, {0, w, -1.0}, {1, w, -1.0}};
+    test::ParticleRun run({al}, sph::Options{}, column);
+    run.lattice(Vec3(0, 0, -layers * dx), 4, 4, layers, dx, Vec3(0, 0, 0.5 * speed));
+    run.lattice(Vec3(0, 0, 0), 4, 4, layers, dx, Vec3(0, 0, -0.5 * speed));
+    const double up = 0.5 * speed, us = al.c0 + al.s * up;
+    // Until the shocks have run 40 layers from the interface (at Us − up, the shocked
+    // material at rest).
+    const double front = 40 * dx;
+    run.run_to(front / (us - up));
+    double p = 0, szz = 0, vv0 = 0, v = 0;
+    int n = 0;
+    for (Index i = 0; i < run.st.sph.size(); ++i) {
+      const double z = std::abs(run.st.x[i][2]);
+      if (z < 8 * dx || z > 0.7 * front) continue;
+      p += run.st.sph.p[i];
+      szz += run.st.sph.s[i][2] - run.st.sph.p[i];
+      vv0 += al.density / run.st.sph.rho[i];
+      v = std::max(v, std::abs(run.st.v[i][2]));
+      ++n;
+    }
+    ASSERT_GT(n, 100);
+    p /= n, szz /= n, vv0 /= n;
+    SCOPED_TRACE(::testing::Message()
+                 << speed << " m/s: V/V0 " << vv0 << ", p " << p * 1e-9 << " GPa, -szz "
+                 << -szz * 1e-9 << " GPa, " << run.steps << " steps");
+    EXPECT_LT(v, 0.05 * up);                          // at rest behind the shocks
+    EXPECT_NEAR(vv0, 1.0 - up / us, 0.04 * up / us);  // strength: two waves at 1 km/s
+    EXPECT_NEAR(p, eos_hugoniot(al, vv0), 0.02 * p);
+    EXPECT_NEAR(-szz, al.density * us * up, 0.04 * al.density * us * up);
+    const double pm = measured_pressure(mcqueen, vv0);
+    const double eos_error = std::abs(eos_hugoniot(al, vv0) / pm - 1.0);
+    EXPECT_LT(std::abs(p / pm - 1.0), eos_error + 0.03) << "measured " << pm * 1e-9 << " GPa";
+  }
+}
+
+// The same collision on 1, 2 and 3 threads (over 2,000 particles: three blocks): every
+// position, velocity, pressure and stress bit for bit.
+TEST(Sph, ThreadsGiveBitIdenticalResults) {
+  std::vector<State> states;
+  const int saved = parallel::threads();
+  for (int threads : {1, 2, 3}) {
+    parallel::set_threads(threads);
+    test::ParticleRun run({test::library_material("al6061-t6")}, sph::Options{}, {{0, 0.0, 1.0}});
+    const double dx = 1e-3;
+    run.lattice(Vec3(0, 0, 0), 12, 12, 8, dx, Vec3(0, 0, 800.0));
+    run.lattice(Vec3(0, 0.4 * dx, 8.1 * dx), 12, 12, 8, dx, Vec3(-50.0, 0, -800.0));
+    run.start();
+    for (int s = 0; s < 40; ++s) run.step();
+    states.push_back(run.st);
+  }
+  parallel::set_threads(saved);
+  ASSERT_GT(states[0].sph.size(), 2048);
+  for (std::size_t k = 1; k < states.size(); ++k) {
+    EXPECT_EQ(states[k].x, states[0].x) << k + 1 << " threads";
+    EXPECT_EQ(states[k].v, states[0].v) << k + 1 << " threads";
+    EXPECT_EQ(states[k].sph.p, states[0].sph.p) << k + 1 << " threads";
+    EXPECT_EQ(states[k].sph.s, states[0].sph.s) << k + 1 << " threads";
+    EXPECT_EQ(states[k].sph.e_int, states[0].sph.e_int) << k + 1 << " threads";
+  }
+}
+
+namespace {
+
+// A bar of 6061-T6 particles in uniaxial strain (a column between mirror planes), its halves
+// pulled apart at ±v0, run for `transits` times the longitudinal wave's transit of its length;
+// returns the widest gap between successive layers (the layers' mean positions) seen over the
+// run, in layer spacings.
+double widest_gap(double v0, double transits, bool fracture) {
+  const double dx = 1e-4, w = 4 * dx;
+  const int layers = 40;
+  sph::Options options;
+  options.fracture = fracture;
+  test::ParticleRun run({test::library_material("al6061-t6")}, options,
+                        {{0, 0.0, 1.0}, {1, 0.0, 1.0}, {0, w, -1.0}, {1, w, -1.0}});
+  run.lattice(Vec3(0, 0, 0), 4, 4, layers / 2, dx, Vec3(0, 0, -v0));
+  run.lattice(Vec3(0, 0, layers / 2 * dx), 4, 4, layers / 2, dx, Vec3(0, 0, v0));
+  // A lattice a little out of true (±2 % of the spacing along the bar), as a real one is.
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(-0.02 * dx, 0.02 * dx);
+  for (Vec3& x : run.st.x) x[2] += u(rng);
+  const Material& al = run.materials[0];
+  const double end = transits * layers * dx / al.wave_speed();
+  run.start();
+  double widest = 0.0;
+  while (run.t < end) {
+    run.step();
+    std::vector<double> z(layers, 0.0);
+    for (Index i = 0; i < run.st.sph.size(); ++i) z[i / 16] += run.st.x[i][2] / 16;
+    std::sort(z.begin(), z.end());
+    for (int k = 1; k < layers; ++k) widest = std::max(widest, (z[k] - z[k - 1]) / dx);
+  }
+  return widest;
+}
+
+}  // namespace
+
+// Pulled at half its spall strength (ρ c_L v0 = σ*/2) the bar rings for ten transits in one
+// piece (measured: layers at most 1.03 spacings apart); at twice it, it parts within three
+// (layers more than 3 spacings apart; 24 after ten), and without fracture it holds there too
+// (the check fails without the spall).
+// Without the artificial stress this bar also held (1.04 spacings): the tensile instability
+// did not open it in ten transits, so this check does not show the remedy at work.
+TEST(Sph, BarBelowItsSpallStrengthHoldsAndAboveItParts) {
+  const Material al = test::library_material("al6061-t6");
+  const double v_spall = al.spall_strength / (al.density * al.wave_speed());
+  EXPECT_LT(widest_gap(0.5 * v_spall, 10.0, true), 1.5);
+  EXPECT_GT(widest_gap(2.0 * v_spall, 3.0, true), 3.0);
+  EXPECT_LT(widest_gap(2.0 * v_spall, 3.0, false), 1.5);
+}
