@@ -225,6 +225,8 @@ Model build_model(const Case& c, std::vector<std::string>* notes) {
   model.particles = c.fracture && c.particles;
   model.erosion_step_ratio = model.particles ? c.erosion_step_ratio : 0.0;
   model.fragment_clusters = model.particles && c.fragment_clusters;
+  model.sph_debris = model.particles && c.sph_debris;
+  model.sph = c.sph;
   for (const Material& m : model.materials)
     model.element.average_nodal_pressure.push_back(
         c.average_nodal_pressure == AnpMode::on ||

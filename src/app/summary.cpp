@@ -84,6 +84,15 @@ std::optional<RunSummary::Particles> particles_of(const Simulation& sim) {
     const Index n = st.first_particle + i;
     p.particle_kinetic_energy += 0.5 * st.m[n] * centred_velocity(st, n).squaredNorm();
   }
+  p.sph = model.sph_debris;
+  for (Index i = 0; i < st.sph.size(); ++i) {
+    p.sph_internal += st.particle_energy[i];
+    p.sph_plastic_work += st.sph.w_plastic[i];
+    p.sph_pair_heat += st.sph.w_viscous[i];
+    p.sph_damaged += st.sph.damage[i] != Damage::intact;
+  }
+  if (st.sph.size() > 0 && sim.sph_neighbours())
+    p.sph_neighbours = double(sim.sph_neighbours()->pairs()) / double(st.sph.size());
   for (std::size_t b = 0; b < model.mesh.bodies.size(); ++b) {  // where the particles came from
     RunSummary::FromBody from{model.mesh.bodies[b].name, 0, 0.0};
     for (Index i = 0; i < st.particle_count(); ++i)
@@ -382,6 +391,18 @@ Json fracture_json(const RunSummary& s) {
     by_body.push_back(o);
   }
   fr["from_bodies"] = by_body;
+  fr["debris"] = p.sph ? "sph" : "points";
+  if (p.sph) {
+    Json o = Json::object();
+    o["internal_energy"] = p.sph_internal;
+    o["plastic_work"] = p.sph_plastic_work;
+    o["pair_heat"] = p.sph_pair_heat;
+    o["neighbours_per_particle"] = p.sph_neighbours;
+    o["damaged"] = p.sph_damaged;
+    fr["sph"] = o;
+  } else {
+    fr["sph"] = nullptr;
+  }
   return fr;
 }
 

@@ -6,15 +6,16 @@ namespace tc {
 
 namespace {
 
+// impulse[i] acts on node first + i.
 void account(const std::vector<Vec3>& impulse, const State& st, double f,
-             const ImpulseLedger* previous, ImpulseLedger& out) {
+             const ImpulseLedger* previous, ImpulseLedger& out, std::size_t first = 0) {
   double work_behind = 0.0;
   Vec3 impulse_behind = Vec3::Zero();
   for (std::size_t i = 0; i < impulse.size(); ++i) {
     const Vec3& j = impulse[i];
-    const double ju = j.dot(st.v[i]);
+    const double ju = j.dot(st.v[first + i]);
     work_behind += f * ju;
-    out.work_ahead += 0.5 * j.dot(st.v_star[i]) + (0.5 - f) * ju;
+    out.work_ahead += 0.5 * j.dot(st.v_star[first + i]) + (0.5 - f) * ju;
     impulse_behind += f * j;
     out.impulse_ahead += (1.0 - f) * j;
   }
@@ -80,6 +81,9 @@ Sample sample_balance(const State& st, const Sample* previous, const TetSums* su
   account(st.bc_impulse, st, f, previous ? &previous->boundary : nullptr, s.boundary);
   account(st.wall_impulse, st, f, previous ? &previous->walls : nullptr, s.walls);
   account(st.contact_impulse, st, f, previous ? &previous->contact : nullptr, s.contact);
+  if (st.sph.size() > 0 || (previous && !previous->planes.impulse.isZero(0.0)))
+    account(st.sph.plane_impulse, st, f, previous ? &previous->planes : nullptr, s.planes,
+            static_cast<std::size_t>(st.first_particle));
   s.total = s.kinetic + s.internal;
   return s;
 }

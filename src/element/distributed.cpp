@@ -175,21 +175,40 @@ void share_tets(ElementScratch& scratch, State& st, unsigned what,
 // tets exactly and the partials are merged (Simulation::sample_stage).
 void share_damaged(const ElementScratch& scratch, State& st, std::vector<Index> eroding) {
   std::sort(eroding.begin(), eroding.end());  // both passes' lists, one after the other
+  // A record a tet: its index, damage and energy, and the state a cell turned into an SPH
+  // particle carries (sph::append_cell_matter): volume, deviator, pressure, plastic strain,
+  // ductile damage, temperature, sound speed, tr D.
+  constexpr std::size_t k_record = 18;
   std::vector<double> values;
   for (const Index t : scratch.rank_tets[scratch.rank])
     if (st.damage[t] == Damage::damaged || st.damage[t] == Damage::destroyed ||
-        std::binary_search(eroding.begin(), eroding.end(), t))
-      values.insert(values.end(),
-                    {static_cast<double>(t), static_cast<double>(st.damage[t]), st.e_int[t]});
+        std::binary_search(eroding.begin(), eroding.end(), t)) {
+      const Sym6& sd = st.s[t];
+      values.insert(values.end(), {static_cast<double>(t), static_cast<double>(st.damage[t]),
+                                   st.e_int[t], st.vol[t], sd[0], sd[1], sd[2], sd[3], sd[4], sd[5],
+                                   st.p[t], st.eps_p[t], st.ductile[t], st.ductile_floor[t],
+                                   st.temperature[t], st.sound2[t], st.trace_d[t], st.q[t]});
+    }
   std::vector<char> mine(values.size() * sizeof(double));
   std::memcpy(mine.data(), values.data(), mine.size());
   const std::vector<char> all = mpi::all_gather(mine);
   values.resize(all.size() / sizeof(double));
   std::memcpy(values.data(), all.data(), all.size());
-  for (std::size_t k = 0; k + 2 < values.size(); k += 3) {
-    const auto t = static_cast<std::size_t>(values[k]);
-    st.damage[t] = static_cast<Damage>(static_cast<int>(values[k + 1]));
-    st.e_int[t] = values[k + 2];
+  for (std::size_t k = 0; k + k_record <= values.size(); k += k_record) {
+    const double* r = &values[k];
+    const auto t = static_cast<std::size_t>(r[0]);
+    st.damage[t] = static_cast<Damage>(static_cast<int>(r[1]));
+    st.e_int[t] = r[2];
+    st.vol[t] = r[3];
+    st.s[t] = Sym6{r[4], r[5], r[6], r[7], r[8], r[9]};
+    st.p[t] = r[10];
+    st.eps_p[t] = r[11];
+    st.ductile[t] = r[12];
+    st.ductile_floor[t] = r[13];
+    st.temperature[t] = r[14];
+    st.sound2[t] = r[15];
+    st.trace_d[t] = r[16];
+    st.q[t] = r[17];
   }
 }
 

@@ -8,11 +8,12 @@
 
 namespace tc {
 
-Fragmentation::Fragmentation(const Mesh& mesh, Fragments fragments)
+Fragmentation::Fragmentation(const Mesh& mesh, Fragments fragments, double sph_smoothing)
     : neighbours_(tet_neighbours(mesh)),
       lengths_(body_edge_lengths(mesh)),
       removed_(mesh.tets.size(), 0),
       fragments_(fragments),
+      sph_smoothing_(sph_smoothing),
       particle_of_(mesh.tets.size(), -1) {
   cells_at_node_.assign(mesh.x.size(), 0);
   for (const Tet& k : mesh.tets)
@@ -186,6 +187,9 @@ long Fragmentation::convert(const Mesh& mesh, const std::vector<Material>& mater
       ++l.joined;
     } else {
       particle_of_[t] = add_particle(st, centre, u, m, radius, energy, t);
+      if (sph_smoothing_ > 0.0)
+        sph::append_cell_matter(st.sph, st, t, m, sph_smoothing_ * std::cbrt(st.vol0[t]),
+                                materials[st.tet_material[t]], energy);
     }
     if (!mirror_planes_.empty())
       st.particle_planes[particle_of_[t] - st.first_particle] |=

@@ -89,7 +89,8 @@ void read_fracture(const Reader& r, const YAML::Node& root, Case& c) {
   // Fracture (Dobritsa et al.): spall damage and loosening, and destroyed boundary cells turned
   // into particles (on unless `particles: false`: then they stay in the mesh without stress).
   if (const YAML::Node s = root["fracture"]) {
-    r.keys(s, "fracture", {"enabled", "particles", "erosion_step_ratio", "fragments"});
+    r.keys(s, "fracture",
+           {"enabled", "particles", "erosion_step_ratio", "fragments", "debris", "sph"});
     c.fracture = s["enabled"] ? r.boolean(s["enabled"], "fracture.enabled") : true;
     c.particles = s["particles"] ? r.boolean(s["particles"], "fracture.particles") : true;
     if (const YAML::Node e = s["erosion_step_ratio"]) {
@@ -109,6 +110,36 @@ void read_fracture(const Reader& r, const YAML::Node& root, Case& c) {
       c.fragment_clusters = v == "clusters";
       if (c.fragment_clusters && s["particles"] && !c.particles)
         r.fail(f, "fracture.fragments", "clusters are of particles: needs fracture.particles true");
+    }
+    // What the particles are: point masses (Dobritsa et al.) or SPH particles of the material.
+    if (const YAML::Node d = s["debris"]) {
+      const std::string v = r.string(d, "fracture.debris");
+      if (v != "points" && v != "sph")
+        r.fail(d, "fracture.debris", "must be points or sph, not '" + v + "'");
+      c.sph_debris = v == "sph";
+      if (c.sph_debris && s["particles"] && !c.particles)
+        r.fail(d, "fracture.debris", "debris is made of particles: needs fracture.particles true");
+      if (c.sph_debris && c.fragment_clusters)
+        r.fail(d, "fracture.debris",
+               "sph particles interact through their kernel: they do not join clusters "
+               "(fracture.fragments: cells)");
+    }
+    if (const YAML::Node p = s["sph"]) {
+      r.keys(p, "fracture.sph", {"smoothing", "alpha", "beta", "artificial_stress"});
+      if (!c.sph_debris)
+        r.fail(p, "fracture.sph", "settings of SPH debris: needs fracture.debris: sph");
+      const auto within = [&](const char* key, double& value, double lo, double hi,
+                              const char* range) {
+        if (const YAML::Node n = p[key]) {
+          value = r.number(n, std::string("fracture.sph.") + key);
+          if (!(value >= lo && value <= hi))
+            r.fail(n, std::string("fracture.sph.") + key, std::string("must be in ") + range);
+        }
+      };
+      within("smoothing", c.sph.smoothing, 0.8, 3.0, "[0.8, 3] (h over the cell's size)");
+      within("alpha", c.sph.alpha, 0.0, 10.0, "[0, 10]");
+      within("beta", c.sph.beta, 0.0, 10.0, "[0, 10]");
+      within("artificial_stress", c.sph.artificial_stress, 0.0, 1.0, "[0, 1]");
     }
   }
 }

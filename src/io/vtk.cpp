@@ -327,6 +327,23 @@ std::string vtu_particles(const Model& model, const State& st, VtuFormat format)
     out.array("Int32", "body", 1, n, [&](std::size_t i, int) {
       return static_cast<double>(model.mesh.tet_body[st.particle_tet[i]]);
     });
+    // SPH particles (fracture.debris: sph): their material's fields.
+    const ParticleMatter& pm = st.sph;
+    if (static_cast<std::size_t>(pm.size()) == n && n > 0) {
+      out.array("Float64", "smoothing_length", 1, n, [&](std::size_t i, int) { return pm.h[i]; });
+      out.array("Float64", "density", 1, n, [&](std::size_t i, int) { return pm.rho[i]; });
+      out.array("Float64", "pressure", 1, n, [&](std::size_t i, int) { return pm.p[i]; });
+      out.array("Float64", "stress", 6, n, [&](std::size_t i, int c) {
+        return pm.s[i][c] - (c < 3 ? pm.p[i] + pm.q[i] : 0.0);
+      });
+      out.array("Float64", "plastic_strain", 1, n, [&](std::size_t i, int) { return pm.eps_p[i]; });
+      out.array("Float64", "temperature", 1, n,
+                [&](std::size_t i, int) { return pm.temperature[i]; });
+      out.array("Int32", "damage", 1, n,
+                [&](std::size_t i, int) { return static_cast<double>(pm.damage[i]); });
+      out.array("Int32", "material", 1, n,
+                [&](std::size_t i, int) { return static_cast<double>(pm.material[i]); });
+    }
   });
   out.section("Points", [&] {
     out.array("Float64", "Points", 3, n, [&](std::size_t i, int c) { return st.x[node(i)][c]; });

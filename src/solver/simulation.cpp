@@ -107,10 +107,24 @@ Simulation::Simulation(Model model, SolverSettings settings)
   if (model_.element.fracture) modules_.push_back("elements:fracture");
   if (model_.element.fracture && model_.particles) {
     fragmentation_ = std::make_unique<Fragmentation>(
-        model_.mesh, model_.fragment_clusters ? Fragments::clusters : Fragments::cells);
+        model_.mesh, model_.fragment_clusters ? Fragments::clusters : Fragments::cells,
+        model_.sph_debris ? model_.sph.smoothing : 0.0);
     particle_contact_ = std::make_unique<ParticleContact>();
     modules_.push_back("fracture:particles");
     if (model_.fragment_clusters) modules_.push_back("fracture:clusters");
+    if (model_.sph_debris) {
+      // SPH particles meet each other through their kernel, the bodies' faces by contact.
+      std::vector<sph::MirrorPlane> planes;
+      for (const SymmetryPlane& p : model_.mesh.symmetry) planes.push_back({p.axis, p.at, 1.0});
+      sph::Options o;
+      o.alpha = model_.sph.alpha;
+      o.beta = model_.sph.beta;
+      o.artificial_stress = model_.sph.artificial_stress;
+      o.fracture = model_.element.fracture;
+      sph_ = std::make_unique<sph::Stage>(o, std::move(planes));
+      particle_contact_->set_between_particles(false);
+      modules_.push_back("fracture:sph");
+    }
     modules_.push_back("response:particles");
   }
   if (!model_.mesh.symmetry.empty()) modules_.push_back("symmetry");
@@ -150,6 +164,7 @@ Simulation::Simulation(Model model, SolverSettings settings)
     if (s == Stage::narrowphase && !contact_) continue;
     if (s == Stage::response && !corrects()) continue;
     if ((s == Stage::fracture || s == Stage::particles) && !fragmentation_) continue;
+    if (s == Stage::sph && !sph_) continue;
     profile_[s] = 0.0;
   }
   if (mpi::ranks() > 1) {
@@ -215,6 +230,7 @@ void Simulation::step() {
   timed(Stage::commit, [&] { commit_stage(); });  // Uⁿ⁺¹, xⁿ⁺¹ (eq. 1)
   if (fragmentation_) timed(Stage::fracture, [&] { fracture_stage(); });  // cells → particles
   timed(Stage::elements, [&] { elements_stage(); });  // σⁿ⁺¹, Fⁿ⁺¹, next τ
+  if (sph_) timed(Stage::sph, [&] { sph_stage(); });  // the SPH particles' σⁿ⁺¹, Fⁿ⁺¹, τ
 }
 
 // The final time level sampled: nothing is committed after it, so nothing to verify.
@@ -275,6 +291,11 @@ void Simulation::respond_stage() {
   State& st = state_;
   for (Vec3& j : st.wall_impulse) j.setZero();
   for (Vec3& j : st.contact_impulse) j.setZero();
+  // The symmetry planes' push on SPH particles came with the prediction's kick (their mirror
+  // images' part of the forces): the planes' impulse of the step.
+  if (sph_)
+    for (std::size_t i = 0; i < sph_->plane_forces().size(); ++i)
+      st.sph.plane_impulse[i] = kick_ * sph_->plane_forces()[i];
   const int passes = contact_ ? model_.contact->passes : 1;
   std::vector<ContactList>& lists = points_.lists;
   lists.clear();
@@ -312,6 +333,7 @@ void Simulation::resolve_stage() {
 }
 
 void Simulation::predict_stage() {
+  kick_ = 0.5 * (state_.dt_prev + state_.dt);  // predict's τ_v
   predict(state_, model_.constraints);
 }
 
@@ -468,6 +490,25 @@ void Simulation::elements_stage() {
     watch_step();
   } catch (const InvertedElement& e) {
     rethrow_with_body(e);
+  }
+}
+
+// The SPH particles (fracture.debris: sph): their material over the step just committed, from
+// U^{n+1/2}, the pair heat of the last forces over the prediction's τ_v; their forces at x^{n+1}
+// into the particles' nodes; the next step no longer than their stable step allows.
+void Simulation::sph_stage() {
+  State& st = state_;
+  if (st.sph.size() == 0) return;
+  sph_->update(model_.materials, st.dt_prev, kick_, st);
+  const double dt = settings_.cfl * sph_->forces(st).dt_stable;
+  if (dt < st.dt) {
+    st.dt = dt;
+    min_dt_ = std::min(min_dt_, dt);
+  }
+  if (!(st.dt > 0.0) || !std::isfinite(st.dt)) {
+    std::ostringstream os;
+    os << "time step " << st.dt << " s of the SPH particles is not positive and finite";
+    throw RunFailure(os.str());
   }
 }
 

@@ -17,11 +17,12 @@ namespace tc::sph {
 
 namespace {
 
-MaterialPoint particle_point(ParticleMatter& pm, Index i) {
+MaterialPoint particle_point(State& st, Index i) {
+  ParticleMatter& pm = st.sph;
   return {pm.s[i],
           pm.p[i],
           pm.q[i],
-          pm.e_int[i],
+          st.particle_energy[i],
           pm.eps_p[i],
           pm.ductile[i],
           pm.ductile_floor[i],
@@ -61,6 +62,18 @@ using CellKey = std::array<long, 3>;
 CellKey cell_of(const Vec3& x, double size) {
   return {static_cast<long>(std::floor(x[0] / size)), static_cast<long>(std::floor(x[1] / size)),
           static_cast<long>(std::floor(x[2] / size))};
+}
+
+// A cell stretched past its reference volume (a loosened, destroyed cell carries no tension and
+// may have been drawn out to many times its volume) is, as a particle, its material at the
+// volume where its pressure falls to zero at its energy E, if that is less: on the EOS's branch
+// of expansion p = k μ + B E/V0 = 0 at μ = −B E/(k V0) (V0 for a linear EOS). Its pressure
+// there is the cell's (none while it is loosened), so the particle starts without a kick.
+double particle_volume(const Material& m, double vol, double vol0, double energy) {
+  if (!(vol > vol0)) return vol;
+  const EosTerms t = eos_terms(m, -1e-12);  // the branch of expansion: A = k μ
+  const double mu = std::clamp(-t.b * energy / (t.da_dmu * vol0), -0.5, 0.0);
+  return std::min(vol, vol0 / (1.0 + mu));
 }
 
 [[noreturn]] void bad_particle(Index i, const char* what, double value) {
@@ -175,7 +188,6 @@ void Stage::update(const std::vector<Material>& materials, double tau, double ta
     x_[n + g] = mirror_point(x_[i], planes_, nb.ghost_planes[g]);
     v_[n + g] = mirror_direction(v_[i], planes_, nb.ghost_planes[g]);
   }
-  const bool heat = heat_rate_.size() == n;
   parallel::for_each(n, [&](std::size_t i) {
     // L_i = −(1/ρ_i) Σ_j m_j v_ij ⊗ ∇_i W_ij.
     double L[3][3] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}};
@@ -193,22 +205,38 @@ void Stage::update(const std::vector<Material>& materials, double tau, double ta
       for (double& v : row) v *= scale;
     PointMotion c;
     set_rates(L, c);
-    // dV/dt = V tr D by the trapezoid: ΔV = τ tr D V^{n+1/2}.
+    // dV/dt = V tr D by the trapezoid: ΔV = τ tr D V^{n+1/2}. A failed particle in expansion
+    // opens cracks instead: its solid grows only up to the volume where its pressure at its
+    // energy is zero (particle_volume), beyond which the particles part as fragments (their
+    // continuity would otherwise read the cloud's spreading as the solid's, and its density
+    // fell to a thousandth of ρ0 in a Whipple shot).
     const double half = 0.5 * tau * c.trace;
-    if (!(half < 1.0) || !(half > -1.0))
-      bad_particle(static_cast<Index>(i), "volume rate", c.trace);
-    c.vol_end = pm.vol[i] * (1.0 + half) / (1.0 - half);
-    c.vol_mid = 0.5 * (pm.vol[i] + c.vol_end);
+    const bool failed = options_.fracture && pm.damage[i] != Damage::intact;
     const Material& mat = materials[pm.material[i]];
-    const MaterialPoint pt = particle_point(pm, static_cast<Index>(i));
+    if (failed && half > 0.0) {
+      const double grown = half < 1.0 ? pm.vol[i] * (1.0 + half) / (1.0 - half)
+                                      : std::numeric_limits<double>::infinity();
+      const double solid = particle_volume(mat, grown, pm.vol0[i], st.particle_energy[i]);
+      c.vol_end = std::max(pm.vol[i], solid);
+    } else if (!(half < 1.0) || !(half > -1.0)) {
+      std::ostringstream os;
+      os << "SPH particle " << i << " (node " << fp + static_cast<Index>(i) << " at "
+         << st.x[fp + i].transpose() << " m): its volume would change by more than it has in "
+         << "one step (τ tr D / 2 = " << half << "; h " << pm.h[i] << " m, density " << pm.rho[i]
+         << " kg/m^3, " << nb.begin[i + 1] - nb.begin[i] << " neighbours)";
+      throw RunFailure(os.str());
+    } else {
+      c.vol_end = pm.vol[i] * (1.0 + half) / (1.0 - half);
+    }
+    c.vol_mid = 0.5 * (pm.vol[i] + c.vol_end);
+    const MaterialPoint pt = particle_point(st, static_cast<Index>(i));
     const double mass = st.m[fp + i];
     double w_p = 0.0, dvol = 0.0;
     bool eroding = false;
-    const bool failed = options_.fracture && pm.damage[i] != Damage::intact;
     const double w_dev = deviator_work(mat, c, mass / c.vol_mid, failed, tau, pt, w_p, eroding);
     double w_q = viscous_work(mat, c, 0.0, w_p, pt, dvol);
     // The pair heat of the last forces over the kick that applied them.
-    if (heat) {
+    if (i < heat_rate_.size()) {  // not for a particle made since the last forces
       const double w_pair = (heat_rate_[i] + heat_curve_[i] * tau_kick) * tau_kick;
       pt.w_viscous += w_pair;
       if (mat.thermal()) pt.temperature += w_pair / (mat.density * pt.vol0 * mat.specific_heat);
@@ -222,7 +250,7 @@ void Stage::update(const std::vector<Material>& materials, double tau, double ta
       if (pm.p[i] < 0.0) pm.p[i] = 0.0;
     }
     pm.rho[i] = mass / pm.vol[i];
-    if (!std::isfinite(pm.p[i]) || !std::isfinite(pm.e_int[i]))
+    if (!std::isfinite(pm.p[i]) || !std::isfinite(st.particle_energy[i]))
       bad_particle(static_cast<Index>(i), "pressure not finite:", pm.p[i]);
   });
 }
@@ -278,6 +306,7 @@ StepLimit Stage::forces(State& st) {
   }
   heat_rate_.assign(n, 0.0);
   heat_curve_.assign(n, 0.0);
+  plane_force_.assign(n, Vec3::Zero());
   const double alpha = options_.alpha, beta = options_.beta, expo = options_.stress_exponent;
   // The pair's ∇_i W_ij and A_ij = −Π_ij I + f_ijⁿ (R_i + R_j); μ_ij where it approaches.
   struct PairTerms {
@@ -315,7 +344,7 @@ StepLimit Stage::forces(State& st) {
   parallel::for_blocks(n, [&](std::size_t blk, std::size_t begin, std::size_t end) {
     for (std::size_t i = begin; i < end; ++i) {
       const double mi = st.m[fp + i], ci = std::sqrt(pm.sound2[i]);
-      Vec3 acc = Vec3::Zero();
+      Vec3 acc = Vec3::Zero(), from_images = Vec3::Zero();
       double heat = 0.0, mu_max = 0.0;
       for (Index e = nb.begin[i]; e < nb.begin[i + 1]; ++e) {
         const std::size_t k = static_cast<std::size_t>(nb.list[e]);
@@ -326,11 +355,12 @@ StepLimit Stage::forces(State& st) {
         Sym6 sum;
         for (int c = 0; c < 6; ++c) sum[c] = stress_[i][c] + stress_[k][c] + t.a[c];
         const double mj = st.m[fp + j];
-        acc += mj * (to_mat3(sum) * t.g);
+        (k < n ? acc : from_images) += mj * (to_mat3(sum) * t.g);
         if (t.extra) heat -= 0.5 * mi * mj * dv.dot(to_mat3(t.a) * t.g);
         mu_max = std::max(mu_max, -t.mu);
       }
-      st.f[fp + i] = mi * acc;
+      st.f[fp + i] = mi * (acc + from_images);
+      plane_force_[i] = mi * from_images;
       heat_rate_[i] = heat;
       const double dt = options_.step_factor * pm.h[i] / (ci + 1.2 * (alpha * ci + beta * mu_max));
       if (dt < blocks[blk].dt_stable) blocks[blk] = {dt, static_cast<Index>(i)};
@@ -369,13 +399,39 @@ Index append_matter(ParticleMatter& pm, const Material& m, Index material, doubl
   pm.vol0.push_back(vol0);
   pm.vol.push_back(vol0);
   pm.s.push_back(Sym6{0, 0, 0, 0, 0, 0});
-  for (std::vector<double>* a : {&pm.p, &pm.q, &pm.e_int, &pm.eps_p, &pm.ductile, &pm.ductile_floor,
+  for (std::vector<double>* a : {&pm.p, &pm.q, &pm.eps_p, &pm.ductile, &pm.ductile_floor,
                                  &pm.w_plastic, &pm.w_viscous, &pm.trace_d})
     a->push_back(0.0);
   pm.sound2.push_back(sound_speed2(m, 0.0, 0.0, eos_terms(m, 0.0), t0));
   pm.temperature.push_back(t0);
   pm.material.push_back(material);
   pm.damage.push_back(Damage::intact);
+  pm.plane_impulse.push_back(Vec3::Zero());
+  return pm.size() - 1;
+}
+
+Index append_cell_matter(ParticleMatter& pm, const State& st, Index tet, double mass, double h,
+                         const Material& m, double energy) {
+  const double vol = particle_volume(m, st.vol[tet], st.vol0[tet], energy);
+  pm.h.push_back(h);
+  pm.spacing.push_back(std::cbrt(st.vol0[tet]));
+  pm.rho.push_back(mass / vol);
+  pm.vol0.push_back(st.vol0[tet]);
+  pm.vol.push_back(vol);
+  pm.s.push_back(st.s[tet]);
+  pm.p.push_back(st.p[tet]);
+  pm.q.push_back(0.0);  // a particle's viscosity acts between pairs
+  pm.eps_p.push_back(st.eps_p[tet]);
+  pm.ductile.push_back(st.ductile[tet]);
+  pm.ductile_floor.push_back(st.ductile_floor[tet]);
+  pm.w_plastic.push_back(0.0);  // the cell's works stay booked with the cell
+  pm.w_viscous.push_back(0.0);
+  pm.sound2.push_back(st.sound2[tet]);
+  pm.trace_d.push_back(st.trace_d[tet]);
+  pm.temperature.push_back(st.temperature[tet]);
+  pm.material.push_back(st.tet_material[tet]);
+  pm.damage.push_back(st.damage[tet]);
+  pm.plane_impulse.push_back(Vec3::Zero());
   return pm.size() - 1;
 }
 

@@ -4,6 +4,7 @@
 // tests/narrowphase/test_particle_contact.cpp.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "../solver/solver_fixture.hpp"
@@ -362,4 +363,73 @@ TEST(Fragmentation, AClusterCoheringWithItsMirrorImageSpansTheSymmetryPlane) {
   Fragmentation frag(c.model.mesh);
   ASSERT_EQ(frag.convert(c.model.mesh, c.model.materials, c.st), 2);
   EXPECT_EQ(c.st.particle_planes, (std::vector<unsigned>{0u, 0u}));
+}
+
+// SPH debris (fracture.debris: sph): the particle a cell becomes carries the cell's material
+// state as it stands (deviator, pressure, plastic strain, damage, temperature, sound speed,
+// volume and so density), h = smoothing × V0^(1/3), and the conversion's mass, momentum and
+// energy are as exact as a point mass's. A destroyed cell drawn out far beyond its volume becomes
+// its material at the volume where its pressure at its energy is zero (no kick).
+TEST(Fragmentation, AnSphParticleKeepsItsCellsState) {
+  Material al = test::aluminium();
+  al.eos = EosKind::mie_gruneisen;
+  al.c0 = 5240;
+  al.s = 1.4;
+  al.gamma0 = 2.0;
+  al.bulk_modulus = al.density * al.c0 * al.c0;
+  Model model = test::single_body_model(make_box(Vec3(1, 1, 1), {3, 3, 3}, HexSplit::six), al);
+  State st = initial_state(model);
+  for (std::size_t i = 0; i < st.x.size(); ++i)
+    st.v[i] = Vec3(std::sin(3.0 * i), std::cos(5.0 * i), 0.5 - std::sin(7.0 * i));
+  const TetNeighbours nb = tet_neighbours(model.mesh);
+  std::vector<Index> boundary;
+  for (Index t = 0; t < model.mesh.tet_count(); ++t)
+    if (std::count(nb[t].begin(), nb[t].end(), -1) > 0 && boundary.size() < 2)
+      boundary.push_back(t);
+  ASSERT_EQ(boundary.size(), 2u);
+  // An eroded cell, compressed and strained; a destroyed one drawn out to 50 times its volume.
+  const Index eroded = boundary[0], drawn = boundary[1];
+  st.vol[eroded] = 0.8 * st.vol0[eroded];
+  st.s[eroded] = Sym6{1e8, -0.5e8, -0.5e8, 2e7, 0, -1e7};
+  st.p[eroded] = 3e9;
+  st.eps_p[eroded] = 0.4;
+  st.temperature[eroded] = 500.0;
+  st.sound2[eroded] = 4e7;
+  st.e_int[eroded] = 2.0;
+  st.damage[drawn] = Damage::destroyed;
+  st.vol[drawn] = 50.0 * st.vol0[drawn];
+  st.e_int[drawn] = 1e6 * al.density * st.vol0[drawn];  // 1 MJ/kg of heat
+  const Totals before = totals(st);
+  const State cells = st;
+
+  Fragmentation frag(model.mesh, Fragments::cells, 1.3);
+  frag.erode({eroded});
+  EXPECT_EQ(frag.convert(model.mesh, model.materials, st), 2);
+  ASSERT_EQ(st.particle_count(), 2);
+  ASSERT_EQ(st.sph.size(), 2);
+  for (Index i = 0; i < 2; ++i) {
+    const Index t = st.particle_tet[i], node = st.first_particle + i;
+    SCOPED_TRACE(t == eroded ? "eroded" : "drawn out");
+    EXPECT_EQ(st.sph.s[i], cells.s[t]);
+    EXPECT_EQ(st.sph.p[i], cells.p[t]);
+    EXPECT_EQ(st.sph.eps_p[i], cells.eps_p[t]);
+    EXPECT_EQ(st.sph.temperature[i], cells.temperature[t]);
+    EXPECT_EQ(st.sph.sound2[i], cells.sound2[t]);
+    EXPECT_EQ(st.sph.damage[i], cells.damage[t]);
+    EXPECT_EQ(st.sph.material[i], cells.tet_material[t]);
+    EXPECT_EQ(st.sph.vol0[i], cells.vol0[t]);
+    EXPECT_DOUBLE_EQ(st.sph.h[i], 1.3 * std::cbrt(cells.vol0[t]));
+    EXPECT_DOUBLE_EQ(st.sph.rho[i] * st.sph.vol[i], st.m[node]);
+  }
+  const Index e = st.particle_tet[0] == eroded ? 0 : 1, d = 1 - e;
+  EXPECT_EQ(st.sph.vol[e], cells.vol[eroded]);
+  // The drawn-out cell: p(V, E) = k μ + Γ E / V0 = 0 at its volume, well below 50 V0.
+  const double mu = st.sph.vol0[d] / st.sph.vol[d] - 1.0;
+  EXPECT_LT(st.sph.vol[d], 2.0 * st.sph.vol0[d]);
+  EXPECT_GT(st.sph.vol[d], st.sph.vol0[d]);
+  EXPECT_NEAR(eos_pressure(al, mu, st.particle_energy[d] / st.sph.vol0[d]), 0.0, 1e-6 * 3e9);
+  const Totals after = totals(st);
+  EXPECT_NEAR(after.mass, before.mass, 1e-15 * before.mass);
+  EXPECT_NEAR((after.momentum - before.momentum).norm(), 0.0, 1e-14 * before.mass);
+  EXPECT_NEAR(after.energy, before.energy, 1e-13 * before.energy);
 }

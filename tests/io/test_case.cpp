@@ -1,6 +1,8 @@
 // Case files: every error class gives one message with file, line and key path.
 #include <gtest/gtest.h>
 
+#include <tuple>
+
 #include <cstdlib>
 #include <filesystem>
 #include <limits>
@@ -738,6 +740,42 @@ TEST(Case, FragmentsAreCellsOrClusters) {
     const std::string what = e.what();
     EXPECT_NE(what.find("fracture.fragments"), std::string::npos) << what;
     EXPECT_NE(what.find("cells or clusters"), std::string::npos) << what;
+  }
+}
+
+// fracture.debris: point masses by default, SPH particles on request; its settings only with
+// it, in their ranges; no clusters of SPH particles.
+TEST(Case, DebrisIsPointsOrSph) {
+  const std::string file = test::source_path("data/cases/ball-plate.yaml");
+  EXPECT_FALSE(load_case(file).sph_debris);
+  const Case sph = load_case(file, {"fracture.debris=sph", "fracture.sph.smoothing=1.5"});
+  EXPECT_TRUE(sph.sph_debris);
+  EXPECT_EQ(sph.sph.smoothing, 1.5);
+  EXPECT_EQ(sph.sph.alpha, 1.0);
+  EXPECT_FALSE(load_case(file, {"fracture.debris=points"}).sph_debris);
+  for (const auto& [bad, key, words] :
+       std::vector<std::tuple<std::vector<std::string>, std::string, std::string>>{
+           {{"fracture.debris=dust"}, "fracture.debris", "points or sph"},
+           {{"fracture.sph.smoothing=1.5"}, "fracture.sph", "fracture.debris: sph"},
+           {{"fracture.debris=sph", "fracture.sph.smoothing=5"},
+            "fracture.sph.smoothing",
+            "[0.8, 3]"},
+           {{"fracture.debris=sph", "fracture.sph.artificial_stress=-1"},
+            "fracture.sph.artificial_stress",
+            "[0, 1]"},
+           {{"fracture.debris=sph", "fracture.sph.kernel=1"}, "fracture.sph.kernel", "unknown"},
+           {{"fracture.fragments=clusters", "fracture.debris=sph"}, "fracture.debris", "clusters"},
+           {{"fracture.erosion_step_ratio=0", "fracture.particles=false", "fracture.debris=sph"},
+            "fracture.debris",
+            "fracture.particles true"}}) {
+    try {
+      load_case(file, bad);
+      ADD_FAILURE() << bad.back() << " was accepted";
+    } catch (const CaseError& e) {
+      const std::string what = e.what();
+      EXPECT_NE(what.find(key), std::string::npos) << what;
+      EXPECT_NE(what.find(words), std::string::npos) << what;
+    }
   }
 }
 

@@ -204,6 +204,18 @@ TEST(Mpi, CoarseWhippleShieldWithDuctileFailureIsBitIdenticalOn2And3Ranks) {
   EXPECT_GT(test::number(s, "/fracture/ductile_failed_at_floor"), 100);  // 277 of 281
 }
 
+// SPH debris on the coarse Whipple shield: every rank runs the particles whole, as one process.
+TEST(Mpi, CoarseWhippleShieldWithSphDebrisIsBitIdenticalOn2And3Ranks) {
+  const test::Json s = same_on_any_rank_count(
+      "whipple-sph", "data/cases/whipple.yaml",
+      "--set parameters.hb=1.0e-3 --set parameters.hw=2.0e-3 --set parameters.np=6 "
+      "--set parameters.tear=2.0e-6 --set parameters.S=15e-3 --set parameters.ww=30e-3 "
+      "--set fracture.debris=sph",
+      {2, 3});
+  EXPECT_GT(test::number(s, "/fracture/particles"), 100);
+  EXPECT_GT(test::number(s, "/fracture/sph/neighbours_per_particle"), 5);
+}
+
 TEST(Mpi, BarsAndATaylorRodWithNodalPressureAreBitIdenticalOn2To4Ranks) {
   const test::Json bars = same_on_any_rank_count("bars", "data/cases/bars-impact.yaml",
                                                  "--set end_time=20.0e-6", {2, 3, 4});

@@ -160,6 +160,18 @@ TEST(Threads, CoarseBallPlateWithFractureAndParticlesIsBitIdenticalOn1To3Threads
   EXPECT_GT(test::number(s, "/contact/node_face"), 0);
 }
 
+// SPH debris: the coarse Whipple shot with its debris as SPH particles (their neighbours, mirror
+// images, material update and forces on the threads).
+TEST(Threads, CoarseWhippleWithSphDebrisIsBitIdenticalOn1To3Threads) {
+  const test::Json s = same_on_any_thread_count(
+      "whipple-sph", "data/cases/whipple.yaml",
+      "--set parameters.hb=1.0e-3 --set parameters.hw=2.0e-3 --set parameters.np=6 "
+      "--set parameters.tear=2.0e-6 --set parameters.S=15e-3 --set parameters.ww=30e-3 "
+      "--set fracture.debris=sph");
+  EXPECT_GT(test::number(s, "/fracture/particles"), 100);
+  EXPECT_GT(test::number(s, "/fracture/sph/neighbours_per_particle"), 5);
+}
+
 TEST(Threads, HertzTestMeshIsBitIdenticalOn1To3Threads) {
   const test::Json s = same_on_any_thread_count(
       "hertz", "data/cases/hertz-spheres.yaml",

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <algorithm>
+#include <cmath>
 #include <vector>
 
 #include "tetcontact/io/case.hpp"
@@ -36,6 +37,10 @@ struct ParticleRun {
     st.v.push_back(v);
     st.m.push_back(materials[mat].density * vol);
     st.f.push_back(Vec3::Zero());
+    st.particle_energy.push_back(0.0);
+    st.particle_radius.push_back(0.5 * std::cbrt(vol));
+    st.particle_tet.push_back(-1);
+    st.particle_planes.push_back(0u);
     return st.sph.size() - 1;
   }
   /// A block of particles on a cubic lattice of spacing dx, h = ratio dx, the first centre at
@@ -82,7 +87,7 @@ struct ParticleRun {
   }
   double internal() const {
     double e = 0.0;
-    for (double v : st.sph.e_int) e += v;
+    for (double v : st.particle_energy) e += v;
     return e;
   }
 };

@@ -271,7 +271,7 @@ TEST(Sph, ThreadsGiveBitIdenticalResults) {
     EXPECT_EQ(states[k].v, states[0].v) << k + 1 << " threads";
     EXPECT_EQ(states[k].sph.p, states[0].sph.p) << k + 1 << " threads";
     EXPECT_EQ(states[k].sph.s, states[0].sph.s) << k + 1 << " threads";
-    EXPECT_EQ(states[k].sph.e_int, states[0].sph.e_int) << k + 1 << " threads";
+    EXPECT_EQ(states[k].particle_energy, states[0].particle_energy) << k + 1 << " threads";
   }
 }
 

@@ -98,6 +98,11 @@ struct RunSummary {
     // law's own ε_f below it: a set with D1 < 0 at high triaxiality).
     std::optional<long> ductile_failed_at_floor;
     std::vector<FromBody> from_bodies;
+    // fracture.debris: sph — the particles' material at the end (sums over them).
+    bool sph = false;
+    double sph_internal = 0.0, sph_plastic_work = 0.0, sph_pair_heat = 0.0;
+    double sph_neighbours = 0.0;  // mean neighbours a particle (its images included)
+    long sph_damaged = 0;         // particles damaged or destroyed (no tension)
   };
   std::optional<Particles> particles;
   std::optional<long> eroded, particles_moved_out;  // the safeguards the run has

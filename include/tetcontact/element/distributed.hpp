@@ -49,7 +49,8 @@ enum Shared : unsigned {
 void share_tets(ElementScratch& scratch, State& st, unsigned what,
                 const std::vector<std::vector<Index>>& lists);
 
-/// Every step: the damaged, destroyed and eroding tets' damage and energy to every rank.
+/// Every step: the damaged, destroyed and eroding tets' damage, energy and the state a cell turned
+/// into an SPH particle carries, to every rank (fracture reads them).
 void share_damaged(const ElementScratch& scratch, State& st, std::vector<Index> eroding);
 
 /// Who sends what for the nodal sums (ElementScratch::rank_nodes, ...), once per mesh.

@@ -16,6 +16,7 @@
 #include "tetcontact/material/material.hpp"
 #include "tetcontact/mesh/surface.hpp"
 #include "tetcontact/model/state.hpp"
+#include "tetcontact/sph/sph.hpp"
 
 namespace tc {
 
@@ -52,7 +53,11 @@ Index add_particle(State& st, const Vec3& x, const Vec3& v, double m, double rad
 /// Turns destroyed boundary cells into particles and keeps the surfaces that result.
 class Fragmentation {
  public:
-  explicit Fragmentation(const Mesh& mesh, Fragments fragments = Fragments::cells);
+  /// sph_smoothing > 0: the particles are SPH particles (sph/) that keep their cell's material
+  /// and state (sph::append_cell_matter), h = sph_smoothing × the cell's V0^(1/3); 0: point
+  /// masses.
+  explicit Fragmentation(const Mesh& mesh, Fragments fragments = Fragments::cells,
+                         double sph_smoothing = 0.0);
 
   /// Every destroyed cell with a face on the boundary (at the start of the call: one layer
   /// per step) becomes one particle:
@@ -100,6 +105,7 @@ class Fragmentation {
   std::vector<Index> eroding_;        // cells to convert at the next call, wherever they are
   std::vector<int> cells_at_node_;    // remaining cells around each mesh node
   Fragments fragments_ = Fragments::cells;
+  double sph_smoothing_ = 0.0;           // > 0: SPH particles
   std::vector<Index> particle_of_;       // per tet: the node of the particle holding it, or −1
   std::vector<unsigned> mirror_planes_;  // per tet (clusters with symmetry planes): the planes
                                          // its faces lie on

@@ -169,6 +169,8 @@ struct Case {
   bool particles = true;  // fracture.particles: destroyed boundary cells become particles
   double erosion_step_ratio = 0.01;  // fracture.erosion_step_ratio (0: off)
   bool fragment_clusters = false;    // fracture.fragments: clusters (true) or cells
+  bool sph_debris = false;           // fracture.debris: sph (true) or points
+  SphSettings sph;                   // fracture.sph
   /// `expect`: bounds the run must hold (run --check exits 1 otherwise), by summary figure:
   /// momentum_error, energy_balance (balance_error_max), max_depth_over_h, particles_inside
   /// (at the end), in the order given.

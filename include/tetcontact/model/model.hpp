@@ -111,6 +111,16 @@ struct VelocityConstraint {
   bool mirror = false;  // a symmetry plane's: each of its nodes stands for 2 of the whole's
 };
 
+/// SPH debris (fracture.debris: sph; sph/sph.hpp): the smoothing length h of a particle made
+/// from a cell is `smoothing` times the cell's size V0^(1/3); Monaghan's viscosity (α, β) and
+/// artificial stress (ε).
+struct SphSettings {
+  double smoothing = 1.3;
+  double alpha = 1.0;
+  double beta = 2.0;
+  double artificial_stress = 0.3;
+};
+
 struct Model {
   Mesh mesh;
   std::vector<Surface> surfaces;     // one per body
@@ -128,6 +138,10 @@ struct Model {
   /// fracture.fragments: clusters — a converted cell joins the particle of a neighbour that
   /// coheres with it (fracture/particles.hpp); false: each cell its own particle.
   bool fragment_clusters = false;
+  /// fracture.debris: sph — a converted cell becomes an SPH particle that keeps its material
+  /// and state (sph/); false: a point mass (Dobritsa et al.'s particles).
+  bool sph_debris = false;
+  SphSettings sph;
   /// Contact heat (contact.heat, response/heat.hpp): also with contact between bodies off, for
   /// the particles' exchanges.
   bool contact_heat = false;

@@ -35,6 +35,9 @@ struct Sample {
   ImpulseLedger boundary;      // prescribed velocities: work and impulse to t^n
   ImpulseLedger walls;         // rigid walls: work and impulse to t^n
   ImpulseLedger contact;       // contacts between bodies: work (≤ 0) and impulse (≈ 0) to t^n
+  ImpulseLedger planes;        // symmetry planes on SPH particles (their images): impulse to
+                               // t^n (its work is internal: a particle's pair work with its
+                               // image, which the whole books as the pair's heat)
   double contact_heat = 0.0;   // the heat the exchanges (and the symmetry planes') deposited
                                // in cells and particles before t^n (response/heat.hpp;
                                // part of internal)
@@ -54,7 +57,7 @@ struct Sample {
 
   /// Work done on the bodies by everything outside them (boundary conditions, walls).
   double external_work() const { return boundary.work + walls.work; }
-  Vec3 external_impulse() const { return boundary.impulse + walls.impulse; }
+  Vec3 external_impulse() const { return boundary.impulse + walls.impulse + planes.impulse; }
 };
 
 /// The stages of a step, in pipeline order (Simulation::step), each timed into the profile.
@@ -70,8 +73,9 @@ enum class Stage {
   commit,       // Uⁿ⁺¹, xⁿ⁺¹
   fracture,     // destroyed boundary cells → particles
   elements,     // σⁿ⁺¹, Fⁿ⁺¹, the next step
+  sph,          // SPH particles: σⁿ⁺¹, Fⁿ⁺¹, their stable step (fracture.debris: sph)
 };
-inline constexpr NameTable<Stage, 11> k_stage_names{{{Stage::predict, "predict"},
+inline constexpr NameTable<Stage, 12> k_stage_names{{{Stage::predict, "predict"},
                                                      {Stage::broadphase, "broadphase"},
                                                      {Stage::narrowphase, "narrowphase"},
                                                      {Stage::particles, "particles"},
@@ -81,7 +85,8 @@ inline constexpr NameTable<Stage, 11> k_stage_names{{{Stage::predict, "predict"}
                                                      {Stage::output, "output"},
                                                      {Stage::commit, "commit"},
                                                      {Stage::fracture, "fracture"},
-                                                     {Stage::elements, "elements"}}};
+                                                     {Stage::elements, "elements"},
+                                                     {Stage::sph, "sph"}}};
 
 /// Seconds spent in each stage over the run, in pipeline order: the stages the case uses
 /// (history.csv's seconds_* columns and summary.timings, by their names).

@@ -19,7 +19,8 @@ enum class Damage : std::uint8_t { intact = 0, damaged = 1, destroyed = 2, parti
 /// The material of SPH particles (sph/): per particle, what a tet carries of its material's
 /// state, updated by the same material-point update (element/material_point.hpp), plus the
 /// density and smoothing length of the kernel. Particle i's mass, position and velocity are
-/// node first_particle + i's. Empty where the particles are point masses.
+/// node first_particle + i's, its internal energy State::particle_energy[i]. Empty where the
+/// particles are point masses.
 struct ParticleMatter {
   std::vector<double> h;        // smoothing length, m (the kernel reaches 2h)
   std::vector<double> spacing;  // Δp: the particle's own size, V0^(1/3) (artificial stress)
@@ -27,10 +28,14 @@ struct ParticleMatter {
   std::vector<double> vol0;     // reference volume m/ρ0
   std::vector<double> vol;      // current volume m/ρ
   std::vector<Sym6> s;          // deviatoric stress
-  std::vector<double> p, q, e_int, eps_p, ductile, ductile_floor, w_plastic, w_viscous, sound2,
-      trace_d, temperature;  // as the tets' arrays of the same names
+  std::vector<double> p, q, eps_p, ductile, ductile_floor, w_plastic, w_viscous, sound2, trace_d,
+      temperature;  // as the tets' arrays of the same names
   std::vector<Index> material;
   std::vector<Damage> damage;
+  // The impulse of this step's kick from the particle's and its neighbours' mirror images
+  // across the symmetry planes (the planes' push: momentum from outside the model; its work is
+  // the pair work of a particle and its image, internal to the whole).
+  std::vector<Vec3> plane_impulse;
   Index size() const { return static_cast<Index>(h.size()); }
 };
 

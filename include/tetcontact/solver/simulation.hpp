@@ -20,6 +20,7 @@
 #include "tetcontact/narrowphase/particle_contact.hpp"
 #include "tetcontact/response/wall.hpp"
 #include "tetcontact/solver/resolve.hpp"
+#include "tetcontact/sph/sph.hpp"
 
 namespace tc {
 
@@ -95,6 +96,8 @@ class Simulation {
   }
   const StepProfile& profile() const { return profile_; }
   Index critical_tet() const { return critical_tet_; }
+  /// The SPH particles' neighbour lists of the last step (fracture.debris: sph), else null.
+  const sph::Neighbours* sph_neighbours() const { return sph_ ? &sph_->neighbours() : nullptr; }
   /// The smallest time step of the run, s.
   double min_dt() const { return min_dt_; }
   /// The step after the first element pass, s.
@@ -117,6 +120,7 @@ class Simulation {
   TetSums tet_sums_over_ranks() const;
   void output_stage();
   void commit_stage();
+  void sph_stage();
   void elements_stage();
   void fracture_stage();
   void heat_stage();
@@ -140,6 +144,8 @@ class Simulation {
   std::unique_ptr<ContactDetection> contact_;
   std::unique_ptr<Fragmentation> fragmentation_;
   std::unique_ptr<ParticleContact> particle_contact_;
+  std::unique_ptr<sph::Stage> sph_;         // with fracture.debris: sph
+  double kick_ = 0.0;                       // τ_v of the step's prediction (the SPH pair heat's)
   std::unique_ptr<StepResolver> resolver_;  // with contact.verify
   StepContacts points_;                     // this step's contact points
   ContactLedger contact_totals_;

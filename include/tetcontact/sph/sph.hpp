@@ -111,6 +111,10 @@ class Stage {
   /// for the next update, and the stable step.
   StepLimit forces(State& st);
 
+  /// Per particle, the part of the last forces that its and its neighbours' mirror images
+  /// exert: the symmetry planes' reaction, an external force to the model (the balance books
+  /// its impulse as the planes').
+  const std::vector<Vec3>& plane_forces() const { return plane_force_; }
   const Neighbours& neighbours() const { return neighbours_; }
   const Options& options() const { return options_; }
 
@@ -123,6 +127,7 @@ class Stage {
   std::vector<Sym6> stress_, art_;  // per point: σ/ρ², and R (the artificial stress)
   std::vector<Vec3> acc_;           // per point: the acceleration of the last forces
   std::vector<double> heat_rate_;   // per particle: −½ Σ_j m_i m_j v_ij·A_ij ∇W, J/s
+  std::vector<Vec3> plane_force_;   // per particle: the mirror images' part of the force
   std::vector<double> heat_curve_;  // per particle: its part in τ_v² (the kick's mean velocity)
   bool fresh_ = false;              // the lists are of the current positions (update's)
 };
@@ -132,5 +137,14 @@ class Stage {
 /// particles' material; returns its index. Its node (mass ρ0 vol0, position, velocity) is the
 /// caller's to append.
 Index append_matter(ParticleMatter& pm, const Material& m, Index material, double vol0, double h);
+
+/// Appends the particle a cell of material m becomes: the cell's state as it stands (deviator,
+/// pressure, plastic strain, damage, temperature, sound speed, material; its volume, but for a
+/// cell stretched beyond the volume where its pressure at the particle's energy `energy` is
+/// zero: that volume), density mass/V, smoothing length h. Its internal energy is the
+/// particle's (State::particle_energy), its mass, position and velocity its node's, both the
+/// caller's.
+Index append_cell_matter(ParticleMatter& pm, const State& st, Index tet, double mass, double h,
+                         const Material& m, double energy);
 
 }  // namespace tc::sph
