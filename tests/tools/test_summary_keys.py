@@ -23,6 +23,8 @@ def runs(binary, module_out):
                             "end_time=2e-6", "contact.verify=true")
     out["whipple"] = run_case(binary, case("whipple"), os.path.join(module_out, "whipple"),
                               *SMALL_WHIPPLE)
+    out["whipple_sph"] = run_case(binary, case("whipple"), os.path.join(module_out, "whipple-sph"),
+                                  *SMALL_WHIPPLE, "fracture.debris=sph")
     out["plate"] = run_case(binary, case("plate-impact-1d"), os.path.join(module_out, "plate"))
     mpi = os.path.join(module_out, "mpi")
     r = subprocess.run(["mpirun", "--allow-run-as-root", "--oversubscribe", "-np", "2", binary,
@@ -49,8 +51,12 @@ def test_conditional_paths(runs):
         K.get(runs["cubes"], path, "cubes-edge with contact.verify")
     for path in paths("PARAMETERS", "REFERENCES", "PARTICLES_INSIDE_AT_END",
                       "FRACTURE_FROM_BODIES", "FRACTURE_DUCTILE_FAILED",
-                      "FRACTURE_DUCTILE_FAILED_AT_FLOOR"):
+                      "FRACTURE_DUCTILE_FAILED_AT_FLOOR", "FRACTURE_DEBRIS",
+                      "ENERGY_CONTACT_WORK", "ENERGY_TOTAL_INITIAL"):
         K.get(runs["whipple"], path, "whipple")
+    assert K.get(runs["whipple"], K.FRACTURE_DEBRIS) == "points"
+    assert K.get(runs["whipple_sph"], K.FRACTURE_DEBRIS) == "sph"
+    assert K.get(runs["whipple_sph"], K.FRACTURE_SPH_NEIGHBOURS) >= 0
     K.get(runs["mpi"], K.COMMUNICATION_SECONDS, "cubes-edge under mpirun")
     for item in K.get(runs["cubes"], K.EXPECT):
         assert {K.NAME, K.BOUND, K.MEASURED, K.PASS} <= set(item)

@@ -80,6 +80,10 @@ EXPECT = ("expect",)                 # a case with `expect:` (items NAME, BOUND,
 EXPECT_PASS = ("expect_pass",)       # idem
 REFERENCES = ("references",)         # a case with `reference:` (items NAME, MEASURED, PASS)
 PARTICLES_INSIDE_AT_END = ("penetration", "particles_inside_at_end")  # fracture particles
+FRACTURE_DEBRIS = ("fracture", "debris")  # particles: "points" or "sph"
+FRACTURE_SPH_NEIGHBOURS = ("fracture", "sph", "neighbours_per_particle")  # debris sph
+ENERGY_CONTACT_WORK = ("energy", "contact_work")  # null without contact or particles
+ENERGY_TOTAL_INITIAL = ("energy", "total_initial")
 FRACTURE_FROM_BODIES = ("fracture", "from_bodies")  # particles (items NAME, PARTICLES, MASS)
 FRACTURE_DUCTILE_FAILED = ("fracture", "ductile_failed")  # a material with ductile failure
 # Of those, the cells whose damage accrued mostly with the failure strain at its floor; each

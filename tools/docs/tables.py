@@ -61,6 +61,10 @@ NAME, the table:
     whipple-tear  the sixteen shots with the run going on 15 µs (shipped) and 60 µs after the
                   debris reaches the wall, the latter also without ductile damage at the floor:
                   verdicts, thickness left, the wall's bulge at the end (~16 min on 2 cores)
+    whipple-debris the sixteen shots with the debris as point masses (shipped), as SPH
+                  particles (fracture.debris: sph), and as SPH particles with crushed cells
+                  converted at 50 % of the first step: verdicts, thickness left, the contact
+                  work's share of the initial energy (~45 min on 2 cores)
     hugoniot      the library's aluminium equations of state on their Hugoniot against the
                   measured shock states of data/validation/aluminium-hugoniot.csv, per
                   pressure band (no runs: the EOS's closed form, which the engine reproduces)
@@ -101,7 +105,7 @@ ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)
 NAMES = ["stability", "micro", "profile", "ccd", "verify", "verify-full", "threads", "mpi",
          "whipple", "whipple-mesh", "whipple-hole", "strength", "taylor-tests", "taylor-temper",
          "whipple-shots", "whipple-refined", "whipple-defaults", "whipple-wall", "whipple-tear",
-         "hugoniot"]
+         "whipple-debris", "hugoniot"]
 
 
 def g(x):
@@ -1323,6 +1327,44 @@ def whipple_tear(binary, work, opts):
                                      WHIPPLE_TEAR, WHIPPLE_TEAR_HEADER, whipple_tear_cells, mm)
 
 
+# whipple-debris ----------------------------------------------------------------------------------
+# What the debris is made of (fracture.debris): the sixteen shots with Dobritsa et al.'s point
+# masses (shipped) and with SPH particles that keep their cells' material. Beside each verdict
+# the share of the initial energy booked as contact work: the debris's exchanges with the wall
+# and the bumper.
+WHIPPLE_DEBRIS = [  # (folder, label, --set)
+    ("points", "point masses (shipped)", []),
+    ("sph", "SPH particles", ["fracture.debris=sph"]),
+    ("sph-erosion-0.5", "SPH particles, crushed cells converted at 50 % of the first step",
+     ["fracture.debris=sph", "fracture.erosion_step_ratio=0.5"]),
+]
+WHIPPLE_DEBRIS_HEADER = settings_header(
+    WHIPPLE_DEBRIS, "verdict (mass through), thickness left, contact work / initial energy",
+    "run time (each setting)")
+
+
+def whipple_debris_cells(prediction, s):
+    """(verdict, mass through the wall, wall thickness left, contact work over the initial
+    energy, run seconds) of one campaign run."""
+    m = {x[K.NAME]: x[K.MEASURED] for x in get(s, K.REFERENCES)}
+    share = -get(s, K.ENERGY_CONTACT_WORK) / get(s, K.ENERGY_TOTAL_INITIAL)
+    return (prediction["predicted:wall perforated"], m[K.MASS_THROUGH_WALL],
+            m[K.WALL_THICKNESS_LEFT], share, float(prediction["wall_seconds"]))
+
+
+def percent(x):
+    return f"{100 * x:.0f} %"
+
+
+def whipple_debris(binary, work, opts):
+    """The shots of WHIPPLE_REFINED_ROWS with each debris of WHIPPLE_DEBRIS: each verdict (and
+    mass through), the wall's thickness left and the contact work's share of the initial energy
+    beside the measured verdict and the equation's, and how many each gets right."""
+    yield from whipple_settings_rows(binary, work, "whipple-debris-", WHIPPLE_REFINED_ROWS,
+                                     WHIPPLE_DEBRIS, WHIPPLE_DEBRIS_HEADER, whipple_debris_cells,
+                                     percent)
+
+
 # whipple, whipple-mesh, whipple-hole -------------------------------------------------------------
 WHIPPLE_COARSE = ["parameters.hb=1.0e-3", "parameters.hw=2.0e-3", "parameters.np=6",
                   "parameters.tear=5.0e-6"]
@@ -1434,7 +1476,7 @@ TABLES = {"stability": stability, "micro": micro, "profile": profile, "ccd": ccd
           "taylor-tests": taylor_tests, "taylor-temper": taylor_temper, "whipple-shots": whipple_shots,
           "whipple-refined": whipple_refined, "whipple-defaults": whipple_defaults,
           "whipple-wall": whipple_wall, "whipple-tear": whipple_tear,
-          "hugoniot": hugoniot}
+          "whipple-debris": whipple_debris, "hugoniot": hugoniot}
 assert list(TABLES) == NAMES
 
 
