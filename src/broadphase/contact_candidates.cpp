@@ -137,6 +137,7 @@ void ContactCandidates::search(const State& st, bool bodies, bool particles) {
     in.node_box.push_back(b);
     in.node_id.push_back(p);
     in.node_body.push_back(-2 - i);
+    if (!settings_.particle_pairs) continue;
     in.edge_box.push_back(b);
     in.edge_nodes.push_back({p, p});
     in.edge_body.push_back(-2 - i);

@@ -122,7 +122,6 @@ Simulation::Simulation(Model model, SolverSettings settings)
       o.artificial_stress = model_.sph.artificial_stress;
       o.fracture = model_.element.fracture;
       sph_ = std::make_unique<sph::Stage>(o, std::move(planes));
-      particle_contact_->set_between_particles(false);
       modules_.push_back("fracture:sph");
     }
     modules_.push_back("response:particles");
@@ -134,15 +133,16 @@ Simulation::Simulation(Model model, SolverSettings settings)
     surface_nodes_ = all_surface_nodes(state_.surfaces);
     wall_force_max_.assign(model_.walls.size(), 0.0);
   }
-  // One broadphase for the detection: between bodies with contact, for particles with them.
-  if (model_.contact)
-    candidates_ = std::make_unique<ContactCandidates>(
-        model_.mesh, state_.surfaces,
-        candidate_settings(*model_.contact, fragmentation_ != nullptr));
-  else if (fragmentation_)
-    candidates_ = std::make_unique<ContactCandidates>(
-        model_.mesh, state_.surfaces,
-        CandidateSettings{.broadphase = "sweep", .bodies = false, .particles = true});
+  // One broadphase for the detection: between bodies with contact, for particles with them (and
+  // with each other, but for SPH particles, which meet through their kernel).
+  if (model_.contact || fragmentation_) {
+    CandidateSettings cs =
+        model_.contact
+            ? candidate_settings(*model_.contact, fragmentation_ != nullptr)
+            : CandidateSettings{.broadphase = "sweep", .bodies = false, .particles = true};
+    cs.particle_pairs = !sph_;
+    candidates_ = std::make_unique<ContactCandidates>(model_.mesh, state_.surfaces, cs);
+  }
   if (model_.contact) {
     contact_ = std::make_unique<ContactDetection>(model_.mesh, state_.surfaces, *model_.contact);
     modules_.push_back("broadphase:" + model_.contact->broadphase);

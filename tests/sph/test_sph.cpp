@@ -16,6 +16,7 @@
 #include "../test_util.hpp"
 #include "sph_run.hpp"
 #include "tetcontact/app/setup.hpp"
+#include "tetcontact/mesh/symmetry.hpp"
 #include "tetcontact/parallel/parallel.hpp"
 #include "tetcontact/solver/run_loop.hpp"
 #include "tetcontact/solver/simulation.hpp"
@@ -86,7 +87,7 @@ TEST(Sph, NeighboursAreTheBruteForcePairsWithMirrorImages) {
       for (unsigned mask = 0; mask < 16; ++mask) {
         if ((mask & 1u) && (mask & 8u)) continue;  // two planes of one axis
         if (mask == 0 && j == i) continue;
-        const Vec3 y = sph::mirror_point(x[j], planes, mask);
+        const Vec3 y = mirror_image(x[j], sph::symmetry_planes(planes), static_cast<int>(mask));
         if ((x[i] - y).norm() < reach * 2.0 * 0.5 * (h[i] + h[j]))
           expected.insert({static_cast<Index>(j), mask});
       }

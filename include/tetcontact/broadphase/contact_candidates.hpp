@@ -45,8 +45,10 @@ struct CandidateSettings {
   bool bodies = true;
   bool edges = false;
   bool particles = false;
-  double margin = 0.0;  // m, added to the bodies' boxes
-  double rim = 0.0;     // of the layer box
+  bool particle_pairs = true;  // with particles: their pairs with each other too (not for SPH
+                               // particles, which meet through their kernel)
+  double margin = 0.0;         // m, added to the bodies' boxes
+  double rim = 0.0;            // of the layer box
 };
 
 /// Pairs of the lists for one narrow phase, with the faces they name (sorted, each once).

@@ -33,12 +33,8 @@ class ParticleContact {
   /// Of the last detect(): particles found inside a body, with the move (to add to x and x*)
   /// that puts each centre on the plane of the face it is deepest behind.
   const std::vector<std::pair<Index, Vec3>>& moves() const { return moves_; }
-  /// Whether particles meet each other by contact (point masses: yes; SPH particles meet
-  /// through their kernel instead).
-  void set_between_particles(bool on) { between_particles_ = on; }
 
  private:
-  bool between_particles_ = true;
   std::vector<std::pair<Index, Vec3>> moves_;
   std::vector<Box> step_face_box_;  // this step's boxes of the faces the lists name
 };

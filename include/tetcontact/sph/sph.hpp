@@ -84,10 +84,11 @@ struct Neighbours {
 Neighbours find_neighbours(const std::vector<Vec3>& x, const std::vector<double>& h,
                            const std::vector<MirrorPlane>& planes, double reach);
 
-/// Image of a point, a direction and a stress across the planes of `mask`.
-Vec3 mirror_point(Vec3 x, const std::vector<MirrorPlane>& planes, unsigned mask);
-Vec3 mirror_direction(Vec3 v, const std::vector<MirrorPlane>& planes, unsigned mask);
-Sym6 mirror_stress(Sym6 s, const std::vector<MirrorPlane>& planes, unsigned mask);
+/// The planes as mesh/symmetry.hpp reflects across them (mirror_image, mirror_direction: plane k
+/// is bit k of a mask); `side` only says which of its sides holds the particles.
+std::vector<SymmetryPlane> symmetry_planes(const std::vector<MirrorPlane>& planes);
+/// Image of a stress across the planes of `mask`.
+Sym6 mirror_stress(Sym6 s, const std::vector<SymmetryPlane>& planes, unsigned mask);
 
 /// What a force pass found: the stable step (before the solver's cfl) and the particle that
 /// sets it.
@@ -100,7 +101,7 @@ struct StepLimit {
 class Stage {
  public:
   Stage(Options options, std::vector<MirrorPlane> planes)
-      : options_(options), planes_(std::move(planes)) {}
+      : options_(options), planes_(std::move(planes)), symmetry_(symmetry_planes(planes_)) {}
 
   /// The material update over the step τ (see above), from st.v (U^{n+1/2}) and st.x
   /// (x^{n+1}); tau_kick: the step over which the last forces were applied to the velocities
@@ -122,6 +123,7 @@ class Stage {
   void find(const State& st);
   Options options_;
   std::vector<MirrorPlane> planes_;
+  std::vector<SymmetryPlane> symmetry_;  // the same planes, to reflect across
   Neighbours neighbours_;
   std::vector<Vec3> x_, v_;         // the points: the particles, then the ghosts
   std::vector<Sym6> stress_, art_;  // per point: σ/ρ², and R (the artificial stress)
