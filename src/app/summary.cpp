@@ -91,8 +91,11 @@ std::optional<RunSummary::Particles> particles_of(const Simulation& sim) {
     p.sph_pair_heat += st.sph.w_viscous[i];
     p.sph_damaged += st.sph.damage[i] != Damage::intact;
   }
-  if (st.sph.size() > 0 && sim.sph_neighbours())
+  if (st.sph.size() > 0 && sim.sph_neighbours()) {
     p.sph_neighbours = double(sim.sph_neighbours()->pairs()) / double(st.sph.size());
+    p.sph_face_pairs = double(sim.sph_face_pairs()) / double(st.sph.size());
+  }
+  p.sph_faces = model.sph_debris && model.sph.faces;
   for (std::size_t b = 0; b < model.mesh.bodies.size(); ++b) {  // where the particles came from
     RunSummary::FromBody from{model.mesh.bodies[b].name, 0, 0.0};
     for (Index i = 0; i < st.particle_count(); ++i)
@@ -398,6 +401,8 @@ Json fracture_json(const RunSummary& s) {
     o["plastic_work"] = p.sph_plastic_work;
     o["pair_heat"] = p.sph_pair_heat;
     o["neighbours_per_particle"] = p.sph_neighbours;
+    o["faces"] = p.sph_faces ? "kernel" : "contact";
+    o["faces_per_particle"] = p.sph_face_pairs;
     o["damaged"] = p.sph_damaged;
     fr["sph"] = o;
   } else {

@@ -125,7 +125,7 @@ void read_fracture(const Reader& r, const YAML::Node& root, Case& c) {
                "(fracture.fragments: cells)");
     }
     if (const YAML::Node p = s["sph"]) {
-      r.keys(p, "fracture.sph", {"smoothing", "alpha", "beta", "artificial_stress"});
+      r.keys(p, "fracture.sph", {"smoothing", "alpha", "beta", "artificial_stress", "faces"});
       if (!c.sph_debris)
         r.fail(p, "fracture.sph", "settings of SPH debris: needs fracture.debris: sph");
       const auto within = [&](const char* key, double& value, double lo, double hi,
@@ -140,6 +140,12 @@ void read_fracture(const Reader& r, const YAML::Node& root, Case& c) {
       within("alpha", c.sph.alpha, 0.0, 10.0, "[0, 10]");
       within("beta", c.sph.beta, 0.0, 10.0, "[0, 10]");
       within("artificial_stress", c.sph.artificial_stress, 0.0, 1.0, "[0, 1]");
+      if (const YAML::Node f = p["faces"]) {
+        const std::string v = r.string(f, "fracture.sph.faces");
+        if (v != "kernel" && v != "contact")
+          r.fail(f, "fracture.sph.faces", "must be kernel or contact, not '" + v + "'");
+        c.sph.faces = v == "kernel";
+      }
     }
   }
 }

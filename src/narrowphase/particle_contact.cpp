@@ -67,7 +67,7 @@ std::vector<ContactPoint> ParticleContact::detect(const Mesh& mesh, const State&
           double behind = 0.0;
           if (side > 0.0 && tp.distance > 0.0) {
             cp.normal = (centre - q) / tp.distance;  // from the face's closest point to the centre
-            cp.gap = tp.distance - st.particle_radius[i];
+            cp.gap = tp.distance - radius_factor_ * st.particle_radius[i];
           } else {
             // On or behind the face's plane: inside the body when it is inside the face's own cell
             // (a point behind the face but outside that cell is outside the body beyond a thin part
@@ -79,7 +79,7 @@ std::vector<ContactPoint> ParticleContact::detect(const Mesh& mesh, const State&
             // Inside: the centre is moved back onto the face's plane (a point mass has no energy of
             // position, so momentum and energy are untouched), and held there.
             cp.normal = nf;
-            cp.gap = -st.particle_radius[i];
+            cp.gap = -radius_factor_ * st.particle_radius[i];
             behind = -side;
           }
           cp.a_nodes[0] = p;

@@ -7,6 +7,7 @@
 #include <iomanip>
 #include <optional>
 #include <sstream>
+#include <stdexcept>
 #include <type_traits>
 
 #include "tetcontact/parallel/mpi.hpp"
@@ -109,17 +110,20 @@ Simulation::Simulation(Model model, SolverSettings settings)
     fragmentation_ = std::make_unique<Fragmentation>(
         model_.mesh, model_.fragment_clusters ? Fragments::clusters : Fragments::cells,
         model_.sph_debris ? model_.sph.smoothing : 0.0);
-    particle_contact_ = std::make_unique<ParticleContact>();
+    particle_contact_ =
+        std::make_unique<ParticleContact>(model_.sph_debris && model_.sph.faces ? 0.0 : 1.0);
     modules_.push_back("fracture:particles");
     if (model_.fragment_clusters) modules_.push_back("fracture:clusters");
     if (model_.sph_debris) {
-      // SPH particles meet each other through their kernel, the bodies' faces by contact.
+      // SPH particles meet each other through their kernel; the bodies' faces through it too
+      // (fracture.sph.faces: kernel) and by contact.
       std::vector<sph::MirrorPlane> planes;
       for (const SymmetryPlane& p : model_.mesh.symmetry) planes.push_back({p.axis, p.at, 1.0});
       sph::Options o;
       o.alpha = model_.sph.alpha;
       o.beta = model_.sph.beta;
       o.artificial_stress = model_.sph.artificial_stress;
+      o.faces = model_.sph.faces;
       o.fracture = model_.element.fracture;
       sph_ = std::make_unique<sph::Stage>(o, std::move(planes));
       modules_.push_back("fracture:sph");
@@ -191,6 +195,18 @@ Simulation::Simulation(Model model, SolverSettings settings)
 void Simulation::add_observer(Observer* observer, const std::string& module_name) {
   observers_.push_back(observer);
   modules_.push_back(module_name);
+}
+
+void Simulation::convert_cells(const std::vector<Index>& tets) {
+  if (state_.step != 0 || !fragmentation_)
+    throw std::logic_error("convert_cells: before the first step, with fracture.particles");
+  fragmentation_->erode(tets);
+  fracture_stage();
+  elements_stage();
+  if (sph_) {
+    const std::vector<Face>& faces = candidates_->primitives().faces;
+    state_.dt = std::min(state_.dt, settings_.cfl * sph_->forces(state_, faces).dt_stable);
+  }
 }
 
 bool Simulation::done() const {
@@ -499,8 +515,9 @@ void Simulation::elements_stage() {
 void Simulation::sph_stage() {
   State& st = state_;
   if (st.sph.size() == 0) return;
-  sph_->update(model_.materials, st.dt_prev, kick_, st);
-  const double dt = settings_.cfl * sph_->forces(st).dt_stable;
+  const std::vector<Face>& faces = candidates_->primitives().faces;
+  sph_->update(model_.materials, st.dt_prev, kick_, st, faces);
+  const double dt = settings_.cfl * sph_->forces(st, faces).dt_stable;
   if (dt < st.dt) {
     st.dt = dt;
     min_dt_ = std::min(min_dt_, dt);

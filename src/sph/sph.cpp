@@ -12,6 +12,7 @@
 #include "tetcontact/element/material_point.hpp"
 #include "tetcontact/mesh/symmetry.hpp"
 #include "tetcontact/parallel/parallel.hpp"
+#include "tetcontact/sph/boundary.hpp"
 #include "tetcontact/sph/kernel.hpp"
 
 namespace tc::sph {
@@ -67,6 +68,24 @@ double particle_volume(const Material& m, double vol, double vol0, double energy
   const EosTerms t = eos_terms(m, -1e-12);  // the branch of expansion: A = k μ
   const double mu = std::clamp(-t.b * energy / (t.da_dmu * vol0), -0.5, 0.0);
   return std::min(vol, vol0 / (1.0 + mu));
+}
+
+// The points of particle i after point k: the particle, then its images (n + [begin, end)
+// of ghost_begin); `points` after the last.
+std::size_t next_image(std::size_t n, const std::vector<Index>& ghost_begin, std::size_t points,
+                       std::size_t i, std::size_t k) {
+  const std::size_t first = n + static_cast<std::size_t>(ghost_begin[i]);
+  const std::size_t last = n + static_cast<std::size_t>(ghost_begin[i + 1]);
+  const std::size_t next = k < n ? first : k + 1;
+  return next < last ? next : points;
+}
+
+// Whether a point (velocity v) and a face meet: they approach (at the face's centroid velocity)
+// or the point presses on it (n·σ n < 0).
+bool meets(const Vec3& v, const std::vector<Vec3>& node_v, const Face& f, const Vec3& n,
+           double normal_stress) {
+  const Vec3 vf = (node_v[f[0]] + node_v[f[1]] + node_v[f[2]]) / 3.0;
+  return (v - vf).dot(n) < 0.0 || normal_stress < 0.0;
 }
 
 [[noreturn]] void bad_particle(Index i, const char* what, double value) {
@@ -150,18 +169,77 @@ Neighbours find_neighbours(const std::vector<Vec3>& x, const std::vector<double>
   return nb;
 }
 
-void Stage::find(const State& st) {
+void Stage::find(const State& st, const std::vector<Face>& faces) {
   const std::size_t n = static_cast<std::size_t>(st.sph.size());
   std::vector<Vec3> x(n);
   for (std::size_t i = 0; i < n; ++i) x[i] = st.x[st.first_particle + i];
   neighbours_ = find_neighbours(x, st.sph.h, planes_, options_.reach);
+  const Neighbours& nb = neighbours_;
+  // The images of a particle are listed together, in particle order.
+  ghost_begin_.assign(n + 1, 0);
+  for (Index src : nb.ghost_source) ++ghost_begin_[static_cast<std::size_t>(src) + 1];
+  for (std::size_t i = 0; i < n; ++i) ghost_begin_[i + 1] += ghost_begin_[i];
+  const std::size_t points = n + nb.ghost_source.size();
+  face_begin_.assign(points + 1, 0);
+  face_list_.clear();
+  if (!options_.faces || faces.empty() || n == 0) return;
+  // The faces within reach × 2h of each point (particle or image): the points on a grid of the
+  // largest reach; each face looks in the cells its box, widened by the reach, covers (or at
+  // every point, for a face much larger than a cell); the pairs sorted by point, then face.
+  std::vector<Vec3> pts(x);
+  std::vector<double> reach(points);
+  for (std::size_t k = 0; k < points; ++k) {
+    const Index src = k < n ? static_cast<Index>(k) : nb.ghost_source[k - n];
+    if (k >= n)
+      pts.push_back(mirror_image(x[src], symmetry_, static_cast<int>(nb.ghost_planes[k - n])));
+    reach[k] = options_.reach * k_support * st.sph.h[src];
+  }
+  const double size = *std::max_element(reach.begin(), reach.end());
+  std::vector<std::pair<CellKey, Index>> cells(points);
+  for (std::size_t k = 0; k < points; ++k)
+    cells[k] = {cell_of(pts[k], size), static_cast<Index>(k)};
+  std::sort(cells.begin(), cells.end());
+  std::vector<std::vector<std::pair<Index, Index>>> found(faces.size());
+  parallel::for_each(faces.size(), [&](std::size_t f) {
+    const Face& k = faces[f];
+    const Vec3 lo = st.x[k[0]].cwiseMin(st.x[k[1]]).cwiseMin(st.x[k[2]]);
+    const Vec3 hi = st.x[k[0]].cwiseMax(st.x[k[1]]).cwiseMax(st.x[k[2]]);
+    const auto near = [&](Index p) {
+      const Vec3 gap = (lo - pts[p]).cwiseMax(pts[p] - hi).cwiseMax(Vec3::Zero());
+      if (gap.norm() < reach[p]) found[f].emplace_back(p, static_cast<Index>(f));
+    };
+    const CellKey a = cell_of(lo - Vec3::Constant(size), size);
+    const CellKey b = cell_of(hi + Vec3::Constant(size), size);
+    const double span = double(b[0] - a[0] + 1) * double(b[1] - a[1] + 1) * double(b[2] - a[2] + 1);
+    if (span > static_cast<double>(points)) {
+      for (std::size_t p = 0; p < points; ++p) near(static_cast<Index>(p));
+      return;
+    }
+    for (long cx = a[0]; cx <= b[0]; ++cx)
+      for (long cy = a[1]; cy <= b[1]; ++cy)
+        for (long cz = a[2]; cz <= b[2]; ++cz) {
+          const CellKey key{cx, cy, cz};
+          auto it = std::lower_bound(cells.begin(), cells.end(), std::make_pair(key, Index{-1}));
+          for (; it != cells.end() && it->first == key; ++it) near(it->second);
+        }
+  });
+  std::vector<std::pair<Index, Index>> pairs;
+  for (const auto& list : found) pairs.insert(pairs.end(), list.begin(), list.end());
+  std::sort(pairs.begin(), pairs.end());
+  face_list_.reserve(pairs.size());
+  for (const auto& [p, f] : pairs) {
+    ++face_begin_[static_cast<std::size_t>(p) + 1];
+    face_list_.push_back(f);
+  }
+  for (std::size_t k = 0; k < points; ++k) face_begin_[k + 1] += face_begin_[k];
 }
 
-void Stage::update(const std::vector<Material>& materials, double tau, double tau_kick, State& st) {
+void Stage::update(const std::vector<Material>& materials, double tau, double tau_kick, State& st,
+                   const std::vector<Face>& faces) {
   ParticleMatter& pm = st.sph;
   const std::size_t n = static_cast<std::size_t>(pm.size());
   const Index fp = st.first_particle;
-  find(st);
+  find(st, faces);
   fresh_ = true;
   const Neighbours& nb = neighbours_;
   // The points at mid-step, x^{n+1} − τ/2 U^{n+1/2}, with their velocities.
@@ -180,21 +258,57 @@ void Stage::update(const std::vector<Material>& materials, double tau, double ta
   }
   parallel::for_each(n, [&](std::size_t i) {
     // L_i = −(1/ρ_i) Σ_j m_j v_ij ⊗ ∇_i W_ij.
-    double L[3][3] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}};
+    // B_i = −(1/ρ_i) Σ_j m_j x_ij ⊗ ∇_i W_ij, the same sum of a linear field's positions.
+    Mat3 L = Mat3::Zero(), B = Mat3::Zero();
     for (Index e = nb.begin[i]; e < nb.begin[i + 1]; ++e) {
       const std::size_t k = static_cast<std::size_t>(nb.list[e]);
       const Index src = k < n ? static_cast<Index>(k) : nb.ghost_source[k - n];
       const Vec3 g = kernel_gradient(x_[i] - x_[k], 0.5 * (pm.h[i] + pm.h[src]));
-      const Vec3 dv = v_[i] - v_[k];
       const double mj = st.m[fp + src];
-      for (int a = 0; a < 3; ++a)
-        for (int b = 0; b < 3; ++b) L[a][b] += mj * dv[a] * g[b];
+      L += (mj * (v_[i] - v_[k])) * g.transpose();
+      B += (mj * (x_[i] - x_[k])) * g.transpose();
     }
     const double scale = -1.0 / pm.rho[i];
-    for (auto& row : L)
-      for (double& v : row) v *= scale;
+    L *= scale;
+    B *= scale;
+    // The faces met by the particle and its images: L_i += v_if ⊗ n Φ (an image's term
+    // reflected back, R L' R), at the faces' mid-step positions.
+    const Mat3 sigma = to_mat3(pm.s[i]) - (pm.p[i] + pm.q[i]) * Mat3::Identity();
+    bool met = false;  // a face stands in for neighbours
+    for (std::size_t k = i; k < points; k = next_image(n, ghost_begin_, points, i, k)) {
+      const unsigned mask = k < n ? 0u : nb.ghost_planes[k - n];
+      const Vec3 r = mirror_direction(Vec3(1.0, 1.0, 1.0), symmetry_, static_cast<int>(mask));
+      const Mat3 sk = r.asDiagonal() * sigma * r.asDiagonal();
+      for (Index e = face_begin_[k]; e < face_begin_[k + 1]; ++e) {
+        const Face& f = faces[static_cast<std::size_t>(face_list_[e])];
+        std::array<Vec3, 3> xf;
+        for (int v = 0; v < 3; ++v) xf[v] = st.x[f[v]] - 0.5 * tau * st.v[f[v]];
+        const Vec3 nrm = (xf[1] - xf[0]).cross(xf[2] - xf[0]).normalized();
+        if (!nrm.allFinite() || !meets(v_[k], st.v, f, nrm, nrm.dot(sk * nrm))) continue;
+        const FaceKernel fk = face_kernel(x_[k], xf[0], xf[1], xf[2], pm.h[i]);
+        if (!(fk.phi > 0.0)) continue;
+        const Vec3 dv =
+            v_[k] - (fk.w[0] * st.v[f[0]] + fk.w[1] * st.v[f[1]] + fk.w[2] * st.v[f[2]]);
+        const Vec3 dx = x_[k] - (fk.w[0] * xf[0] + fk.w[1] * xf[1] + fk.w[2] * xf[2]);
+        const Mat3 lk = (fk.phi * dv) * nrm.transpose(), bk = (fk.phi * dx) * nrm.transpose();
+        L += r.asDiagonal() * lk * r.asDiagonal();
+        B += r.asDiagonal() * bk * r.asDiagonal();
+        met = true;
+      }
+    }
+    // Where faces stand in for neighbours, they give the body's velocity at the face, not its
+    // gradient beyond it: the gradient is corrected there so that a linear field's is exact
+    // (L B⁻¹; B well conditioned, else the plain sum). Elsewhere the plain sum, whose work is
+    // the forces' to the bit.
+    if (options_.corrected_gradient && met) {
+      const Mat3 inv = B.inverse();
+      if (inv.allFinite() && inv.norm() < 4.0) L = L * inv;
+    }
     PointMotion c;
-    set_rates(L, c);
+    double Lr[3][3];
+    for (int a = 0; a < 3; ++a)
+      for (int b = 0; b < 3; ++b) Lr[a][b] = L(a, b);
+    set_rates(Lr, c);
     // dV/dt = V tr D by the trapezoid: ΔV = τ tr D V^{n+1/2}. A failed particle in expansion
     // opens cracks instead: its solid grows only up to the volume where its pressure at its
     // energy is zero (particle_volume), beyond which the particles part as fragments (their
@@ -245,11 +359,11 @@ void Stage::update(const std::vector<Material>& materials, double tau, double ta
   });
 }
 
-StepLimit Stage::forces(State& st) {
+StepLimit Stage::forces(State& st, const std::vector<Face>& faces) {
   ParticleMatter& pm = st.sph;
   const std::size_t n = static_cast<std::size_t>(pm.size());
   const Index fp = st.first_particle;
-  if (!fresh_ || neighbours_.particles != static_cast<Index>(n)) find(st);
+  if (!fresh_ || neighbours_.particles != static_cast<Index>(n)) find(st, faces);
   fresh_ = false;
   const Neighbours& nb = neighbours_;
   const std::size_t points = n + nb.ghost_source.size();
@@ -331,6 +445,7 @@ StepLimit Stage::forces(State& st) {
   };
   std::vector<StepLimit> blocks(parallel::block_count(n),
                                 StepLimit{std::numeric_limits<double>::infinity(), -1});
+  std::vector<std::vector<FaceTerm>> block_terms(blocks.size());
   parallel::for_blocks(n, [&](std::size_t blk, std::size_t begin, std::size_t end) {
     for (std::size_t i = begin; i < end; ++i) {
       const double mi = st.m[fp + i], ci = std::sqrt(pm.sound2[i]);
@@ -349,8 +464,44 @@ StepLimit Stage::forces(State& st) {
         if (t.extra) heat -= 0.5 * mi * mj * dv.dot(to_mat3(t.a) * t.g);
         mu_max = std::max(mu_max, -t.mu);
       }
-      st.f[fp + i] = mi * (acc + from_images);
+      Vec3 force = mi * (acc + from_images);
       plane_force_[i] = mi * from_images;
+      // The faces met by the particle and its images (see the header): F = −m_i ρ_i Φ
+      // (2 σ_i/ρ_i² − Π) n on the point, its opposite on the face's nodes; an image's force
+      // reflected back onto the particle, the difference the planes' push.
+      const double rho = pm.rho[i], hi = pm.h[i];
+      for (std::size_t k = i; k < points; k = next_image(n, ghost_begin_, points, i, k)) {
+        const unsigned mask = k < n ? 0u : nb.ghost_planes[k - n];
+        for (Index e = face_begin_[k]; e < face_begin_[k + 1]; ++e) {
+          const Face& f = faces[static_cast<std::size_t>(face_list_[e])];
+          const Vec3 &a = st.x[f[0]], &b = st.x[f[1]], &c = st.x[f[2]];
+          const Vec3 nrm = (b - a).cross(c - a).normalized();
+          const Vec3 sn = to_mat3(stress_[k]) * nrm;  // σ n / ρ²
+          if (!nrm.allFinite() || !meets(v_[k], st.v, f, nrm, sn.dot(nrm))) continue;
+          const FaceKernel fk = face_kernel(x_[k], a, b, c, hi);
+          if (!(fk.phi > 0.0)) continue;
+          const Vec3 xc = fk.w[0] * a + fk.w[1] * b + fk.w[2] * c;
+          const Vec3 dv =
+              v_[k] - (fk.w[0] * st.v[f[0]] + fk.w[1] * st.v[f[1]] + fk.w[2] * st.v[f[2]]);
+          const Vec3 r = x_[k] - xc;
+          double pi = 0.0;
+          if (dv.dot(r) < 0.0) {
+            const double mu = hi * dv.dot(r) / (r.squaredNorm() + 0.01 * hi * hi);
+            pi = (-alpha * ci * mu + beta * mu * mu) / rho;
+            mu_max = std::max(mu_max, -mu);
+          }
+          const double scale = mi * rho * fk.phi;
+          const Vec3 fk_force = -scale * (2.0 * sn - pi * nrm);
+          const Vec3 onto = mirror_direction(fk_force, symmetry_, static_cast<int>(mask));
+          force += onto;
+          if (mask != 0u) plane_force_[i] += onto - fk_force;
+          const Vec3 coef = scale * (sn - pi * nrm);
+          heat += coef.dot(dv);
+          block_terms[blk].push_back(
+              {static_cast<Index>(i), mask, f, fk.phi, fk.w, coef, fk_force});
+        }
+      }
+      st.f[fp + i] = force;
       heat_rate_[i] = heat;
       const double dt = options_.step_factor * pm.h[i] / (ci + 1.2 * (alpha * ci + beta * mu_max));
       if (dt < blocks[blk].dt_stable) blocks[blk] = {dt, static_cast<Index>(i)};
@@ -360,6 +511,17 @@ StepLimit Stage::forces(State& st) {
   // −¼ Σ_j m_i m_j (a_i − a_j) · A_ij ∇_i W_ij (update multiplies it by τ_v²). With U^{n+1/2}
   // alone the heat ran ahead of the kinetic energy the pairs take, by up to 1.3 % of it in a
   // collision of two blocks.
+  // The faces' nodes take the opposite of the points' face forces, in particle order.
+  face_terms_.clear();
+  for (const std::vector<FaceTerm>& terms : block_terms)
+    face_terms_.insert(face_terms_.end(), terms.begin(), terms.end());
+  std::vector<Index>& term_begin = term_begin_;
+  term_begin.assign(n + 1, 0);
+  for (const FaceTerm& t : face_terms_) {
+    for (int v = 0; v < 3; ++v) st.f[t.face[v]] -= t.w[v] * t.force;
+    ++term_begin[static_cast<std::size_t>(t.particle) + 1];
+  }
+  for (std::size_t i = 0; i < n; ++i) term_begin[i + 1] += term_begin[i];
   for (std::size_t i = 0; i < n; ++i) acc_[i] = st.f[fp + i] / st.m[fp + i];
   for (std::size_t g = 0; g < nb.ghost_source.size(); ++g)
     acc_[n + g] =
@@ -373,6 +535,15 @@ StepLimit Stage::forces(State& st) {
       const PairTerms t = pair_terms(i, k, j, x_[i] - x_[k], v_[i] - v_[k]);
       if (!t.extra) continue;
       curve -= 0.25 * mi * st.m[fp + j] * (acc_[i] - acc_[k]).dot(to_mat3(t.a) * t.g);
+    }
+    // The faces' terms alike: ½ coef · (a_k − a_f).
+    for (Index e = term_begin[i]; e < term_begin[i + 1]; ++e) {
+      const FaceTerm& t = face_terms_[static_cast<std::size_t>(e)];
+      const Face& f = t.face;
+      Vec3 af = Vec3::Zero();
+      for (int v = 0; v < 3; ++v) af += (t.w[v] / st.m[f[v]]) * st.f[f[v]];
+      const Vec3 ak = mirror_direction(acc_[i], symmetry_, static_cast<int>(t.mask));
+      curve += 0.5 * t.coef.dot(ak - af);
     }
     heat_curve_[i] = curve;
   });

@@ -102,6 +102,8 @@ struct RunSummary {
     bool sph = false;
     double sph_internal = 0.0, sph_plastic_work = 0.0, sph_pair_heat = 0.0;
     double sph_neighbours = 0.0;  // mean neighbours a particle (its images included)
+    bool sph_faces = false;       // the bodies' faces met through the kernel
+    double sph_face_pairs = 0.0;  // mean faces within a particle's reach (its images' too)
     long sph_damaged = 0;         // particles damaged or destroyed (no tension)
   };
   std::optional<Particles> particles;

@@ -119,6 +119,7 @@ struct SphSettings {
   double alpha = 1.0;
   double beta = 2.0;
   double artificial_stress = 0.3;
+  bool faces = true;  // particles meet the bodies' faces through their kernel (else by contact)
 };
 
 struct Model {

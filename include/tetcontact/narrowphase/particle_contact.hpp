@@ -27,6 +27,10 @@ namespace tc {
 /// search every step (tested).
 class ParticleContact {
  public:
+  /// `radius_factor`: the particles' radius in the gap to a face, as a fraction of
+  /// State::particle_radius (0: the centre; SPH particles that meet the faces through their
+  /// kernel touch them by contact only with their centre).
+  explicit ParticleContact(double radius_factor = 1.0) : radius_factor_(radius_factor) {}
   /// The pairs are `candidates.particles()`, updated for this step.
   std::vector<ContactPoint> detect(const Mesh& mesh, const State& st,
                                    const ContactCandidates& candidates);
@@ -35,6 +39,7 @@ class ParticleContact {
   const std::vector<std::pair<Index, Vec3>>& moves() const { return moves_; }
 
  private:
+  double radius_factor_;
   std::vector<std::pair<Index, Vec3>> moves_;
   std::vector<Box> step_face_box_;  // this step's boxes of the faces the lists name
 };

@@ -68,6 +68,11 @@ class Simulation {
   double last_push() const { return last_push_; }
 
   void add_observer(Observer* observer, const std::string& module_name);
+  /// Before the first step: turns the cells `tets` into particles as erosion does (their mass,
+  /// momentum, state), and sets the forces and the step anew. For checks of the particles'
+  /// coupling to the cells around them. Throws std::logic_error after the first step or
+  /// without fracture.particles.
+  void convert_cells(const std::vector<Index>& tets);
   /// Names a stage run outside the step (listed in `modules`).
   void add_module(const std::string& name) { modules_.push_back(name); }
 
@@ -98,6 +103,8 @@ class Simulation {
   Index critical_tet() const { return critical_tet_; }
   /// The SPH particles' neighbour lists of the last step (fracture.debris: sph), else null.
   const sph::Neighbours* sph_neighbours() const { return sph_ ? &sph_->neighbours() : nullptr; }
+  /// The (particle or image, face) pairs within reach at the last step (0 without SPH).
+  std::size_t sph_face_pairs() const { return sph_ ? sph_->face_pairs() : 0; }
   /// The smallest time step of the run, s.
   double min_dt() const { return min_dt_; }
   /// The step after the first element pass, s.

@@ -37,14 +37,33 @@
 // plane: a ghost has its particle's fields reflected (position, velocity, the stress's
 // off-diagonal terms that change sign), so a particle meets its image as the whole would.
 //
+// The bodies' faces: a particle within reach of a body's surface meets the body as it would the
+// body's material made of particles like itself (its mirror image in the face), through the
+// kernel's integrals over the faces (boundary.hpp: ∫_R ∇W dV' = −Σ n_k Φ_k). With the face's
+// kernel-weighted point x_c = Σ w_v x_v and velocity v_f = Σ w_v v_v, v_if = v_i − v_f:
+//
+//   velocity gradient   L_i += v_if ⊗ n Φ
+//   momentum            m_i dv_i/dt += −m_i ρ_i Φ (2 σ_i/ρ_i² − Π_if) n,  the face's nodes the
+//                       opposite, node v its share w_v
+//   energy              the pair's work beyond the particle's own σ_i : D_i, m_i ρ_i Φ v_if ·
+//                       (σ_i/ρ_i² − Π_if) n, is the particle's heat (as the pairs' A_ij work)
+//
+// with Π_if Monaghan's viscosity at the particle's own ρ and c. A uniform stress exerts no
+// force across a face (the kernel's part inside the body gives back what the particles' sums
+// lack). A face meets the particle only while they approach (at the face's centroid velocity)
+// or it presses (n·σ_i n < 0): no tension holds a particle to another body. Mirror images of the
+// particles meet the faces too, so that a body cut by a symmetry plane is met whole.
+//
 // Determinism: every particle gathers its own sums over its neighbours in ascending order, on
 // the threads block by block; the step's minimum is taken in block order. Results are the same
 // bit for bit for any number of threads.
 #pragma once
 
+#include <array>
 #include <vector>
 
 #include "tetcontact/material/material.hpp"
+#include "tetcontact/mesh/surface.hpp"
 #include "tetcontact/model/state.hpp"
 
 namespace tc::sph {
@@ -57,6 +76,8 @@ struct Options {
   bool fracture = false;           // spall damage and loosening, as the tets'
   double step_factor = 0.6;        // k of the stable step (× the solver's cfl 0.5: 0.3 h / c)
   double reach = 1.2;              // neighbour lists hold the pairs within reach × 2 h_ij
+  bool faces = true;               // meet the bodies' faces through the kernel (else: contact)
+  bool corrected_gradient = true;  // at faces: the velocity gradient exact for linear fields
 };
 
 /// A plane the particles are mirrored across: they lie where side (x[axis] − at) ≥ 0. A
@@ -106,11 +127,14 @@ class Stage {
   /// The material update over the step τ (see above), from st.v (U^{n+1/2}) and st.x
   /// (x^{n+1}); tau_kick: the step over which the last forces were applied to the velocities
   /// (the pair heat's). Throws RunFailure naming the particle for a non-finite state.
-  void update(const std::vector<Material>& materials, double tau, double tau_kick, State& st);
+  /// `faces`: the bodies' surface faces (outward by the right-hand rule), met through the kernel
+  /// with Options::faces.
+  void update(const std::vector<Material>& materials, double tau, double tau_kick, State& st,
+              const std::vector<Face>& faces = {});
 
-  /// The forces at the current state into st.f (the particles' nodes), the pair heat rate kept
-  /// for the next update, and the stable step.
-  StepLimit forces(State& st);
+  /// The forces at the current state into st.f (the particles' nodes; the faces' share added
+  /// to their nodes' forces), the pair heat rate kept for the next update, and the stable step.
+  StepLimit forces(State& st, const std::vector<Face>& faces = {});
 
   /// Per particle, the part of the last forces that its and its neighbours' mirror images
   /// exert: the symmetry planes' reaction, an external force to the model (the balance books
@@ -118,9 +142,21 @@ class Stage {
   const std::vector<Vec3>& plane_forces() const { return plane_force_; }
   const Neighbours& neighbours() const { return neighbours_; }
   const Options& options() const { return options_; }
+  /// The face pairs of the last forces: (particle or mirror image, face) within reach.
+  std::size_t face_pairs() const { return face_list_.size(); }
 
  private:
-  void find(const State& st);
+  void find(const State& st, const std::vector<Face>& faces);
+  // The step's terms of the particle's points (itself, then its images) with the faces.
+  struct FaceTerm {
+    Index particle;
+    unsigned mask;  // of the image (0: the particle)
+    Face face;      // its nodes
+    double phi;
+    std::array<double, 3> w;
+    Vec3 coef;   // the heat's: rate = coef · v_if, in the point's frame
+    Vec3 force;  // on the point (the face's nodes take −w_v of it)
+  };
   Options options_;
   std::vector<MirrorPlane> planes_;
   std::vector<SymmetryPlane> symmetry_;  // the same planes, to reflect across
@@ -131,7 +167,11 @@ class Stage {
   std::vector<double> heat_rate_;   // per particle: −½ Σ_j m_i m_j v_ij·A_ij ∇W, J/s
   std::vector<Vec3> plane_force_;   // per particle: the mirror images' part of the force
   std::vector<double> heat_curve_;  // per particle: its part in τ_v² (the kick's mean velocity)
-  bool fresh_ = false;              // the lists are of the current positions (update's)
+  std::vector<Index> ghost_begin_;  // per particle: its images n + [begin, end)
+  std::vector<Index> face_begin_, face_list_;  // per point: the faces within its reach
+  std::vector<FaceTerm> face_terms_;           // of the last forces, in particle order
+  std::vector<Index> term_begin_;              // per particle of the last forces: its terms
+  bool fresh_ = false;                         // the lists are of the current positions (update's)
 };
 
 /// Appends a particle of `material` (m its law) at its reference state (ρ0, no stress, no

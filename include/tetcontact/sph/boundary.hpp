@@ -1,0 +1,33 @@
+// A body's surface as the SPH kernel sees it: the integrals of the kernel over a face, with
+// which a particle meets the bodies' faces through its kernel (sph.hpp, "the bodies' faces").
+//
+// For a body R and a particle at x, the kernel sums over the particles miss the neighbours R
+// would be; by the divergence theorem, with n the outward unit normal of R's faces,
+//
+//   ∫_R ∇_x W(|x − x'|, h) dV' = −Σ_faces n_k Φ_k,      Φ_k = ∫_face W(|x − x'|, h) dS',
+//
+// exact for any shape of R (its faces out of the kernel's reach add nothing). The weights
+// w_v = ∫_face W λ_v dS' / Φ (λ_v the face's barycentric coordinates) share out a force at the
+// face's kernel-weighted point x_c = Σ w_v x_v among its nodes so that their moment is kept.
+#pragma once
+
+#include <array>
+
+#include "tetcontact/mesh/mesh.hpp"
+
+namespace tc::sph {
+
+struct FaceKernel {
+  double phi = 0.0;                        // Φ, 1/m
+  std::array<double, 3> w{0.0, 0.0, 0.0};  // Σ w_v = 1 when Φ > 0
+};
+
+/// Φ and the weights of the triangle (a, b, c) for a particle at x with smoothing length h:
+/// the triangle cut in four alike until its parts are at most h across, the parts out of the
+/// kernel's reach dropped, each by a six-point rule of degree 4; zero out of reach.
+FaceKernel face_kernel(const Vec3& x, const Vec3& a, const Vec3& b, const Vec3& c, double h);
+
+/// By the centroid rule on n × n sub-triangles (the adaptive rule's check).
+FaceKernel face_kernel(const Vec3& x, const Vec3& a, const Vec3& b, const Vec3& c, double h, int n);
+
+}  // namespace tc::sph
