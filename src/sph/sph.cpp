@@ -497,8 +497,7 @@ StepLimit Stage::forces(State& st, const std::vector<Face>& faces) {
           if (mask != 0u) plane_force_[i] += onto - fk_force;
           const Vec3 coef = scale * (sn - pi * nrm);
           heat += coef.dot(dv);
-          block_terms[blk].push_back(
-              {static_cast<Index>(i), mask, f, fk.phi, fk.w, coef, fk_force});
+          block_terms[blk].push_back({static_cast<Index>(i), mask, f, fk.w, coef, fk_force});
         }
       }
       st.f[fp + i] = force;

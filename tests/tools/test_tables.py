@@ -103,7 +103,8 @@ def test_every_table_has_a_command():
     assert T.NAMES == ["stability", "micro", "profile", "ccd", "verify", "verify-full", "threads",
                        "mpi", "whipple", "whipple-mesh", "whipple-hole", "strength", "taylor-tests",
                        "taylor-temper", "whipple-shots", "whipple-refined", "whipple-defaults",
-                       "whipple-wall", "whipple-tear", "whipple-debris", "hugoniot"]
+                       "whipple-wall", "whipple-tear", "whipple-debris", "whipple-sph-faces",
+                       "hugoniot"]
     assert list(T.TABLES) == T.NAMES
 
 

@@ -65,6 +65,10 @@ NAME, the table:
                   particles (fracture.debris: sph), and as SPH particles with crushed cells
                   converted at 50 % of the first step: verdicts, thickness left, the contact
                   work's share of the initial energy (~45 min on 2 cores)
+    whipple-sph-faces the sixteen shots with SPH debris meeting the bodies' faces through
+                  its kernel (fracture.sph.faces: kernel, the default; the whipple-debris
+                  table's SPH column met them by contact): verdicts, thickness left, the
+                  contact work's share of the initial energy (~75 min on 2 cores)
     hugoniot      the library's aluminium equations of state on their Hugoniot against the
                   measured shock states of data/validation/aluminium-hugoniot.csv, per
                   pressure band (no runs: the EOS's closed form, which the engine reproduces)
@@ -105,7 +109,7 @@ ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)
 NAMES = ["stability", "micro", "profile", "ccd", "verify", "verify-full", "threads", "mpi",
          "whipple", "whipple-mesh", "whipple-hole", "strength", "taylor-tests", "taylor-temper",
          "whipple-shots", "whipple-refined", "whipple-defaults", "whipple-wall", "whipple-tear",
-         "whipple-debris", "hugoniot"]
+         "whipple-debris", "whipple-sph-faces", "hugoniot"]
 
 
 def g(x):
@@ -1365,6 +1369,27 @@ def whipple_debris(binary, work, opts):
                                      percent)
 
 
+# whipple-sph-faces -------------------------------------------------------------------------------
+# SPH debris meeting the bodies' faces through its kernel (the particles' pressure and viscosity
+# pass to the faces' nodes) on the sixteen shots; the whipple-debris table's SPH column is the
+# same debris meeting the faces by contact.
+WHIPPLE_SPH_FACES = [  # (folder, label, --set)
+    ("kernel", "SPH particles, faces through the kernel", ["fracture.debris=sph"]),
+]
+WHIPPLE_SPH_FACES_HEADER = settings_header(
+    WHIPPLE_SPH_FACES, "verdict (mass through), thickness left, contact work / initial energy",
+    "run time")
+
+
+def whipple_sph_faces(binary, work, opts):
+    """The shots of WHIPPLE_REFINED_ROWS with SPH debris meeting the faces through its kernel:
+    each verdict (and mass through), the wall's thickness left and the contact work's share of
+    the initial energy beside the measured verdict and the equation's."""
+    yield from whipple_settings_rows(binary, work, "whipple-sph-faces-", WHIPPLE_REFINED_ROWS,
+                                     WHIPPLE_SPH_FACES, WHIPPLE_SPH_FACES_HEADER,
+                                     whipple_debris_cells, percent)
+
+
 # whipple, whipple-mesh, whipple-hole -------------------------------------------------------------
 WHIPPLE_COARSE = ["parameters.hb=1.0e-3", "parameters.hw=2.0e-3", "parameters.np=6",
                   "parameters.tear=5.0e-6"]
@@ -1476,7 +1501,8 @@ TABLES = {"stability": stability, "micro": micro, "profile": profile, "ccd": ccd
           "taylor-tests": taylor_tests, "taylor-temper": taylor_temper, "whipple-shots": whipple_shots,
           "whipple-refined": whipple_refined, "whipple-defaults": whipple_defaults,
           "whipple-wall": whipple_wall, "whipple-tear": whipple_tear,
-          "whipple-debris": whipple_debris, "hugoniot": hugoniot}
+          "whipple-debris": whipple_debris, "whipple-sph-faces": whipple_sph_faces,
+          "hugoniot": hugoniot}
 assert list(TABLES) == NAMES
 
 

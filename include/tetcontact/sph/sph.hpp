@@ -152,7 +152,6 @@ class Stage {
     Index particle;
     unsigned mask;  // of the image (0: the particle)
     Face face;      // its nodes
-    double phi;
     std::array<double, 3> w;
     Vec3 coef;   // the heat's: rate = coef · v_if, in the point's frame
     Vec3 force;  // on the point (the face's nodes take −w_v of it)
