@@ -744,7 +744,8 @@ TEST(Case, FragmentsAreCellsOrClusters) {
 }
 
 // fracture.debris: point masses by default, SPH particles on request; its settings only with
-// it, in their ranges; no clusters of SPH particles.
+// it, in their ranges (the faces met through the kernel or by contact); no clusters of SPH
+// particles.
 TEST(Case, DebrisIsPointsOrSph) {
   const std::string file = test::source_path("data/cases/ball-plate.yaml");
   EXPECT_FALSE(load_case(file).sph_debris);
@@ -752,6 +753,8 @@ TEST(Case, DebrisIsPointsOrSph) {
   EXPECT_TRUE(sph.sph_debris);
   EXPECT_EQ(sph.sph.smoothing, 1.5);
   EXPECT_EQ(sph.sph.alpha, 1.0);
+  EXPECT_TRUE(sph.sph.faces);  // the faces met through the kernel by default
+  EXPECT_FALSE(load_case(file, {"fracture.debris=sph", "fracture.sph.faces=contact"}).sph.faces);
   EXPECT_FALSE(load_case(file, {"fracture.debris=points"}).sph_debris);
   for (const auto& [bad, key, words] :
        std::vector<std::tuple<std::vector<std::string>, std::string, std::string>>{
@@ -764,6 +767,9 @@ TEST(Case, DebrisIsPointsOrSph) {
             "fracture.sph.artificial_stress",
             "[0, 1]"},
            {{"fracture.debris=sph", "fracture.sph.kernel=1"}, "fracture.sph.kernel", "unknown"},
+           {{"fracture.debris=sph", "fracture.sph.faces=glue"},
+            "fracture.sph.faces",
+            "kernel or contact"},
            {{"fracture.fragments=clusters", "fracture.debris=sph"}, "fracture.debris", "clusters"},
            {{"fracture.erosion_step_ratio=0", "fracture.particles=false", "fracture.debris=sph"},
             "fracture.debris",
