@@ -300,7 +300,7 @@ void Stage::update(const std::vector<Material>& materials, double tau, double ta
     // gradient beyond it: the gradient is corrected there so that a linear field's is exact
     // (L B⁻¹; B well conditioned, else the plain sum). Elsewhere the plain sum, whose work is
     // the forces' to the bit.
-    if (options_.corrected_gradient && met) {
+    if (met) {
       const Mat3 inv = B.inverse();
       if (inv.allFinite() && inv.norm() < 4.0) L = L * inv;
     }
@@ -511,12 +511,11 @@ StepLimit Stage::forces(State& st, const std::vector<Face>& faces) {
   // alone the heat ran ahead of the kinetic energy the pairs take, by up to 1.3 % of it in a
   // collision of two blocks.
   // The faces' nodes take the opposite of the points' face forces, in particle order.
-  face_terms_.clear();
+  std::vector<FaceTerm> face_terms;
   for (const std::vector<FaceTerm>& terms : block_terms)
-    face_terms_.insert(face_terms_.end(), terms.begin(), terms.end());
-  std::vector<Index>& term_begin = term_begin_;
-  term_begin.assign(n + 1, 0);
-  for (const FaceTerm& t : face_terms_) {
+    face_terms.insert(face_terms.end(), terms.begin(), terms.end());
+  std::vector<Index> term_begin(n + 1, 0);
+  for (const FaceTerm& t : face_terms) {
     for (int v = 0; v < 3; ++v) st.f[t.face[v]] -= t.w[v] * t.force;
     ++term_begin[static_cast<std::size_t>(t.particle) + 1];
   }
@@ -537,7 +536,7 @@ StepLimit Stage::forces(State& st, const std::vector<Face>& faces) {
     }
     // The faces' terms alike: ½ coef · (a_k − a_f).
     for (Index e = term_begin[i]; e < term_begin[i + 1]; ++e) {
-      const FaceTerm& t = face_terms_[static_cast<std::size_t>(e)];
+      const FaceTerm& t = face_terms[static_cast<std::size_t>(e)];
       const Face& f = t.face;
       Vec3 af = Vec3::Zero();
       for (int v = 0; v < 3; ++v) af += (t.w[v] / st.m[f[v]]) * st.f[f[v]];

@@ -77,7 +77,6 @@ struct Options {
   double step_factor = 0.6;        // k of the stable step (× the solver's cfl 0.5: 0.3 h / c)
   double reach = 1.2;              // neighbour lists hold the pairs within reach × 2 h_ij
   bool faces = true;               // meet the bodies' faces through the kernel (else: contact)
-  bool corrected_gradient = true;  // at faces: the velocity gradient exact for linear fields
 };
 
 /// A plane the particles are mirrored across: they lie where side (x[axis] − at) ≥ 0. A
@@ -168,8 +167,6 @@ class Stage {
   std::vector<double> heat_curve_;  // per particle: its part in τ_v² (the kick's mean velocity)
   std::vector<Index> ghost_begin_;  // per particle: its images n + [begin, end)
   std::vector<Index> face_begin_, face_list_;  // per point: the faces within its reach
-  std::vector<FaceTerm> face_terms_;           // of the last forces, in particle order
-  std::vector<Index> term_begin_;              // per particle of the last forces: its terms
   bool fresh_ = false;                         // the lists are of the current positions (update's)
 };
 
