@@ -1,11 +1,43 @@
 #include "tetcontact/sph/boundary.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <numbers>
 
 #include "tetcontact/sph/kernel.hpp"
 
 namespace tc::sph {
+
+namespace {
+
+// The kernel's radial integral in the plane's polar coordinates: with s the distance from the
+// particle, F0(s) = ∫_0^s W(r) r dr = F(s/h) / (π h), F(q) = ∫_0^q w(u) u du for the spline's
+// shape w (kernel.hpp):
+//
+//   F(q) = q²/2 − 3/8 q⁴ + 3/20 q⁵                         0 ≤ q < 1
+//        = 7/20 − 1/8 (2 − q)⁴ + 1/20 (2 − q)⁵             1 ≤ q < 2
+//        = 7/20                                            q ≥ 2
+double radial(double q) {
+  if (q < 1.0) {
+    const double q2 = q * q;
+    return q2 * (0.5 - 0.375 * q2 + 0.15 * q2 * q);
+  }
+  if (q < 2.0) {
+    const double v = 2.0 - q, v4 = v * v * v * v;
+    return 0.35 - 0.125 * v4 + 0.05 * v4 * v;
+  }
+  return 0.35;
+}
+
+// Gauss–Legendre, six points on [−1, 1].
+constexpr std::array<double, 6> k_gauss_x{-0.932469514203152, -0.661209386466265,
+                                          -0.238619186083197, 0.238619186083197,
+                                          0.661209386466265,  0.932469514203152};
+constexpr std::array<double, 6> k_gauss_w{0.171324492379170, 0.360761573048139, 0.467913934788813,
+                                          0.467913934788813, 0.360761573048139, 0.171324492379170};
+
+}  // namespace
 
 // The triangle cut into n² sub-triangles of area A/n² by the lines λ_a = i/n, λ_b = j/n: the
 // "upright" ones have their centroids at barycentric ((i + 1/3)/n, (j + 1/3)/n) for i + j < n,
@@ -36,57 +68,89 @@ FaceKernel face_kernel(const Vec3& x, const Vec3& a, const Vec3& b, const Vec3& 
   return out;
 }
 
-// Adaptive: the triangle halved along its edges (four alike) until its longest edge is at most
-// h, the parts beyond the kernel's reach dropped, each part by Dunavant's six-point rule of
-// degree 4 (D. A. Dunavant, Int. J. Numer. Methods Eng. 21, 1129, 1985).
+// On the face's plane, with p the particle's foot, d its distance, ρ = |y − p| and s² = ρ² + d²:
+// W = ∇·((y − p) (F0(s) − F0(d)) / ρ²) and (y − p) W = ∇(F0(s) − F0(2h)), so by the divergence
+// theorem in the plane each is a sum over the triangle's edges e (outward normal ν_e, the foot
+// at signed distance p_e = (y − p)·ν_e from its line, t the position along it):
+//
+//   Φ = Σ_e p_e ∫_e (F0(s) − F0(d)) / (t² + p_e²) dt,   ∫ (y − p) W dS = Σ_e ν_e ∫_e (F0(s) −
+//   F0(2h)) dt.
+//
+// Beyond the kernel's reach F0(s) = F0(2h): there the first is (F0(2h) − F0(d)) times the angle
+// the piece of edge subtends at the foot, in closed form, and the second nothing; within reach
+// the integrands are smooth between the points where s = h and s = 2h, and six Gauss points
+// per piece integrate them (a foot on an edge's line is no singularity: the integrand is bounded
+// and p_e = 0). The weights follow from the first moment, the barycentric coordinates being
+// affine: ∫ W λ_v dS = λ_v(p) Φ + ∇λ_v · ∫ (y − p) W dS.
 FaceKernel face_kernel(const Vec3& x, const Vec3& a, const Vec3& b, const Vec3& c, double h) {
-  static constexpr double k_a = 0.445948490915965, k_b = 1.0 - 2.0 * k_a, k_wa = 0.223381589678011;
-  static constexpr double k_c = 0.091576213509771, k_d = 1.0 - 2.0 * k_c, k_wc = 0.109951743655322;
-  static constexpr double k_rule[6][4] = {{k_a, k_a, k_b, k_wa}, {k_a, k_b, k_a, k_wa},
-                                          {k_b, k_a, k_a, k_wa}, {k_c, k_c, k_d, k_wc},
-                                          {k_c, k_d, k_c, k_wc}, {k_d, k_c, k_c, k_wc}};
   FaceKernel out;
-  const double reach = k_support * h;
-  constexpr double k_part = 1.0;  // the parts' longest edge, over h
-  // A part: its corners in the face's barycentric coordinates.
-  struct Part {
-    std::array<Vec3, 3> l;
-  };
-  const auto point = [&](const Vec3& l) { return Vec3(l[0] * a + l[1] * b + l[2] * c); };
-  std::array<double, 3> sum{0.0, 0.0, 0.0};
-  if (!((b - a).cross(c - a).squaredNorm() > 0.0)) return out;
-  // Depth first: at most 3 parts wait per level of halving (a stack of 64 holds 21 levels).
-  std::array<Part, 64> stack;
-  std::size_t top = 0;
-  stack[top++] = {{Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(0, 0, 1)}};
-  while (top > 0) {
-    const Part part = stack[--top];
-    const Vec3 p0 = point(part.l[0]), p1 = point(part.l[1]), p2 = point(part.l[2]);
-    const Vec3 mid = (p0 + p1 + p2) / 3.0;
-    const double radius = std::sqrt(
-        std::max({(p0 - mid).squaredNorm(), (p1 - mid).squaredNorm(), (p2 - mid).squaredNorm()}));
-    if ((mid - x).norm() - radius >= reach) continue;  // wholly out of reach
-    const double longest = std::max({(p1 - p0).norm(), (p2 - p1).norm(), (p0 - p2).norm()});
-    if (longest > k_part * h && top + 4 <= stack.size()) {
-      const Vec3 m01 = 0.5 * (part.l[0] + part.l[1]), m12 = 0.5 * (part.l[1] + part.l[2]),
-                 m20 = 0.5 * (part.l[2] + part.l[0]);
-      stack[top++] = {{part.l[0], m01, m20}};
-      stack[top++] = {{m01, part.l[1], m12}};
-      stack[top++] = {{m20, m12, part.l[2]}};
-      stack[top++] = {{m01, m12, m20}};
-      continue;
+  Vec3 nrm = (b - a).cross(c - a);
+  const double twice_area = nrm.norm();
+  if (!(twice_area > 0.0) || !(h > 0.0)) return out;
+  nrm /= twice_area;
+  const double d = (x - a).dot(nrm), reach = k_support * h;
+  if (!(std::abs(d) < reach)) return out;
+  const Vec3 p = x - d * nrm;
+  const double d2 = d * d, h2 = h * h, inv_h = 1.0 / h;
+  const double f_d = radial(std::abs(d) * inv_h), f_reach = radial(k_support);
+  const std::array<Vec3, 3> corner{a, b, c};
+  double phi = 0.0;
+  Vec3 moment = Vec3::Zero();
+  bool inside = true, in_reach = false;  // the foot within the triangle; an edge within reach
+  for (int e = 0; e < 3; ++e) {
+    const Vec3& s0 = corner[e];
+    Vec3 dir = corner[(e + 1) % 3] - s0;
+    const double length = dir.norm();
+    dir /= length;
+    const Vec3 nu = dir.cross(nrm);  // outward in the plane
+    const double pe = (s0 - p).dot(nu), t0 = (s0 - p).dot(dir), t1 = t0 + length;
+    const double c2 = pe * pe + d2;
+    inside = inside && pe >= 0.0;
+    // The edge's line within reach: |t| < t_reach; the kernel's knee at |t| = t_knee.
+    const double t_reach = c2 < 4.0 * h2 ? std::sqrt(4.0 * h2 - c2) : 0.0;
+    const double t_knee = c2 < h2 ? std::sqrt(h2 - c2) : 0.0;
+    // The angle [ta, tb] subtends at the foot, signed as p_e.
+    const auto angle = [&](double ta, double tb) {
+      return tb > ta ? std::atan2(pe * (tb - ta), pe * pe + ta * tb) : 0.0;
+    };
+    phi += (f_reach - f_d) * (angle(t0, std::min(t1, -t_reach)) + angle(std::max(t0, t_reach), t1));
+    if (!(t_reach > 0.0) || t1 <= -t_reach || t0 >= t_reach) continue;
+    in_reach = true;
+    const std::array<double, 4> cuts{-t_reach, -t_knee, t_knee, t_reach};
+    double along_phi = 0.0, along_moment = 0.0;
+    for (int k = 0; k < 3; ++k) {
+      const double ta = std::max(t0, cuts[k]), tb = std::min(t1, cuts[k + 1]);
+      if (!(tb > ta)) continue;
+      const double mid = 0.5 * (ta + tb), half = 0.5 * (tb - ta);
+      for (int g = 0; g < 6; ++g) {
+        const double t = mid + half * k_gauss_x[g], rho2 = t * t + pe * pe;
+        const double f = radial(std::sqrt(rho2 + d2) * inv_h);
+        // (F(s) − F(d)) / ρ² → w(d/h) / (2 h²) as ρ → 0.
+        const double ratio = rho2 > 1e-24 * h2
+                                 ? (f - f_d) / rho2
+                                 : 0.5 * kernel(std::abs(d), h) * std::numbers::pi * h;
+        along_phi += half * k_gauss_w[g] * ratio;
+        along_moment += half * k_gauss_w[g] * (f - f_reach);
+      }
     }
-    const double area = 0.5 * (p1 - p0).cross(p2 - p0).norm();
-    for (const auto& q : k_rule) {
-      const Vec3 l = q[0] * part.l[0] + q[1] * part.l[1] + q[2] * part.l[2];
-      const double wk = q[3] * area * kernel((point(l) - x).norm(), h);
-      for (int v = 0; v < 3; ++v) sum[v] += wk * l[v];
-    }
+    phi += pe * along_phi;
+    moment += along_moment * nu;
   }
-  const double phi = sum[0] + sum[1] + sum[2];
+  // Wholly out of reach: nothing (not the angles' round-off).
+  if (!inside && !in_reach) return out;
+  // F0 = F / (π h): back to the kernel's units.
+  const double scale = inv_h / std::numbers::pi;
+  phi *= scale;
+  moment *= scale;
   if (!(phi > 0.0)) return out;
   out.phi = phi;
-  for (int v = 0; v < 3; ++v) out.w[v] = sum[v] / phi;
+  for (int v = 0; v < 3; ++v) {
+    const Vec3& q0 = corner[(v + 1) % 3];
+    const Vec3& q1 = corner[(v + 2) % 3];
+    const Vec3 grad = nrm.cross(q1 - q0) / twice_area;  // ∇λ_v
+    const double at_foot = (q1 - q0).cross(p - q0).dot(nrm) / twice_area;
+    out.w[v] = at_foot + grad.dot(moment) / phi;
+  }
   return out;
 }
 

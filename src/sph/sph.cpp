@@ -435,7 +435,8 @@ StepLimit Stage::forces(State& st, const std::vector<Face>& faces) {
     }
     if (eps > 0.0) {
       const double dp = 0.5 * (pm.spacing[i] + pm.spacing[j]);
-      const double f = std::pow(kernel(r.norm(), hij) / kernel(dp, hij), expo);
+      const double base = kernel(r.norm(), hij) / kernel(dp, hij);
+      const double f = expo == 4.0 ? (base * base) * (base * base) : std::pow(base, expo);
       if (f > 0.0) {
         for (int c = 0; c < 6; ++c) t.a[c] += f * (art_[i][c] + art_[k][c]);
         t.extra = true;

@@ -22,9 +22,10 @@ struct FaceKernel {
   std::array<double, 3> w{0.0, 0.0, 0.0};  // Σ w_v = 1 when Φ > 0
 };
 
-/// Φ and the weights of the triangle (a, b, c) for a particle at x with smoothing length h:
-/// the triangle cut in four alike until its parts are at most h across, the parts out of the
-/// kernel's reach dropped, each by a six-point rule of degree 4; zero out of reach.
+/// Φ and the weights of the triangle (a, b, c) for a particle at x with smoothing length h, as
+/// sums over the triangle's edges (the divergence theorem in the face's plane): the kernel's
+/// radial integral in closed form, along each edge six Gauss points per piece between the
+/// kernel's knees; zero out of reach.
 FaceKernel face_kernel(const Vec3& x, const Vec3& a, const Vec3& b, const Vec3& c, double h);
 
 /// By the centroid rule on n × n sub-triangles (the adaptive rule's check).
