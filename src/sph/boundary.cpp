@@ -34,8 +34,8 @@ double radial(double q) {
 constexpr std::array<double, 6> k_gauss_x{-0.932469514203152, -0.661209386466265,
                                           -0.238619186083197, 0.238619186083197,
                                           0.661209386466265,  0.932469514203152};
-constexpr std::array<double, 6> k_gauss_w{0.171324492379170, 0.360761573048139, 0.467913934788813,
-                                          0.467913934788813, 0.360761573048139, 0.171324492379170};
+constexpr std::array<double, 6> k_gauss_w{0.171324492379170, 0.360761573048139, 0.467913934572691,
+                                          0.467913934572691, 0.360761573048139, 0.171324492379170};
 
 }  // namespace
 
@@ -78,9 +78,10 @@ FaceKernel face_kernel(const Vec3& x, const Vec3& a, const Vec3& b, const Vec3& 
 //
 // Beyond the kernel's reach F0(s) = F0(2h): there the first is (F0(2h) − F0(d)) times the angle
 // the piece of edge subtends at the foot, in closed form, and the second nothing; within reach
-// the integrands are smooth between the points where s = h and s = 2h, and six Gauss points
-// per piece integrate them (a foot on an edge's line is no singularity: the integrand is bounded
-// and p_e = 0). The weights follow from the first moment, the barycentric coordinates being
+// the integrands are smooth between the points where s = h and s = 2h but for a fifth-power
+// point where the particle lies on the edge's line, and six Gauss points per piece integrate
+// them to about 1e-5 (a foot on an edge's line is no singularity: the integrand is bounded and
+// p_e = 0). The weights follow from the first moment, the barycentric coordinates being
 // affine: ∫ W λ_v dS = λ_v(p) Φ + ∇λ_v · ∫ (y − p) W dS.
 FaceKernel face_kernel(const Vec3& x, const Vec3& a, const Vec3& b, const Vec3& c, double h) {
   FaceKernel out;
@@ -149,8 +150,13 @@ FaceKernel face_kernel(const Vec3& x, const Vec3& a, const Vec3& b, const Vec3& 
     const Vec3& q1 = corner[(v + 2) % 3];
     const Vec3 grad = nrm.cross(q1 - q0) / twice_area;  // ∇λ_v
     const double at_foot = (q1 - q0).cross(p - q0).dot(nrm) / twice_area;
-    out.w[v] = at_foot + grad.dot(moment) / phi;
+    out.w[v] = std::clamp(at_foot + grad.dot(moment) / phi, 0.0, 1.0);
   }
+  // The weights lie in [0, 1] (W ≥ 0 and λ_v ∈ [0, 1] on the face); on a needle of a face the
+  // barycentric gradient is large and the edges' sums cancel, so they are held there and
+  // summed to 1.
+  const double sum = out.w[0] + out.w[1] + out.w[2];
+  for (double& wv : out.w) wv /= sum;
   return out;
 }
 

@@ -85,6 +85,20 @@ TEST(SphBoundary, FaceIntegralIsTheFineQuadratures) {
     EXPECT_NEAR(edges.phi, fine.phi, 1e-4 * fine.phi) << x.transpose();
     for (int v = 0; v < 3; ++v) EXPECT_NEAR(edges.w[v], fine.w[v], 1e-3) << x.transpose();
   }
+  // A needle of a face (height η): the edges' sums cancel and the barycentric gradient is 1/η;
+  // the weights stay within [0, 1] and Φ within 1e-6 of the fine rule's (a regular face's Φ
+  // is 0.1–0.5 here), so its nodes' forces stay bounded.
+  for (const double eta : {1e-3, 1e-5, 1e-7}) {
+    const Vec3 p(0, 0, 0), q(1, 0, 0), r(0.5, eta, 0), x(0.5, 0.5 * eta, 0.3);
+    const sph::FaceKernel edges = sph::face_kernel(x, p, q, r, h);
+    const sph::FaceKernel fine = sph::face_kernel(x, p, q, r, h, 400);
+    EXPECT_NEAR(edges.phi, fine.phi, 1e-6) << eta;
+    for (int v = 0; v < 3; ++v) {
+      EXPECT_GE(edges.w[v], 0.0) << eta;
+      EXPECT_LE(edges.w[v], 1.0) << eta;
+    }
+    EXPECT_NEAR(edges.w[0] + edges.w[1] + edges.w[2], 1.0, 1e-12);
+  }
   // Out of reach, beside the face in its plane: nothing, not the angles' round-off.
   EXPECT_EQ(sph::face_kernel(Vec3(3.1, 0.2, 0.1), a, b, c, h).phi, 0.0);
   // Out of reach: nothing.

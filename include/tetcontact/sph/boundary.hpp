@@ -28,7 +28,7 @@ struct FaceKernel {
 /// kernel's knees; zero out of reach.
 FaceKernel face_kernel(const Vec3& x, const Vec3& a, const Vec3& b, const Vec3& c, double h);
 
-/// By the centroid rule on n × n sub-triangles (the adaptive rule's check).
+/// By the centroid rule on n × n sub-triangles (the edges' sums' check).
 FaceKernel face_kernel(const Vec3& x, const Vec3& a, const Vec3& b, const Vec3& c, double h, int n);
 
 }  // namespace tc::sph
