@@ -375,6 +375,14 @@ void Simulation::sample_stage() {
   std::optional<TetSums> sums;
   if (rank_tets()) sums = tet_sums_over_ranks();
   Sample s = sample_balance(state_, have_sample_ ? &last_ : nullptr, sums ? &*sums : nullptr);
+  // The kinetic energy holds the fraction f of the coming kick's work; the SPH pairs' heat of
+  // that kick goes into the particles' energies at their next update: its part f τ_v Σ q̇ is
+  // counted here, beside the work it comes from.
+  if (sph_ && state_.sph.size() > 0) {
+    const double pending = kick_fraction(state_) * kick_ * sph_->heat_rate();
+    s.internal += pending;
+    s.total += pending;
+  }
   s.final = finishing_;
   s.contact_heat = contact_heat_;
   if (!std::isfinite(s.kinetic) || !std::isfinite(s.momentum.sum())) {

@@ -85,11 +85,15 @@ FaceKernel face_kernel(const Vec3& x, const Vec3& a, const Vec3& b, const Vec3& 
 // affine: ∫ W λ_v dS = λ_v(p) Φ + ∇λ_v · ∫ (y − p) W dS.
 FaceKernel face_kernel(const Vec3& x, const Vec3& a, const Vec3& b, const Vec3& c, double h) {
   FaceKernel out;
+  const double reach = k_support * h;
+  // A face whose box lies beyond reach: nothing (what the edges' sums give, without them).
+  const Vec3 gap = (a.cwiseMin(b).cwiseMin(c) - x).cwiseMax(x - a.cwiseMax(b).cwiseMax(c));
+  if (gap.cwiseMax(0.0).squaredNorm() >= reach * reach) return out;
   Vec3 nrm = (b - a).cross(c - a);
   const double twice_area = nrm.norm();
   if (!(twice_area > 0.0) || !(h > 0.0)) return out;
   nrm /= twice_area;
-  const double d = (x - a).dot(nrm), reach = k_support * h;
+  const double d = (x - a).dot(nrm);
   if (!(std::abs(d) < reach)) return out;
   const Vec3 p = x - d * nrm;
   const double d2 = d * d, h2 = h * h, inv_h = 1.0 / h;

@@ -184,8 +184,10 @@ void Stage::find(const State& st, const std::vector<Face>& faces) {
   face_list_.clear();
   if (!options_.faces || faces.empty() || n == 0) return;
   // The faces within reach × 2h of each point (particle or image): the points on a grid of the
-  // largest reach; each face looks in the cells its box, widened by the reach, covers (or at
-  // every point, for a face much larger than a cell); the pairs sorted by point, then face.
+  // largest reach; a face whose box, widened by the reach, misses the points' box is passed
+  // over; the others look in the cells their box covers (or at every point, for a face much
+  // larger than a cell). The pairs come face by face; counted out by point, they stand sorted by
+  // point, then face.
   std::vector<Vec3> pts(x);
   std::vector<double> reach(points);
   for (std::size_t k = 0; k < points; ++k) {
@@ -199,11 +201,19 @@ void Stage::find(const State& st, const std::vector<Face>& faces) {
   for (std::size_t k = 0; k < points; ++k)
     cells[k] = {cell_of(pts[k], size), static_cast<Index>(k)};
   std::sort(cells.begin(), cells.end());
+  Vec3 points_lo = pts[0], points_hi = pts[0];
+  for (const Vec3& q : pts) {
+    points_lo = points_lo.cwiseMin(q);
+    points_hi = points_hi.cwiseMax(q);
+  }
   std::vector<std::vector<std::pair<Index, Index>>> found(faces.size());
   parallel::for_each(faces.size(), [&](std::size_t f) {
     const Face& k = faces[f];
     const Vec3 lo = st.x[k[0]].cwiseMin(st.x[k[1]]).cwiseMin(st.x[k[2]]);
     const Vec3 hi = st.x[k[0]].cwiseMax(st.x[k[1]]).cwiseMax(st.x[k[2]]);
+    if ((lo.array() - size > points_hi.array()).any() ||
+        (hi.array() + size < points_lo.array()).any())
+      return;
     const auto near = [&](Index p) {
       const Vec3 gap = (lo - pts[p]).cwiseMax(pts[p] - hi).cwiseMax(Vec3::Zero());
       if (gap.norm() < reach[p]) found[f].emplace_back(p, static_cast<Index>(f));
@@ -223,15 +233,13 @@ void Stage::find(const State& st, const std::vector<Face>& faces) {
           for (; it != cells.end() && it->first == key; ++it) near(it->second);
         }
   });
-  std::vector<std::pair<Index, Index>> pairs;
-  for (const auto& list : found) pairs.insert(pairs.end(), list.begin(), list.end());
-  std::sort(pairs.begin(), pairs.end());
-  face_list_.reserve(pairs.size());
-  for (const auto& [p, f] : pairs) {
-    ++face_begin_[static_cast<std::size_t>(p) + 1];
-    face_list_.push_back(f);
-  }
+  for (const auto& list : found)
+    for (const auto& pair : list) ++face_begin_[static_cast<std::size_t>(pair.first) + 1];
   for (std::size_t k = 0; k < points; ++k) face_begin_[k + 1] += face_begin_[k];
+  face_list_.resize(static_cast<std::size_t>(face_begin_[points]));
+  std::vector<Index> next(face_begin_.begin(), face_begin_.end() - 1);
+  for (const auto& list : found)
+    for (const auto& [p, f] : list) face_list_[static_cast<std::size_t>(next[p]++)] = f;
 }
 
 void Stage::update(const std::vector<Material>& materials, double tau, double tau_kick, State& st,
@@ -546,6 +554,7 @@ StepLimit Stage::forces(State& st, const std::vector<Face>& faces) {
     }
     heat_curve_[i] = curve;
   });
+
   StepLimit limit{std::numeric_limits<double>::infinity(), -1};
   for (const StepLimit& b : blocks)
     if (b.dt_stable < limit.dt_stable) limit = b;

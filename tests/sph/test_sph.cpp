@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <fstream>
 #include <limits>
 #include <numbers>
@@ -130,9 +131,10 @@ TEST(Sph, UniformStressInAMirrorBoxExertsNoForce) {
 }
 
 // Two aluminium blocks meet at 1 km/s: momentum kept to round-off; energy (kinetic at the
-// whole step, U^{n+1/2} + ½ τ F/m, plus internal, the pair heat included) to 5e-3 of the
-// kinetic energy at every step (measured: 3.2e-3 at most, while the blocks are crushed, 0.8e-3
-// at the end: the integrator's O(τ) between the forces' work and the material update's).
+// whole step, U^{n+1/2} + ½ τ F/m, plus internal, plus the pair heat of that half kick, which the
+// next update books) to 5e-4 of the kinetic energy at every step (measured 4.8e-5). Without the
+// half kick's heat the kinetic energy runs ahead of the heat by half a step's: 3.3e-3 at most
+// while the blocks are crushed (asserted above 1e-3).
 TEST(Sph, CollisionKeepsMomentumAndEnergy) {
   test::ParticleRun run({test::library_material("al6061-t6")}, sph::Options{}, {});
   const double dx = 1e-3;
@@ -143,18 +145,25 @@ TEST(Sph, CollisionKeepsMomentumAndEnergy) {
   double mv = 0.0;
   for (std::size_t i = 0; i < run.st.x.size(); ++i) mv += run.st.m[i] * run.st.v[i].norm();
   run.start();
-  double worst = 0.0, kinetic = 0.0;
+  double worst = 0.0, worst_unbooked = 0.0, kinetic = 0.0;
   while (run.t < 2.7 * dx / 1000.0 + 2.0 * 6 * dx / 5000.0) {
     run.step();
     kinetic = 0.0;
     for (std::size_t i = 0; i < run.st.x.size(); ++i)
       kinetic += 0.5 * run.st.m[i] *
                  (run.st.v[i] + (0.5 * run.dt_prev / run.st.m[i]) * run.st.f[i]).squaredNorm();
-    worst = std::max(worst, std::abs(kinetic + run.internal() - e0));
+    const double pending = 0.5 * run.dt_prev * run.stage.heat_rate();
+    worst = std::max(worst, std::abs(kinetic + run.internal() + pending - e0));
+    worst_unbooked = std::max(worst_unbooked, std::abs(kinetic + run.internal() - e0));
   }
+  std::printf(
+      "largest energy error %.2e of the kinetic energy (%.2e without the heat of the "
+      "half kick)\n",
+      worst / k0, worst_unbooked / k0);
   const Vec3 p1 = run.momentum();
   EXPECT_LT((p1 - p0).norm(), 1e-13 * mv) << (p1 - p0).transpose();
-  EXPECT_LT(worst, 5e-3 * k0) << "kinetic " << kinetic << " internal " << run.internal();
+  EXPECT_LT(worst, 5e-4 * k0) << "kinetic " << kinetic << " internal " << run.internal();
+  EXPECT_GT(worst_unbooked, 1e-3 * k0);
   // The collision happened: much of the kinetic energy went into the blocks.
   EXPECT_LT(kinetic, 0.5 * k0);
 }

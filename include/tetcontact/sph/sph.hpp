@@ -139,6 +139,14 @@ class Stage {
   /// exert: the symmetry planes' reaction, an external force to the model (the balance books
   /// its impulse as the planes').
   const std::vector<Vec3>& plane_forces() const { return plane_force_; }
+  /// Σ_i of the last forces' pair heat rates, J/s (their viscosity's and the faces' work beyond
+  /// the particles' own σ : D), in particle order: the next update books it over the whole
+  /// kick these forces give; a balance taken within that kick counts its part.
+  double heat_rate() const {
+    double sum = 0.0;
+    for (const double rate : heat_rate_) sum += rate;
+    return sum;
+  }
   const Neighbours& neighbours() const { return neighbours_; }
   const Options& options() const { return options_; }
   /// The face pairs of the last forces: (particle or mirror image, face) within reach.
