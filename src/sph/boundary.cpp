@@ -73,8 +73,8 @@ FaceKernel face_kernel(const Vec3& x, const Vec3& a, const Vec3& b, const Vec3& 
 // theorem in the plane each is a sum over the triangle's edges e (outward normal ν_e, the foot
 // at signed distance p_e = (y − p)·ν_e from its line, t the position along it):
 //
-//   Φ = Σ_e p_e ∫_e (F0(s) − F0(d)) / (t² + p_e²) dt,   ∫ (y − p) W dS = Σ_e ν_e ∫_e (F0(s) −
-//   F0(2h)) dt.
+//   Φ = Σ_e p_e ∫_e (F0(s) − F0(d)) / (t² + p_e²) dt,
+//   ∫ (y − p) W dS = Σ_e ν_e ∫_e (F0(s) − F0(2h)) dt.
 //
 // Beyond the kernel's reach F0(s) = F0(2h): there the first is (F0(2h) − F0(d)) times the angle
 // the piece of edge subtends at the foot, in closed form, and the second nothing; within reach
