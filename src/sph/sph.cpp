@@ -554,7 +554,6 @@ StepLimit Stage::forces(State& st, const std::vector<Face>& faces) {
     }
     heat_curve_[i] = curve;
   });
-
   StepLimit limit{std::numeric_limits<double>::infinity(), -1};
   for (const StepLimit& b : blocks)
     if (b.dt_stable < limit.dt_stable) limit = b;

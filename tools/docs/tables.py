@@ -68,7 +68,7 @@ NAME, the table:
     whipple-sph-faces the sixteen shots with SPH debris meeting the bodies' faces through
                   its kernel (fracture.sph.faces: kernel, the default; the whipple-debris
                   table's SPH column met them by contact): verdicts, thickness left, the
-                  contact work's share of the initial energy (~75 min on 2 cores)
+                  contact work's share of the initial energy (~30 min on 2 cores)
     hugoniot      the library's aluminium equations of state on their Hugoniot against the
                   measured shock states of data/validation/aluminium-hugoniot.csv, per
                   pressure band (no runs: the EOS's closed form, which the engine reproduces)
