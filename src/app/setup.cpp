@@ -293,12 +293,16 @@ std::vector<std::string> mach_report(const Case& c, const Model& model, bool not
                  ? " is in the paper's hydrodynamic range (0.75 < M0 < 1.5): the "
                    "Mie-Gruneisen EOS carries the shock; melting's latent heat, vaporisation "
                    "and the EOS far off the Hugoniot are not modelled"
+             : m0 > 0.75 && m0 < 1.5 && mat.eos == EosKind::tillotson
+                 ? " is in the paper's hydrodynamic range (0.75 < M0 < 1.5): Tillotson's EOS "
+                   "carries the shock and the expanded, vaporising states; melting's latent "
+                   "heat is not modelled"
                  : "";
     if (m0 >= 1.5) return " is beyond the paper's models (M0 < 1.5)";
     if (m0 > 0.75 && mat.eos == EosKind::linear)
       return " is above 0.75, where the paper leaves the elastic-plastic model with a linear "
              "EOS for a hydrodynamic one: give material '" +
-             mat.name + "' a mie_gruneisen eos";
+             mat.name + "' a mie_gruneisen or tillotson eos";
     return "";
   };
   const auto c0 = [&](std::size_t b) {

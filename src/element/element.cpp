@@ -138,7 +138,8 @@ void init_sound_speed(const std::vector<Material>& materials, State& st) {
   for (std::size_t t = 0; t < st.vol.size(); ++t) {
     const Material& m = materials[st.tet_material[t]];
     const double mu = st.vol0[t] / st.vol[t] - 1.0;
-    st.sound2[t] = sound_speed2(m, mu, st.p[t], eos_terms(m, mu), st.temperature[t]);
+    st.sound2[t] =
+        sound_speed2(m, mu, st.p[t], eos_terms(m, mu, st.e_int[t] / st.vol0[t]), st.temperature[t]);
   }
 }
 
@@ -321,7 +322,7 @@ void nodal_pressures(const std::vector<Material>& materials, const ElementOption
                                                           ForceResult& block) {
   const Index ti = static_cast<Index>(t);
   const double mu = st.vol0[t] / st.vol[t] - 1.0, dvol = scratch.tet_dvol[t];
-  const EosTerms eos = eos_terms(mat, mu);
+  EosTerms eos = eos_terms(mat, mu, st.e_int[t] / st.vol0[t]);
   double p_new = 0.25 * (scratch.pressure[k[0]] + scratch.pressure[k[1]] + scratch.pressure[k[2]] +
                          scratch.pressure[k[3]]);
   // Stabilization: the averages leave a tet free to change its volume where its nodes' volumes
@@ -338,8 +339,9 @@ void nodal_pressures(const std::vector<Material>& materials, const ElementOption
     // A failed cell no longer averages its pressure with its neighbours' nodes (loosened
     // neighbours in tension would leave it no resistance to compression): its own EOS, the
     // energy solved implicitly as in the per-tet path.
-    p_new = eos.a +
-            eos.b * implicit_energy(st.e_int[t], 0.0, st.p[t], eos, dvol, st.vol0[t]) / st.vol0[t];
+    const EnergySolve solved = solve_energy(mat, mu, st.e_int[t], 0.0, st.p[t], dvol, st.vol0[t]);
+    p_new = solved.p;
+    eos = solved.eos;
   }
   if (options.fracture) p_new = fail(mat, st.vol[t], p_new, tet_point(st, ti));
   st.e_int[t] -= 0.5 * (st.p[t] + p_new) * dvol;

@@ -45,6 +45,25 @@ void read_steinberg_guinan(const Reader& r, const YAML::Node& sn, const std::str
   if (sn["a"]) sg.a = r.non_negative(sn["a"], join(sp, "a"));
 }
 
+// Tillotson's block: A, B (Pa), a, b, E0, E_iv, E_cv (J/kg), alpha, beta; every one required
+// (no constant of the law has a default that would hold for another material).
+void read_tillotson(const Reader& r, const YAML::Node& tn, const std::string& tp, Tillotson& t) {
+  r.map(tn, tp);
+  r.keys(tn, tp, {"A", "B", "a", "b", "E0", "E_iv", "E_cv", "alpha", "beta", "source"});
+  t.big_a = r.positive(r.require(tn, tp, "A"), join(tp, "A"), "Pa");
+  t.big_b = r.non_negative(r.require(tn, tp, "B"), join(tp, "B"));
+  t.a = r.non_negative(r.require(tn, tp, "a"), join(tp, "a"));
+  t.b = r.non_negative(r.require(tn, tp, "b"), join(tp, "b"));
+  t.e0 = r.positive(r.require(tn, tp, "E0"), join(tp, "E0"), "J/kg");
+  t.e_iv = r.positive(r.require(tn, tp, "E_iv"), join(tp, "E_iv"), "J/kg");
+  t.e_cv = r.positive(r.require(tn, tp, "E_cv"), join(tp, "E_cv"), "J/kg");
+  if (!(t.e_cv > t.e_iv))
+    r.fail(tn["E_cv"], join(tp, "E_cv"),
+           "the energy of complete vaporisation E_cv must be above E_iv, the incipient one");
+  t.alpha = r.non_negative(r.require(tn, tp, "alpha"), join(tp, "alpha"));
+  t.beta = r.non_negative(r.require(tn, tp, "beta"), join(tp, "beta"));
+}
+
 // The strength law (`strength: bilinear | johnson_cook | steinberg_guinan`, the constants of
 // each) and the temperature's keys. A library entry may carry the constants of several laws
 // while its law stays bilinear: the case picks the law.
@@ -196,6 +215,7 @@ Material parse_material(const Reader& r, const YAML::Node& m, const std::string&
           "hardening_modulus",
           "initial_plastic_strain",
           "eos",
+          "tillotson",
           "spall_strength",
           "loosening_limit",
           "strength",
@@ -243,12 +263,19 @@ Material parse_material(const Reader& r, const YAML::Node& m, const std::string&
   if (m["initial_plastic_strain"])
     mat.initial_plastic_strain =
         r.non_negative(m["initial_plastic_strain"], join(p, "initial_plastic_strain"));
+  if (const YAML::Node tn = m["tillotson"])
+    read_tillotson(r, tn, join(p, "tillotson"), mat.tillotson);
   if (const YAML::Node e = m["eos"]) {
     const std::string ep = join(p, "eos");
     r.map(e, ep);
     mat.eos = r.choice(r.require(e, ep, "type"), join(ep, "type"), k_eos_names, "EOS type");
     if (mat.eos == EosKind::linear) {
       r.keys(e, ep, {"type"});
+    } else if (mat.eos == EosKind::tillotson) {
+      r.keys(e, ep, {"type"});
+      if (!m["tillotson"])
+        r.fail(e["type"], join(ep, "type"), "tillotson needs the material's tillotson constants");
+      mat.bulk_modulus = mat.tillotson.big_a;  // K0 = A
     } else {
       r.keys(e, ep, {"type", "c0", "s", "gamma0"});
       mat.c0 = r.positive(r.require(e, ep, "c0"), join(ep, "c0"), "m/s");
@@ -260,7 +287,7 @@ Material parse_material(const Reader& r, const YAML::Node& m, const std::string&
   if (mat.bulk_modulus <= 0.0)
     r.fail(here, p,
            "no bulk modulus: give bulk_modulus, youngs_modulus and poisson_ratio, or a "
-           "mie_gruneisen eos");
+           "mie_gruneisen or tillotson eos");
   if (SteinbergGuinan& sg = mat.steinberg_guinan; sg.gamma0 < 0.0) {
     if (sg.melt_temperature > 0.0 && mat.eos != EosKind::mie_gruneisen)
       r.fail(m["steinberg_guinan"], join(p, "steinberg_guinan"),

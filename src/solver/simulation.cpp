@@ -83,14 +83,15 @@ Simulation::Simulation(Model model, SolverSettings settings)
   }
   // The modules this case needs, and nothing else.
   modules_ = {"integrator:central_difference", "elements:linear_tet"};
-  bool plastic = false, mie = false, anp = false, thermal = false;
+  bool plastic = false, anp = false, thermal = false;
+  bool eos[3] = {false, false, false};   // EosKind's values in use
   bool laws[3] = {false, false, false};  // StrengthModel's values in use
   for (std::size_t k = 0; k < model_.materials.size(); ++k) {
     const Material& mk = model_.materials[k];
     plastic = plastic || mk.plastic();
     if (mk.plastic()) laws[static_cast<int>(mk.strength)] = true;
     thermal = thermal || mk.thermal();
-    mie = mie || mk.eos == EosKind::mie_gruneisen;
+    eos[static_cast<int>(mk.eos)] = true;
     anp = anp || (k < model_.element.average_nodal_pressure.size() &&
                   model_.element.average_nodal_pressure[k]);
   }
@@ -100,8 +101,9 @@ Simulation::Simulation(Model model, SolverSettings settings)
       modules_.push_back("strength:" +
                          std::string(name_of(k_strength_names, static_cast<StrengthModel>(l))));
   if (thermal) modules_.push_back("material:temperature");
-  modules_.push_back(
-      "eos:" + std::string(name_of(k_eos_names, mie ? EosKind::mie_gruneisen : EosKind::linear)));
+  for (int e = 0; e < 3; ++e)
+    if (eos[e])
+      modules_.push_back("eos:" + std::string(name_of(k_eos_names, static_cast<EosKind>(e))));
   if (anp) modules_.push_back("elements:average_nodal_pressure");
   if (model_.element.viscosity_linear > 0 || model_.element.viscosity_quadratic > 0)
     modules_.push_back("elements:bulk_viscosity");

@@ -60,13 +60,30 @@ CellKey cell_of(const Vec3& x, double size) {
 
 // A cell stretched past its reference volume (a loosened, destroyed cell carries no tension and
 // may have been drawn out to many times its volume) is, as a particle, its material at the
-// volume where its pressure falls to zero at its energy E, if that is less: on the EOS's branch
-// of expansion p = k μ + B E/V0 = 0 at μ = −B E/(k V0) (V0 for a linear EOS). Its pressure
+// volume where its pressure falls to zero at its energy E, if that is less: on the
+// Mie–Grüneisen's (or linear) branch of expansion p = k μ + B E/V0 = 0 at μ = −B E/(k V0) (V0
+// for a linear EOS); Tillotson's p(μ, E) = 0 found by bisection. μ no lower than −1/2 (a hot
+// Tillotson state, a gas, has no zero: it starts at twice V0 with its pressure). Its pressure
 // there is the cell's (none while it is loosened), so the particle starts without a kick.
 double particle_volume(const Material& m, double vol, double vol0, double energy) {
   if (!(vol > vol0)) return vol;
-  const EosTerms t = eos_terms(m, -1e-12);  // the branch of expansion: A = k μ
-  const double mu = std::clamp(-t.b * energy / (t.da_dmu * vol0), -0.5, 0.0);
+  double mu = 0.0;
+  if (m.eos == EosKind::tillotson) {
+    const double e = energy / vol0;
+    double lo = -0.5, hi = 0.0;  // p(hi) ≥ 0 for E ≥ 0
+    if (eos_pressure(m, lo, e) >= 0.0) {
+      mu = lo;
+    } else {
+      for (int k = 0; k < 60; ++k) {
+        const double mid = 0.5 * (lo + hi);
+        (eos_pressure(m, mid, e) < 0.0 ? lo : hi) = mid;
+      }
+      mu = hi;
+    }
+  } else {
+    const EosTerms t = eos_terms(m, -1e-12);  // the branch of expansion: A = k μ
+    mu = std::clamp(-t.b * energy / (t.da_dmu * vol0), -0.5, 0.0);
+  }
   return std::min(vol, vol0 / (1.0 + mu));
 }
 

@@ -342,7 +342,7 @@ TEST(CaseFile, ReadmeExampleIsValid) {
   EXPECT_EQ(c.boundary_conditions.size(), 2u);
   EXPECT_EQ(c.output.fields.size(), 11u);  // the example's ten, and fracture's `damage`
   EXPECT_TRUE(c.fracture);
-  EXPECT_EQ(c.materials.size(), 6u);
+  EXPECT_EQ(c.materials.size(), 7u);
   EXPECT_EQ(c.walls.size(), 1u);
   ASSERT_EQ(c.references.size(), 4u);
   EXPECT_EQ(c.references[2].measure, ReferenceSpec::Measure::perforated);
@@ -355,6 +355,8 @@ TEST(CaseFile, ReadmeExampleIsValid) {
   EXPECT_EQ(c.material("hot_rod").johnson_cook.n, 0.31);
   EXPECT_EQ(c.material("shocked_metal").strength, StrengthModel::steinberg_guinan);
   EXPECT_EQ(c.material("shocked_metal").steinberg_guinan.ymax, 0.68e9);
+  EXPECT_EQ(c.material("debris").eos, EosKind::tillotson);
+  EXPECT_EQ(c.material("debris").tillotson.e_cv, 13.9e6);
   EXPECT_NO_THROW(build_model(c));
 }
 
@@ -424,6 +426,21 @@ TEST(MaterialLibrary, CaseTakesAnEntryAndOverridesKeys) {
   EXPECT_EQ(m.hardening_modulus, 100e6);  // added
   EXPECT_EQ(m.eos, EosKind::mie_gruneisen);
   EXPECT_EQ(c.material_library, default_material_library());
+  // An aluminium entry's Tillotson constants, chosen by the case's eos (its bulk modulus A).
+  std::string til = replace(k_valid, R"(  al:
+    density: 2700
+    youngs_modulus: 70.0e9
+    poisson_ratio: 0.3)",
+                            R"(  al:
+    from: al6061-t6
+    eos: {type: tillotson})");
+  test::write_text(dir / "t.yaml", til);
+  const Material& t = load_case(dir / "t.yaml").material("al");
+  EXPECT_EQ(t.eos, EosKind::tillotson);
+  EXPECT_EQ(t.tillotson.big_a, 75.2e9);
+  EXPECT_EQ(t.tillotson.e_cv, 13.9e6);
+  EXPECT_EQ(t.bulk_modulus, 75.2e9);
+  EXPECT_EQ(t.density, 2703);
   // The library's Johnson–Cook constants come along; the law stays bilinear until chosen.
   EXPECT_EQ(m.strength, StrengthModel::bilinear);
   EXPECT_EQ(m.johnson_cook.a, 90e6);
@@ -552,7 +569,29 @@ TEST(CaseFile, MaterialAndWallErrors) {
        {},
        ":10:",
        "materials.al.eos.type",
-       "linear or mie_gruneisen"},
+       "mie_gruneisen or tillotson"},
+      {"tillotson without constants",
+       replace(v, "    poisson_ratio: 0.3", "    poisson_ratio: 0.3\n    eos: {type: tillotson}"),
+       {},
+       ":10:",
+       "materials.al.eos.type",
+       "tillotson needs the material's tillotson constants"},
+      {"tillotson vaporisation energies",
+       replace(v, "    poisson_ratio: 0.3",
+               "    poisson_ratio: 0.3\n    eos: {type: tillotson}\n    tillotson: {A: 75.2e9, B: "
+               "65.0e9, a: 0.5, b: 1.63, E0: 5.0e6, E_iv: 3.0e6, E_cv: 2.0e6, alpha: 5, beta: 5}"),
+       {},
+       ":11:",
+       "materials.al.tillotson.E_cv",
+       "must be above E_iv"},
+      {"tillotson missing E0",
+       replace(v, "    poisson_ratio: 0.3",
+               "    poisson_ratio: 0.3\n    tillotson: {A: 75.2e9, B: 65.0e9, a: 0.5, b: 1.63, "
+               "E_iv: 3.0e6, E_cv: 13.9e6, alpha: 5, beta: 5}"),
+       {},
+       ":10:",
+       "materials.al.tillotson.E0",
+       "missing required key"},
       {"mg missing s",
        replace(v, "    poisson_ratio: 0.3",
                "    poisson_ratio: 0.3\n    eos: {type: mie_gruneisen, c0: 5000, gamma0: 2}"),

@@ -41,11 +41,17 @@ std::vector<Shock> measured_shocks() {
   return out;
 }
 
-// The engine's pressure behind a shock to V/V0: p = A(μ) / (1 − Γ0 η / 2).
+// The engine's pressure behind a shock to V/V0: p = A + B E with the jump condition's
+// E = ½ p η, p = A / (1 − B η / 2); A and B taken at that E (Newton's iteration: Tillotson's
+// depend on E, Mie–Grüneisen's do not, p = A(μ) / (1 − Γ0 η / 2) at once).
 double hugoniot_pressure(const Material& m, double v_over_v0) {
   const double eta = 1.0 - v_over_v0, mu = eta / v_over_v0;
-  const EosTerms t = eos_terms(m, mu);
-  return t.a / (1.0 - 0.5 * t.b * eta);
+  double p = 0.0;
+  for (int k = 0; k < 50; ++k) {
+    const EosTerms t = eos_terms(m, mu, 0.5 * p * eta);
+    p = t.a / (1.0 - 0.5 * t.b * eta);
+  }
+  return p;
 }
 
 const Material& entry(const std::vector<Material>& lib, const std::string& name) {
@@ -98,6 +104,40 @@ TEST(Hugoniot, LibraryAluminiumAgainstTheMeasuredShocks) {
     }
     EXPECT_GT(n, 20) << source;
     ASSERT_GT(above_50.size(), 5u) << source;
+    EXPECT_LT(median(above_50), high) << name;
+  }
+}
+
+// Tillotson's aluminium constants (the library's `tillotson` block, [T62]) on the same measured
+// shocks: each library alloy with `eos: tillotson` against each source. Its Hugoniot is not a
+// fit to these points; measured (this version): medians of |error| above 50 GPa of 8.3 %
+// (McQueen, 2024-T4 entry) and 3.4 % (Mitchell, 1100-O entry), every point above 20 GPa within
+// 12.3 % and 10.5 % (the library's Mie–Grüneisen: 3.8 % and 1.2 %, 9.1 % and 7.4 %).
+TEST(Hugoniot, TillotsonAluminiumAgainstTheMeasuredShocks) {
+  std::vector<Material> lib = load_material_library(default_material_library());
+  const std::vector<Shock> shocks = measured_shocks();
+  for (const auto& [source, name, every, high] :
+       std::vector<std::tuple<std::string, std::string, double, double>>{
+           {"McQueen", "al2024-t4", 0.15, 0.10}, {"Mitchell", "al1100-o", 0.13, 0.05}}) {
+    Material m = entry(lib, name);
+    ASSERT_GT(m.tillotson.big_a, 0.0) << name << " has no tillotson block";
+    m.eos = EosKind::tillotson;
+    m.bulk_modulus = m.tillotson.big_a;
+    std::vector<double> above_50;
+    double worst = 0.0;
+    for (const Shock& s : shocks) {
+      if (s.source.find(source) == std::string::npos) continue;
+      const double p = hugoniot_pressure(m, s.v_over_v0);
+      // The iteration converged: p on the EOS at the jump condition's energy.
+      const double eta = 1.0 - s.v_over_v0;
+      EXPECT_NEAR(p, eos_pressure(m, eta / s.v_over_v0, 0.5 * p * eta), 1e-9 * p);
+      const double error = p / s.pressure - 1.0;
+      if (s.pressure >= 20e9) worst = std::max(worst, std::abs(error));
+      if (s.pressure >= 50e9) above_50.push_back(std::abs(error));
+    }
+    std::printf("%s (%s, tillotson): above 20 GPa worst %.3f, above 50 GPa median %.3f\n",
+                source.c_str(), name.c_str(), worst, median(above_50));
+    EXPECT_LT(worst, every) << name;
     EXPECT_LT(median(above_50), high) << name;
   }
 }

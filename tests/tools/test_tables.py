@@ -104,7 +104,7 @@ def test_every_table_has_a_command():
                        "mpi", "whipple", "whipple-mesh", "whipple-hole", "strength", "taylor-tests",
                        "taylor-temper", "whipple-shots", "whipple-refined", "whipple-defaults",
                        "whipple-wall", "whipple-tear", "whipple-debris", "whipple-sph-faces",
-                       "hugoniot"]
+                       "whipple-tillotson", "hugoniot"]
     assert list(T.TABLES) == T.NAMES
 
 
@@ -354,6 +354,23 @@ def test_whipple_tear_row():
     with pytest.raises(KeyError):  # a run of a case without the bulge
         T.whipple_tear_cells({"predicted:wall perforated": "NP", "wall_seconds": "1"},
                              fake_summary(references=WHIPPLE_REFERENCES + refs[-2:-1]))
+
+
+def test_whipple_tillotson_row():
+    refs = WHIPPLE_REFERENCES + [{"name": "wall thickness left", "measured": 0.5}]
+    refs = [dict(r, measured=5990.0) if r["name"] == "debris leading-edge speed" else r
+            for r in refs]
+    s = fake_summary(references=refs, steps=12345, energy={"balance_error_max": 1.75e-3})
+    eos = T.whipple_eos_cells({"predicted:wall perforated": "P", "wall_seconds": "200.2"}, s)
+    assert eos == ("P", 12.3e-6, 0.5, (5990.0, 12345, 1.75e-3), 200.2)
+    shot = {"wall_thick": "0.254", "velocity": "6.9", "result": "P"}
+    assert cells(T.whipple_refined_row(306, 317, shot, "NP", [eos], T.speed_steps_balance)) == [
+        "306 (317)", "2.54 mm", "6.9 km/s", "P", "NP", "P (12.3 mg), 0.50, 5.99 km/s, 12,345, "
+        "1.8e-3", "200 s"]
+    with pytest.raises(KeyError):  # a run of a case without the cloud's speed
+        T.whipple_eos_cells({"predicted:wall perforated": "NP", "wall_seconds": "1"},
+                            fake_summary(references=[r for r in refs if "speed" not in r["name"]],
+                                         steps=1, energy={"balance_error_max": 0.0}))
 
 
 def test_whipple_defaults_row():

@@ -69,6 +69,10 @@ NAME, the table:
                   its kernel (fracture.sph.faces: kernel, the default; the whipple-debris
                   table's SPH column met them by contact): verdicts, thickness left, the
                   contact work's share of the initial energy (~30 min on 2 cores)
+    whipple-tillotson the seven of those shots at 6 km/s and above with SPH debris, every body
+                  with the library's Mie–Grüneisen EOS (shipped) and with Tillotson's:
+                  verdicts, thickness left, the debris cloud's speed, steps and the largest
+                  balance error (~25 min on 2 cores)
     hugoniot      the library's aluminium equations of state on their Hugoniot against the
                   measured shock states of data/validation/aluminium-hugoniot.csv, per
                   pressure band (no runs: the EOS's closed form, which the engine reproduces)
@@ -109,7 +113,7 @@ ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)
 NAMES = ["stability", "micro", "profile", "ccd", "verify", "verify-full", "threads", "mpi",
          "whipple", "whipple-mesh", "whipple-hole", "strength", "taylor-tests", "taylor-temper",
          "whipple-shots", "whipple-refined", "whipple-defaults", "whipple-wall", "whipple-tear",
-         "whipple-debris", "whipple-sph-faces", "hugoniot"]
+         "whipple-debris", "whipple-sph-faces", "whipple-tillotson", "hugoniot"]
 
 
 def g(x):
@@ -1390,6 +1394,46 @@ def whipple_sph_faces(binary, work, opts):
                                      whipple_debris_cells, percent)
 
 
+# whipple-tillotson -------------------------------------------------------------------------------
+# The equation of state of expanded and hot debris: the shots of the sixteen at 6 km/s and above,
+# with SPH debris, every body with its library entry's Mie–Grüneisen EOS (shipped) and with its
+# Tillotson constants (eos: {type: tillotson}).
+WHIPPLE_FAST_ROWS = "302,383,521,306,307,424,444"
+WHIPPLE_TILLOTSON = [  # (folder, label, --set)
+    ("mie-gruneisen", "Mie–Grüneisen (shipped)", ["fracture.debris=sph"]),
+    ("tillotson", "Tillotson", ["fracture.debris=sph"]
+     + [f"materials.{x}.eos.type=tillotson" for x in WHIPPLE_PARTS]),
+]
+WHIPPLE_TILLOTSON_HEADER = settings_header(
+    WHIPPLE_TILLOTSON,
+    "verdict (mass through), thickness left, cloud speed, steps, largest balance error",
+    "run time (each EOS)")
+
+
+def whipple_eos_cells(prediction, s):
+    """(verdict, mass through the wall, wall thickness left, (the debris cloud's leading-edge
+    speed, steps, the largest balance error), run seconds) of one campaign run."""
+    m = {x[K.NAME]: x[K.MEASURED] for x in get(s, K.REFERENCES)}
+    return (prediction["predicted:wall perforated"], m[K.MASS_THROUGH_WALL],
+            m[K.WALL_THICKNESS_LEFT],
+            (m[K.DEBRIS_SPEED], get(s, K.STEPS), get(s, K.ENERGY_BALANCE_ERROR_MAX)),
+            float(prediction["wall_seconds"]))
+
+
+def speed_steps_balance(x):
+    return f"{x[0] / 1e3:.2f} km/s, {x[1]:,}, {g(x[2])}"
+
+
+def whipple_tillotson(binary, work, opts):
+    """The shots of WHIPPLE_FAST_ROWS with SPH debris under each EOS of WHIPPLE_TILLOTSON: each
+    verdict (and mass through), the wall's thickness left, the cloud's speed, the steps and the
+    largest balance error beside the measured verdict and the equation's, and how many each
+    gets right."""
+    yield from whipple_settings_rows(binary, work, "whipple-tillotson-", WHIPPLE_FAST_ROWS,
+                                     WHIPPLE_TILLOTSON, WHIPPLE_TILLOTSON_HEADER,
+                                     whipple_eos_cells, speed_steps_balance)
+
+
 # whipple, whipple-mesh, whipple-hole -------------------------------------------------------------
 WHIPPLE_COARSE = ["parameters.hb=1.0e-3", "parameters.hw=2.0e-3", "parameters.np=6",
                   "parameters.tear=5.0e-6"]
@@ -1502,6 +1546,7 @@ TABLES = {"stability": stability, "micro": micro, "profile": profile, "ccd": ccd
           "whipple-refined": whipple_refined, "whipple-defaults": whipple_defaults,
           "whipple-wall": whipple_wall, "whipple-tear": whipple_tear,
           "whipple-debris": whipple_debris, "whipple-sph-faces": whipple_sph_faces,
+          "whipple-tillotson": whipple_tillotson,
           "hugoniot": hugoniot}
 assert list(TABLES) == NAMES
 

@@ -1,7 +1,8 @@
 // Materials: hypoelastic-plastic solid (Jaumann rate, von Mises, linear isotropic hardening)
-// with a pressure from an equation of state (linear, or Mie–Grüneisen with a linear Us–up
-// Hugoniot). Dobritsa et al., "Основные соотношения": Prandtl–Reuss flow for impact Mach number
-// M0 ≤ 0.75, a hydrodynamic model with a richer equation of state for 0.75 < M0 < 1.5.
+// with a pressure from an equation of state (linear, Mie–Grüneisen with a linear Us–up
+// Hugoniot, or Tillotson's for expanded and vaporising states). Dobritsa et al., "Основные
+// соотношения": Prandtl–Reuss flow for impact Mach number M0 ≤ 0.75, a hydrodynamic model with a
+// richer equation of state for 0.75 < M0 < 1.5.
 //
 // Each model is a small pure function; the element kernel (solver/element.cpp) calls them.
 #pragma once
@@ -16,7 +17,7 @@
 
 namespace tc {
 
-enum class EosKind { linear, mie_gruneisen };
+enum class EosKind { linear, mie_gruneisen, tillotson };
 
 /// How the yield stress evolves: bilinear, σy = σy0 + H ε̄p (yield_stress,
 /// hardening_modulus), Johnson–Cook, or Steinberg–Guinan.
@@ -86,11 +87,29 @@ inline double johnson_cook_failure_strain(const JohnsonCookFailure& f, double tr
   return std::max(stress * rate_factor * thermal, f.min_strain);
 }
 
+/// Tillotson (J. H. Tillotson, "Metallic equations of state for hypervelocity impact", General
+/// Atomic GA-3216, 1962), with η = ρ/ρ0, μ = η − 1, e the specific internal energy and
+/// ω = 1 + e/(E0 η²):
+///   compressed (μ ≥ 0) or cold (e ≤ E_iv):  p_c = (a + b/ω) ρ e + A μ + B μ²,
+///   expanded and hot (μ < 0, e ≥ E_cv):    p_e = a ρ e + [b ρ e/ω + A μ exp(−β z)] exp(−α z²),
+///                                          z = ρ0/ρ − 1,
+///   between (μ < 0, E_iv < e < E_cv):      p = [(e − E_iv) p_e + (E_cv − e) p_c]/(E_cv − E_iv).
+/// Far expanded the hot branch tends to the gas a ρ e, where a Mie–Grüneisen state keeps
+/// p = K μ + Γ0 ρ0 e whatever its density. ω takes e ≥ 0 (a cell below its reference energy
+/// has p_c linear in e).
+struct Tillotson {
+  double a = 0.0, b = 0.0;          // –
+  double big_a = 0.0, big_b = 0.0;  // A, B, Pa
+  double e0 = 0.0;                  // E0, J/kg
+  double e_iv = 0.0, e_cv = 0.0;    // incipient and complete vaporisation energies, J/kg
+  double alpha = 0.0, beta = 0.0;   // –
+};
+
 struct Material {
   std::string name;
   double density = 0.0;        // ρ0, kg/m³
   double shear_modulus = 0.0;  // G, Pa
-  double bulk_modulus = 0.0;   // K, Pa (linear EOS; ρ0 c0² for Mie–Grüneisen)
+  double bulk_modulus = 0.0;   // K, Pa (linear EOS; ρ0 c0² for Mie–Grüneisen, A for Tillotson)
   // Strength: plastic when yield_stress > 0 (von Mises, σy = σy0 + H ε̄p), or by Johnson–Cook.
   StrengthModel strength = StrengthModel::bilinear;
   double yield_stress = 0.0;       // σy0, Pa
@@ -111,6 +130,7 @@ struct Material {
   double c0 = 0.0;      // bulk sound speed, m/s (Mie–Grüneisen)
   double s = 0.0;       // Us = c0 + s up
   double gamma0 = 0.0;  // Grüneisen coefficient Γ0
+  Tillotson tillotson;
   // Failure (Dobritsa et al., used when the case's fracture stage is on): a cell whose largest
   // tensile principal stress exceeds σ* is damaged (it then resists only volumetric
   // compression); a damaged cell loosened past χ = 1 − V0/V > χ* is destroyed (no pressure).
@@ -502,19 +522,66 @@ inline DeviatorIncrement update_deviator6(const Material& m, Sym6& s, const Sym6
 ///   μ ≤ 0:  A = ρ0 c0² μ
 ///   B = Γ0
 /// On the Hugoniot (E = E_H = ½ p_H μ/(1+μ)) this gives p_H = ρ0 Us up with Us = c0 + s up.
+/// Tillotson's pressure is not linear in E: its terms are its tangent at the given E,
+/// B = ∂p/∂E and A = p − B E, so that A + B E is the pressure there.
 struct EosTerms {
   double a = 0.0;       // A(μ), Pa
   double b = 0.0;       // B = ∂p/∂E
-  double da_dmu = 0.0;  // A'(μ), for the sound speed
+  double da_dmu = 0.0;  // ∂p/∂μ at constant E, for the sound speed
 };
 
-inline EosTerms eos_terms(const Material& m, double mu) {
+/// Tillotson's pressure and its partial derivatives at compression μ and energy per reference
+/// volume E (ρ e = η E, ∂ω/∂η = −2 (ω − 1)/η, ∂(η E/ω)/∂E = η/ω²).
+inline EosTerms tillotson_terms(const Tillotson& t, double density, double mu, double energy) {
+  const double eta = 1.0 + mu;
+  const double rho_e = eta * energy;
+  const double specific = energy / density;
+  const double omega = 1.0 + std::max(specific, 0.0) / (t.e0 * eta * eta);
+  const double dw_de = specific > 0.0 ? 1.0 / (density * t.e0 * eta * eta) : 0.0;  // ∂ω/∂E
+  const double dw_deta = -2.0 * (omega - 1.0) / eta;                               // ∂ω/∂η
+  // ∂(η E/ω)/∂E and ∂(η E/ω)/∂η
+  const double g_e = eta / omega - rho_e * dw_de / (omega * omega);
+  const double g_eta = energy / omega - rho_e * dw_deta / (omega * omega);
+  // The compressed (and cold) branch.
+  const double pc = (t.a + t.b / omega) * rho_e + t.big_a * mu + t.big_b * mu * mu;
+  const double pc_e = t.a * eta + t.b * g_e;
+  const double pc_eta = t.a * energy + t.b * g_eta + t.big_a + 2.0 * t.big_b * mu;
+  EosTerms r;
+  double p = pc, p_e = pc_e, p_eta = pc_eta;
+  if (mu < 0.0 && specific > t.e_iv) {
+    const double z = 1.0 / eta - 1.0, dz = -1.0 / (eta * eta);
+    const double fa = std::exp(-t.alpha * z * z), fb = std::exp(-t.beta * z);
+    const double inner = t.b * rho_e / omega + t.big_a * mu * fb;
+    const double pe = t.a * rho_e + inner * fa;
+    const double pe_e = t.a * eta + t.b * g_e * fa;
+    const double pe_eta = t.a * energy +
+                          (t.b * g_eta + t.big_a * fb * (1.0 - t.beta * mu * dz)) * fa -
+                          inner * fa * 2.0 * t.alpha * z * dz;
+    if (specific >= t.e_cv) {
+      p = pe, p_e = pe_e, p_eta = pe_eta;
+    } else {
+      const double span = t.e_cv - t.e_iv, w = (specific - t.e_iv) / span;
+      p = w * pe + (1.0 - w) * pc;
+      p_e = w * pe_e + (1.0 - w) * pc_e + (pe - pc) / (density * span);
+      p_eta = w * pe_eta + (1.0 - w) * pc_eta;
+    }
+  }
+  r.b = p_e;
+  r.a = p - p_e * energy;
+  r.da_dmu = p_eta;
+  return r;
+}
+
+/// The EOS's terms at compression μ and energy per reference volume E (E enters Tillotson's
+/// alone).
+inline EosTerms eos_terms(const Material& m, double mu, double energy = 0.0) {
   EosTerms t;
   if (m.eos == EosKind::linear) {
     t.a = m.bulk_modulus * mu;
     t.da_dmu = m.bulk_modulus;
     return t;
   }
+  if (m.eos == EosKind::tillotson) return tillotson_terms(m.tillotson, m.density, mu, energy);
   const double k0 = m.density * m.c0 * m.c0;
   t.b = m.gamma0;
   if (mu <= 0.0) {
@@ -532,7 +599,7 @@ inline EosTerms eos_terms(const Material& m, double mu) {
 
 /// Pressure from compression μ and internal energy per reference volume E.
 inline double eos_pressure(const Material& m, double mu, double energy_density) {
-  const EosTerms t = eos_terms(m, mu);
+  const EosTerms t = eos_terms(m, mu, energy_density);
   return t.a + t.b * energy_density;
 }
 
@@ -543,8 +610,8 @@ inline double bulk_stiffness(const Material& m, double mu, double p, const EosTe
   const double k = (1.0 + mu) * t.da_dmu + t.b * p / (1.0 + mu);
   return std::max(k, 1e-3 * m.bulk_modulus);
 }
-inline double bulk_stiffness(const Material& m, double mu, double p) {
-  return bulk_stiffness(m, mu, p, eos_terms(m, mu));
+inline double bulk_stiffness(const Material& m, double mu, double p, double energy = 0.0) {
+  return bulk_stiffness(m, mu, p, eos_terms(m, mu, energy));
 }
 
 /// Artificial bulk viscosity (von Neumann–Richtmyer quadratic + Landshoff linear), on

@@ -22,8 +22,9 @@ inline constexpr NameTable<FrictionMode, 3> k_friction_names{{{FrictionMode::sli
                                                               {FrictionMode::coulomb, "coulomb"}}};
 
 // The names of the material's enumerations (material/ stands below this layer's names.hpp).
-inline constexpr NameTable<EosKind, 2> k_eos_names{
-    {{EosKind::linear, "linear"}, {EosKind::mie_gruneisen, "mie_gruneisen"}}};
+inline constexpr NameTable<EosKind, 3> k_eos_names{{{EosKind::linear, "linear"},
+                                                    {EosKind::mie_gruneisen, "mie_gruneisen"},
+                                                    {EosKind::tillotson, "tillotson"}}};
 inline constexpr NameTable<StrengthModel, 3> k_strength_names{
     {{StrengthModel::bilinear, "bilinear"},
      {StrengthModel::johnson_cook, "johnson_cook"},
