@@ -62,28 +62,33 @@ CellKey cell_of(const Vec3& x, double size) {
 // may have been drawn out to many times its volume) is, as a particle, its material at the
 // volume where its pressure falls to zero at its energy E, if that is less: on the
 // Mie–Grüneisen's (or linear) branch of expansion p = k μ + B E/V0 = 0 at μ = −B E/(k V0) (V0
-// for a linear EOS); Tillotson's p(μ, E) = 0 found by bisection. μ no lower than −1/2 (a hot
-// Tillotson state, a gas, has no zero: it starts at twice V0 with its pressure). Its pressure
-// there is the cell's (none while it is loosened), so the particle starts without a kick.
+// for a linear EOS), no more than twice V0; with Tillotson's, its volume if the pressure there
+// is not tensile (a hot state is a gas, p → a ρ e: it expands as its motion says, its pressure
+// doing the work its energy pays), else the zero between it and V0 by Newton's iteration kept
+// within the bracket. Its pressure there is the cell's (none while it is loosened), so the
+// particle starts without a kick.
 double particle_volume(const Material& m, double vol, double vol0, double energy) {
   if (!(vol > vol0)) return vol;
-  double mu = 0.0;
   if (m.eos == EosKind::tillotson) {
     const double e = energy / vol0;
-    double lo = -0.5, hi = 0.0;  // p(hi) ≥ 0 for E ≥ 0
-    if (eos_pressure(m, lo, e) >= 0.0) {
-      mu = lo;
-    } else {
-      for (int k = 0; k < 60; ++k) {
-        const double mid = 0.5 * (lo + hi);
-        (eos_pressure(m, mid, e) < 0.0 ? lo : hi) = mid;
-      }
-      mu = hi;
+    double lo = vol0 / vol - 1.0, hi = 0.0;
+    if (eos_pressure(m, lo, e) >= 0.0) return vol;
+    double mu = 0.5 * lo;  // p(lo) < 0 ≤ p(hi) for E ≥ 0
+    for (int k = 0; k < 60; ++k) {
+      const EosTerms t = eos_terms(m, mu, e);
+      const double p = t.a + t.b * e;
+      if (p == 0.0) break;
+      (p < 0.0 ? lo : hi) = mu;
+      double next = t.da_dmu > 0.0 ? mu - p / t.da_dmu : lo;
+      if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
+      const bool done = std::abs(next - mu) < 1e-14;
+      mu = next;
+      if (done) break;
     }
-  } else {
-    const EosTerms t = eos_terms(m, -1e-12);  // the branch of expansion: A = k μ
-    mu = std::clamp(-t.b * energy / (t.da_dmu * vol0), -0.5, 0.0);
+    return std::min(vol, vol0 / (1.0 + mu));
   }
+  const EosTerms t = eos_terms(m, -1e-12);  // the branch of expansion: A = k μ
+  const double mu = std::clamp(-t.b * energy / (t.da_dmu * vol0), -0.5, 0.0);
   return std::min(vol, vol0 / (1.0 + mu));
 }
 
