@@ -60,19 +60,21 @@ CellKey cell_of(const Vec3& x, double size) {
 
 // A cell stretched past its reference volume (a loosened, destroyed cell carries no tension and
 // may have been drawn out to many times its volume) is, as a particle, its material at the
-// volume where its pressure falls to zero at its energy E, if that is less: on the
-// Mie–Grüneisen's (or linear) branch of expansion p = k μ + B E/V0 = 0 at μ = −B E/(k V0) (V0
-// for a linear EOS), no more than twice V0; with Tillotson's, its volume if the pressure there
-// is not tensile (a hot state is a gas, p → a ρ e: it expands as its motion says, its pressure
-// doing the work its energy pays), else the zero between it and V0 by Newton's iteration kept
-// within the bracket. Its pressure there is the cell's (none while it is loosened), so the
-// particle starts without a kick.
+// volume where its pressure falls to zero at its energy E, if that is less, and no more than
+// twice V0: on the Mie–Grüneisen's (or linear) branch of expansion p = k μ + B E/V0 = 0 at
+// μ = −B E/(k V0) (V0 for a linear EOS); with Tillotson's, its volume if the pressure there is
+// not tensile, else the zero between it and V0 by Newton's iteration kept within the bracket.
+// A hot Tillotson state is a gas with no such volume: it stops at twice V0 (a destroyed
+// particle carries no pressure once loosened, so nothing would hold its density: one drawn out
+// to 1e14 V0 set a sound speed of 1.9e9 m/s from the EOS's floor and a step of 3e-14 s). Its
+// pressure there is the cell's (none while it is loosened), so the particle starts without a
+// kick.
 double particle_volume(const Material& m, double vol, double vol0, double energy) {
   if (!(vol > vol0)) return vol;
   if (m.eos == EosKind::tillotson) {
     const double e = energy / vol0;
-    double lo = vol0 / vol - 1.0, hi = 0.0;
-    if (eos_pressure(m, lo, e) >= 0.0) return vol;
+    double lo = std::max(vol0 / vol - 1.0, -0.5), hi = 0.0;
+    if (eos_pressure(m, lo, e) >= 0.0) return lo > -0.5 ? vol : 2.0 * vol0;
     double mu = 0.5 * lo;  // p(lo) < 0 ≤ p(hi) for E ≥ 0
     for (int k = 0; k < 60; ++k) {
       const EosTerms t = eos_terms(m, mu, e);
