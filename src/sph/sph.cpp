@@ -65,14 +65,16 @@ CellKey cell_of(const Vec3& x, double size) {
 // μ = −B E/(k V0) (V0 for a linear EOS); with Tillotson's, its volume if the pressure there is
 // not tensile, else the zero between it and V0 by Newton's iteration kept within the bracket.
 // A hot Tillotson state is a gas with no such volume: it stops at twice V0 (a destroyed
-// particle carries no pressure once loosened, so nothing would hold its density: one drawn out
-// to 1e14 V0 set a sound speed of 1.9e9 m/s from the EOS's floor and a step of 3e-14 s). Its
+// particle carries no pressure once loosened, so nothing else would hold its density: at 1e14
+// V0 the EOS's floor of stiffness gives a sound speed of 1.9e9 m/s and a step of 3e-14 s). A
+// state below its reference energy keeps V0 (its pressure is tensile at any expansion). Its
 // pressure there is the cell's (none while it is loosened), so the particle starts without a
 // kick.
 double particle_volume(const Material& m, double vol, double vol0, double energy) {
   if (!(vol > vol0)) return vol;
   if (m.eos == EosKind::tillotson) {
     const double e = energy / vol0;
+    if (!(e > 0.0)) return vol0;
     double lo = std::max(vol0 / vol - 1.0, -0.5), hi = 0.0;
     if (eos_pressure(m, lo, e) >= 0.0) return lo > -0.5 ? vol : 2.0 * vol0;
     double mu = 0.5 * lo;  // p(lo) < 0 ≤ p(hi) for E ≥ 0

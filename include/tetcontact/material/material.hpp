@@ -525,7 +525,7 @@ inline DeviatorIncrement update_deviator6(const Material& m, Sym6& s, const Sym6
 /// Tillotson's pressure is not linear in E: its terms are its tangent at the given E,
 /// B = ∂p/∂E and A = p − B E, so that A + B E is the pressure there.
 struct EosTerms {
-  double a = 0.0;       // A(μ), Pa
+  double a = 0.0;       // A: A(μ), Pa (Tillotson's: p − B E at the state)
   double b = 0.0;       // B = ∂p/∂E
   double da_dmu = 0.0;  // ∂p/∂μ at constant E, for the sound speed
 };
