@@ -508,7 +508,8 @@ void Simulation::elements_stage() {
     // after end_time and reports the time reached.
     st.dt = settings_.cfl * r.dt_stable;
     min_dt_ = std::min(min_dt_, st.dt);
-    if (!(st.dt > 0.0) || !std::isfinite(st.dt)) {
+    // No cell left (a body made of particles): the particles' stage sets the step.
+    if (!(st.dt > 0.0) || (!std::isfinite(st.dt) && st.sph.size() == 0)) {
       std::ostringstream os;
       os << "time step " << st.dt << " s is not positive and finite";
       throw RunFailure(os.str());
