@@ -349,8 +349,17 @@ void Stage::update(const std::vector<Material>& materials, double tau, double ta
     // continuity would otherwise read the cloud's spreading as the solid's, and its density
     // fell to a thousandth of ρ0 in a Whipple shot).
     const double half = 0.5 * tau * c.trace;
-    const bool failed = options_.fracture && pm.damage[i] != Damage::intact;
+    bool failed = options_.fracture && pm.damage[i] != Damage::intact;
     const Material& mat = materials[pm.material[i]];
+    // An intact particle that would grow past 2 V0 fails, its solid then held as a failed
+    // one's: a hot expanded state (Mie–Grüneisen's Γ0 E cancelling K μ) carries almost no
+    // tension to spall it, and left intact one swelled from 100 V0 to 6,700 V0 in 25 steps.
+    if (options_.fracture && !failed && half > 0.0 &&
+        !(pm.vol[i] * (1.0 + half) < 2.0 * pm.vol0[i] * (1.0 - half))) {
+      pm.damage[i] = Damage::damaged;
+      pm.s[i] = Sym6{0, 0, 0, 0, 0, 0};
+      failed = true;
+    }
     if (failed && half > 0.0) {
       const double grown = half < 1.0 ? pm.vol[i] * (1.0 + half) / (1.0 - half)
                                       : std::numeric_limits<double>::infinity();

@@ -438,3 +438,28 @@ TEST(Sph, TensileInstabilityIsHeldByTheArtificialStress) {
   EXPECT_GT(closest_compressed, 0.97);
   EXPECT_NEAR(p_compressed, 1e9, 0.02e9);
 }
+
+// A hot expanded state carries no tension to spall it (Mie–Grüneisen's Γ0 ρ0 E cancelling
+// K μ): a block of 6061-T6 particles at 40 MJ/kg bursts, and its particles swell. An intact
+// particle that would grow past 2 V0 fails and is held there as a failed one's solid is.
+// Measured (5 × 5 × 5 particles, 1.5 µs, the block parted by then): the largest V/V0 2.000, 81
+// particles failed; without the failure past 2 V0, 2.93 and 27 failed.
+TEST(Sph, HotExpandedParticlesFailPastTwiceTheirVolume) {
+  const double dx = 1e-3;
+  sph::Options options;
+  options.fracture = true;
+  test::ParticleRun run({test::library_material("al6061-t6")}, options, {});
+  run.lattice(Vec3::Zero(), 5, 5, 5, dx, Vec3::Zero());
+  for (Index i = 0; i < run.st.sph.size(); ++i) run.st.particle_energy[i] = 4e7 * run.st.m[i];
+  run.run_to(1.5e-6);
+  double largest = 0.0;
+  int failed = 0;
+  for (Index i = 0; i < run.st.sph.size(); ++i) {
+    largest = std::max(largest, run.st.sph.vol[i] / run.st.sph.vol0[i]);
+    failed += run.st.sph.damage[i] != Damage::intact;
+  }
+  std::printf("largest V/V0 %.3f, %d of %ld particles failed\n", largest, failed,
+              static_cast<long>(run.st.sph.size()));
+  EXPECT_LE(largest, 2.0 * (1.0 + 1e-12));
+  EXPECT_GT(failed, 27);
+}

@@ -67,8 +67,9 @@ NAME, the table:
                   work's share of the initial energy (~45 min on 2 cores)
     whipple-sph-faces the sixteen shots with SPH debris meeting the bodies' faces through
                   its kernel (fracture.sph.faces: kernel, the default; the whipple-debris
-                  table's SPH column met them by contact): verdicts, thickness left, the
-                  contact work's share of the initial energy (~30 min on 2 cores)
+                  table's SPH column met them by contact), and the same with crushed cells
+                  converted at 50 % of the first step: verdicts, thickness left, the contact
+                  work's share of the initial energy (~50 min on 2 cores)
     whipple-tillotson the seven of those shots at 6 km/s and above with SPH debris, every body
                   with the library's Mie–Grüneisen EOS (shipped) and with Tillotson's:
                   verdicts, thickness left, the debris cloud's speed, steps and the largest
@@ -1379,6 +1380,8 @@ def whipple_debris(binary, work, opts):
 # same debris meeting the faces by contact.
 WHIPPLE_SPH_FACES = [  # (folder, label, --set)
     ("kernel", "SPH particles, faces through the kernel", ["fracture.debris=sph"]),
+    ("kernel-erosion-0.5", "the same, crushed cells converted at 50 % of the first step",
+     ["fracture.debris=sph", "fracture.erosion_step_ratio=0.5"]),
 ]
 WHIPPLE_SPH_FACES_HEADER = settings_header(
     WHIPPLE_SPH_FACES, "verdict (mass through), thickness left, contact work / initial energy",
