@@ -41,6 +41,8 @@ RunSummary::TimeStep time_step_of(const Case& c, const Simulation& sim) {
                                        st.vol[t] / st.vol0[t], static_cast<long>(st.damage[t])};
   }
   ts.collapses = sim.step_collapses();
+  if (std::isfinite(sim.particle_min_dt()))
+    ts.particles = {sim.particle_limited_steps(), sim.particle_min_dt()};
   return ts;
 }
 
@@ -283,6 +285,10 @@ Json time_step_json(const RunSummary& s) {
   }
   ts["first"] = t.first;
   ts["collapses"] = falls;
+  if (t.particles) {
+    ts["particle_steps"] = t.particles->first;
+    ts["particle_min"] = t.particles->second;
+  }
   return ts;
 }
 

@@ -529,9 +529,11 @@ void Simulation::sph_stage() {
   const std::vector<Face>& faces = candidates_->primitives().faces;
   sph_->update(model_.materials, st.dt_prev, kick_, st, faces);
   const double dt = settings_.cfl * sph_->forces(st, faces).dt_stable;
+  particle_min_dt_ = std::min(particle_min_dt_, dt);
   if (dt < st.dt) {
     st.dt = dt;
     min_dt_ = std::min(min_dt_, dt);
+    ++particle_limited_steps_;
   }
   if (!(st.dt > 0.0) || !std::isfinite(st.dt)) {
     std::ostringstream os;

@@ -99,20 +99,37 @@ FaceKernel face_kernel(const Vec3& x, const Vec3& a, const Vec3& b, const Vec3& 
   const double d2 = d * d, h2 = h * h, inv_h = 1.0 / h;
   const double f_d = radial(std::abs(d) * inv_h), f_reach = radial(k_support);
   const std::array<Vec3, 3> corner{a, b, c};
-  double phi = 0.0;
-  Vec3 moment = Vec3::Zero();
+  // Each edge in the plane: its outward normal ν, the foot's distance p_e from its line, its
+  // ends t0, t1 along it; the line within reach where |t| < t_reach.
+  struct Edge {
+    Vec3 nu;
+    double pe, t0, t1, c2, t_reach;
+  };
+  std::array<Edge, 3> edges;
   bool inside = true, in_reach = false;  // the foot within the triangle; an edge within reach
   for (int e = 0; e < 3; ++e) {
+    Edge& g = edges[e];
     const Vec3& s0 = corner[e];
     Vec3 dir = corner[(e + 1) % 3] - s0;
     const double length = dir.norm();
     dir /= length;
-    const Vec3 nu = dir.cross(nrm);  // outward in the plane
-    const double pe = (s0 - p).dot(nu), t0 = (s0 - p).dot(dir), t1 = t0 + length;
-    const double c2 = pe * pe + d2;
-    inside = inside && pe >= 0.0;
-    // The edge's line within reach: |t| < t_reach; the kernel's knee at |t| = t_knee.
-    const double t_reach = c2 < 4.0 * h2 ? std::sqrt(4.0 * h2 - c2) : 0.0;
+    g.nu = dir.cross(nrm);
+    g.pe = (s0 - p).dot(g.nu);
+    g.t0 = (s0 - p).dot(dir);
+    g.t1 = g.t0 + length;
+    g.c2 = g.pe * g.pe + d2;
+    g.t_reach = g.c2 < 4.0 * h2 ? std::sqrt(4.0 * h2 - g.c2) : 0.0;
+    inside = inside && g.pe >= 0.0;
+    in_reach = in_reach || (g.t_reach > 0.0 && g.t1 > -g.t_reach && g.t0 < g.t_reach);
+  }
+  // Wholly out of reach: nothing (not the angles' round-off).
+  if (!inside && !in_reach) return out;
+  double phi = 0.0;
+  Vec3 moment = Vec3::Zero();
+  for (const Edge& g : edges) {
+    const Vec3& nu = g.nu;
+    const double pe = g.pe, t0 = g.t0, t1 = g.t1, c2 = g.c2, t_reach = g.t_reach;
+    // The kernel's knee at |t| = t_knee.
     const double t_knee = c2 < h2 ? std::sqrt(h2 - c2) : 0.0;
     // The angle [ta, tb] subtends at the foot, signed as p_e.
     const auto angle = [&](double ta, double tb) {
@@ -120,7 +137,6 @@ FaceKernel face_kernel(const Vec3& x, const Vec3& a, const Vec3& b, const Vec3& 
     };
     phi += (f_reach - f_d) * (angle(t0, std::min(t1, -t_reach)) + angle(std::max(t0, t_reach), t1));
     if (!(t_reach > 0.0) || t1 <= -t_reach || t0 >= t_reach) continue;
-    in_reach = true;
     const std::array<double, 4> cuts{-t_reach, -t_knee, t_knee, t_reach};
     double along_phi = 0.0, along_moment = 0.0;
     for (int k = 0; k < 3; ++k) {
@@ -141,8 +157,6 @@ FaceKernel face_kernel(const Vec3& x, const Vec3& a, const Vec3& b, const Vec3& 
     phi += pe * along_phi;
     moment += along_moment * nu;
   }
-  // Wholly out of reach: nothing (not the angles' round-off).
-  if (!inside && !in_reach) return out;
   // F0 = F / (π h): back to the kernel's units.
   const double scale = inv_h / std::numbers::pi;
   phi *= scale;

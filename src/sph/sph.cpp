@@ -174,18 +174,18 @@ Neighbours find_neighbours(const std::vector<Vec3>& x, const std::vector<double>
   parallel::for_each(n, [&](std::size_t i) {
     const CellKey c = cell_of(x[i], radius);
     std::vector<Index>& out = lists[i];
+    // The cells sort by x, then y, then z: the three cells along z of a column lie together.
     for (long dx = -1; dx <= 1; ++dx)
-      for (long dy = -1; dy <= 1; ++dy)
-        for (long dz = -1; dz <= 1; ++dz) {
-          const CellKey key{c[0] + dx, c[1] + dy, c[2] + dz};
-          auto it = std::lower_bound(cells.begin(), cells.end(), std::make_pair(key, Index{-1}));
-          for (; it != cells.end() && it->first == key; ++it) {
-            const std::size_t k = static_cast<std::size_t>(it->second);
-            if (k == i) continue;
-            const double hij = 0.5 * (h[i] + h[source(k)]);
-            if ((x[i] - pts[k]).norm() < reach * k_support * hij) out.push_back(it->second);
-          }
+      for (long dy = -1; dy <= 1; ++dy) {
+        const CellKey first{c[0] + dx, c[1] + dy, c[2] - 1}, last{c[0] + dx, c[1] + dy, c[2] + 1};
+        auto it = std::lower_bound(cells.begin(), cells.end(), std::make_pair(first, Index{-1}));
+        for (; it != cells.end() && !(last < it->first); ++it) {
+          const std::size_t k = static_cast<std::size_t>(it->second);
+          if (k == i) continue;
+          const double hij = 0.5 * (h[i] + h[source(k)]);
+          if ((x[i] - pts[k]).norm() < reach * k_support * hij) out.push_back(it->second);
         }
+      }
     std::sort(out.begin(), out.end());
   });
   for (std::size_t i = 0; i < n; ++i)
@@ -252,12 +252,11 @@ void Stage::find(const State& st, const std::vector<Face>& faces) {
       return;
     }
     for (long cx = a[0]; cx <= b[0]; ++cx)
-      for (long cy = a[1]; cy <= b[1]; ++cy)
-        for (long cz = a[2]; cz <= b[2]; ++cz) {
-          const CellKey key{cx, cy, cz};
-          auto it = std::lower_bound(cells.begin(), cells.end(), std::make_pair(key, Index{-1}));
-          for (; it != cells.end() && it->first == key; ++it) near(it->second);
-        }
+      for (long cy = a[1]; cy <= b[1]; ++cy) {  // a column's cells along z lie together
+        const CellKey first{cx, cy, a[2]}, last{cx, cy, b[2]};
+        auto it = std::lower_bound(cells.begin(), cells.end(), std::make_pair(first, Index{-1}));
+        for (; it != cells.end() && !(last < it->first); ++it) near(it->second);
+      }
   });
   for (const auto& list : found)
     for (const auto& pair : list) ++face_begin_[static_cast<std::size_t>(pair.first) + 1];

@@ -61,6 +61,8 @@ struct RunSummary {
   struct TimeStep {
     double cfl = 0.0, min = 0.0, first = 0.0;
     long critical_tet = -1;
+    // With SPH particles: the steps they set and their smallest step.
+    std::optional<std::pair<long, double>> particles;
     std::optional<Critical> critical;
     std::vector<StepCollapse> collapses;
   } time_step;

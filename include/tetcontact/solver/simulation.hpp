@@ -107,6 +107,10 @@ class Simulation {
   std::size_t sph_face_pairs() const { return sph_ ? sph_->face_pairs() : 0; }
   /// The smallest time step of the run, s.
   double min_dt() const { return min_dt_; }
+  /// The steps whose length the SPH particles set (their stable step below the tets'), and
+  /// the particles' smallest step (infinite without particles).
+  long particle_limited_steps() const { return particle_limited_steps_; }
+  double particle_min_dt() const { return particle_min_dt_; }
   /// The step after the first element pass, s.
   double first_dt() const { return first_dt_; }
   /// The falls of the step to a tenth of the first, a hundredth, ... (StepCollapse).
@@ -169,6 +173,8 @@ class Simulation {
   double balance_error_max_ = 0.0;
   Index critical_tet_ = -1;
   double min_dt_ = std::numeric_limits<double>::infinity();
+  long particle_limited_steps_ = 0;
+  double particle_min_dt_ = std::numeric_limits<double>::infinity();
   double first_dt_ = 0.0;          // the step after the first element pass
   double collapse_factor_ = 10.0;  // the next fall reported: below first_dt_ / this
   std::vector<StepCollapse> step_collapses_;

@@ -74,9 +74,9 @@ struct Options {
   double artificial_stress = 0.3;  // ε of the artificial stress (0: off)
   double stress_exponent = 4.0;    // n of f_ijⁿ
   bool fracture = false;           // spall damage and loosening, as the tets'
-  double step_factor = 0.6;        // k of the stable step (× the solver's cfl 0.5: 0.3 h / c)
-  double reach = 1.2;              // neighbour lists hold the pairs within reach × 2 h_ij
-  bool faces = true;               // meet the bodies' faces through the kernel (else: contact)
+  double step_factor = 0.6;  // k of the stable step (× the solver's cfl 0.5: 0.14 h / c at rest)
+  double reach = 1.2;        // neighbour lists hold the pairs within reach × 2 h_ij
+  bool faces = true;         // meet the bodies' faces through the kernel (else: contact)
 };
 
 /// A plane the particles are mirrored across: they lie where side (x[axis] − at) ≥ 0. A
