@@ -273,6 +273,7 @@ Json time_step_json(const RunSummary& s) {
     o["t"] = f.t;
     o["dt"] = f.dt;
     o["below_first"] = f.first_dt / f.dt;
+    if (f.particle >= 0) o["particle"] = static_cast<long>(f.particle);
     o["body"] = f.body;
     o["body_tet"] = static_cast<long>(f.body_tet);
     o["position"] = {f.position.x(), f.position.y(), f.position.z()};

@@ -528,12 +528,14 @@ void Simulation::sph_stage() {
   if (st.sph.size() == 0) return;
   const std::vector<Face>& faces = candidates_->primitives().faces;
   sph_->update(model_.materials, st.dt_prev, kick_, st, faces);
-  const double dt = settings_.cfl * sph_->forces(st, faces).dt_stable;
+  const sph::StepLimit limit = sph_->forces(st, faces);
+  const double dt = settings_.cfl * limit.dt_stable;
   particle_min_dt_ = std::min(particle_min_dt_, dt);
   if (dt < st.dt) {
     st.dt = dt;
     min_dt_ = std::min(min_dt_, dt);
     ++particle_limited_steps_;
+    watch_particle_step(limit.critical);
   }
   if (!(st.dt > 0.0) || !std::isfinite(st.dt)) {
     std::ostringstream os;
@@ -580,16 +582,46 @@ void Simulation::watch_step() {
   step_collapses_.push_back(c);
 }
 
+// A fall of the step that an SPH particle sets (particles are whole on every rank).
+void Simulation::watch_particle_step(Index p) {
+  const State& st = state_;
+  if (p < 0 || first_dt_ == 0.0 || !(st.dt < first_dt_ / collapse_factor_)) return;
+  while (st.dt < first_dt_ / collapse_factor_) collapse_factor_ *= 10.0;
+  StepCollapse c;
+  c.step = st.step;
+  c.t = st.t;
+  c.dt = st.dt;
+  c.first_dt = first_dt_;
+  c.particle = p;
+  c.tet = st.particle_tet[p];
+  if (c.tet >= 0) {
+    const BodyRange& b = model_.mesh.bodies[model_.mesh.tet_body[c.tet]];
+    c.body = b.name;
+    c.body_tet = c.tet - b.tet_begin;
+  }
+  c.position = st.x[st.first_particle + p];
+  c.volume_ratio = st.sph.vol[p] / st.sph.vol0[p];
+  c.pressure = st.sph.p[p];
+  c.plastic_strain = st.sph.eps_p[p];
+  c.damage = static_cast<int>(st.sph.damage[p]);
+  c.steps_to_end = (settings_.end_time - st.t) / st.dt;
+  step_collapses_.push_back(c);
+}
+
 std::string StepCollapse::message() const {
   static const char* const damage_names[] = {"intact", "damaged", "destroyed", "a particle"};
   std::ostringstream os;
   os.precision(3);
   os << "the time step fell to " << dt << " s, " << first_dt / dt << "x below the first ("
-     << first_dt << " s), at t = " << t << " s (step " << step << "): set by body '" << body
-     << "', tet " << body_tet << " at (" << position.x() << ", " << position.y() << ", "
-     << position.z() << ") m, V/V0 = " << volume_ratio << ", p = " << pressure
-     << " Pa, plastic strain " << plastic_strain << ", " << damage_names[std::clamp(damage, 0, 3)]
-     << "; at this step size " << std::fixed << std::setprecision(0) << steps_to_end
+     << first_dt << " s), at t = " << t << " s (step " << step << "): set by ";
+  if (particle >= 0)
+    os << "SPH particle " << particle << " (made of body '" << body << "', tet " << body_tet << ")";
+  else
+    os << "body '" << body << "', tet " << body_tet;
+  os << " at (" << position.x() << ", " << position.y() << ", " << position.z()
+     << ") m, V/V0 = " << volume_ratio << ", p = " << pressure << " Pa, plastic strain "
+     << plastic_strain << ", " << damage_names[std::clamp(damage, 0, 3)] << "; at this step size "
+     << std::fixed << std::setprecision(0) << steps_to_end
      << " more steps would reach end_time (the step may recover or fall further: not a "
         "forecast)";
   return os.str();

@@ -143,15 +143,15 @@ FaceKernel face_kernel(const Vec3& x, const Vec3& a, const Vec3& b, const Vec3& 
       const double ta = std::max(t0, cuts[k]), tb = std::min(t1, cuts[k + 1]);
       if (!(tb > ta)) continue;
       const double mid = 0.5 * (ta + tb), half = 0.5 * (tb - ta);
-      for (int g = 0; g < 6; ++g) {
-        const double t = mid + half * k_gauss_x[g], rho2 = t * t + pe * pe;
+      for (int q = 0; q < 6; ++q) {
+        const double t = mid + half * k_gauss_x[q], rho2 = t * t + pe * pe;
         const double f = radial(std::sqrt(rho2 + d2) * inv_h);
         // (F(s) − F(d)) / ρ² → w(d/h) / (2 h²) as ρ → 0.
         const double ratio = rho2 > 1e-24 * h2
                                  ? (f - f_d) / rho2
                                  : 0.5 * kernel(std::abs(d), h) * std::numbers::pi * h;
-        along_phi += half * k_gauss_w[g] * ratio;
-        along_moment += half * k_gauss_w[g] * (f - f_reach);
+        along_phi += half * k_gauss_w[q] * ratio;
+        along_moment += half * k_gauss_w[q] * (f - f_reach);
       }
     }
     phi += pe * along_phi;

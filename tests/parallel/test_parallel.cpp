@@ -176,10 +176,8 @@ TEST(Threads, CoarseWhippleWithSphDebrisIsBitIdenticalOn1To3Threads) {
   EXPECT_GT(test::number(s, "/fracture/sph/faces_per_particle"), 0.5);
   EXPECT_LT(test::number(s, "/penetration/max_particle_depth"), 1e-15);
   EXPECT_EQ(test::number(s, "/penetration/particles_inside_at_end"), 0);
-  // The particles set some steps' length, never one below the run's smallest.
-  EXPECT_GT(test::number(s, "/time_step/particle_steps"), 0);
-  EXPECT_LE(test::number(s, "/time_step/particle_steps"), test::number(s, "/steps"));
-  EXPECT_LE(test::number(s, "/time_step/min"), test::number(s, "/time_step/particle_min"));
+  // The particles' stable step sets most steps (measured: 2,597 of 2,687).
+  EXPECT_GT(test::number(s, "/time_step/particle_steps"), 0.5 * test::number(s, "/steps"));
 }
 
 TEST(Threads, HertzTestMeshIsBitIdenticalOn1To3Threads) {

@@ -29,10 +29,11 @@ namespace tc {
 struct StepCollapse {
   long step = 0;
   double t = 0.0, dt = 0.0, first_dt = 0.0;
-  Index tet = -1;  // global
+  Index tet = -1;       // global (a particle's: the cell it was made of)
+  Index particle = -1;  // the SPH particle that sets the step, if one does
   std::string body;
   Index body_tet = -1;           // within its body
-  Vec3 position = Vec3::Zero();  // the tet's centroid now
+  Vec3 position = Vec3::Zero();  // the tet's centroid now (a particle's centre)
   double volume_ratio = 0.0, pressure = 0.0, plastic_strain = 0.0;
   int damage = 0;
   double steps_to_end = 0.0;  // at this step, to end_time
@@ -143,7 +144,8 @@ class Simulation {
   template <class Body>
   void timed(Stage stage, Body&& body);
   [[noreturn]] void rethrow_with_body(const InvertedElement& e) const;
-  void watch_step();  // step_collapses_
+  void watch_step();                         // step_collapses_
+  void watch_particle_step(Index particle);  // the same, where an SPH particle sets the step
 
   const Model model_;  // as set up: never changed during the run
   SolverSettings settings_;
