@@ -564,22 +564,9 @@ void Simulation::watch_step() {
     bytes = mpi::broadcast(bytes, partition_.tet_rank[t]);
     std::memcpy(fields.data(), bytes.data(), sizeof(fields));
   }
-  StepCollapse c;
-  c.step = st.step;
-  c.t = st.t;
-  c.dt = st.dt;
-  c.first_dt = first_dt_;
-  c.tet = t;
-  const BodyRange& b = model_.mesh.bodies[model_.mesh.tet_body[t]];
-  c.body = b.name;
-  c.body_tet = t - b.tet_begin;
-  for (const Index k : model_.mesh.tets[t]) c.position += 0.25 * st.x[k];
-  c.volume_ratio = fields[0];
-  c.pressure = fields[1];
-  c.plastic_strain = fields[2];
-  c.damage = static_cast<int>(fields[3]);
-  c.steps_to_end = (settings_.end_time - st.t) / st.dt;
-  step_collapses_.push_back(c);
+  Vec3 centroid = Vec3::Zero();
+  for (const Index k : model_.mesh.tets[t]) centroid += 0.25 * st.x[k];
+  record_fall(t, -1, centroid, fields);
 }
 
 // A fall of the step that an SPH particle sets (particles are whole on every rank).
@@ -587,23 +574,35 @@ void Simulation::watch_particle_step(Index p) {
   const State& st = state_;
   if (p < 0 || first_dt_ == 0.0 || !(st.dt < first_dt_ / collapse_factor_)) return;
   while (st.dt < first_dt_ / collapse_factor_) collapse_factor_ *= 10.0;
+  const Index fp = st.first_particle;
+  record_fall(st.particle_tet[p], p, st.x[fp + p],
+              {st.sph.vol[p] / st.sph.vol0[p], st.sph.p[p], st.sph.eps_p[p],
+               static_cast<double>(st.sph.damage[p])});
+}
+
+// A fall's record: when, what sets the step (a tet, or an SPH particle and the tet it was made
+// of), where (the tet's centroid, the particle's centre) and its state: V/V0, p, plastic
+// strain, damage.
+void Simulation::record_fall(Index tet, Index particle, const Vec3& position,
+                             const std::array<double, 4>& fields) {
+  const State& st = state_;
   StepCollapse c;
   c.step = st.step;
   c.t = st.t;
   c.dt = st.dt;
   c.first_dt = first_dt_;
-  c.particle = p;
-  c.tet = st.particle_tet[p];
-  if (c.tet >= 0) {
-    const BodyRange& b = model_.mesh.bodies[model_.mesh.tet_body[c.tet]];
+  c.tet = tet;
+  c.particle = particle;
+  if (tet >= 0) {
+    const BodyRange& b = model_.mesh.bodies[model_.mesh.tet_body[tet]];
     c.body = b.name;
-    c.body_tet = c.tet - b.tet_begin;
+    c.body_tet = tet - b.tet_begin;
   }
-  c.position = st.x[st.first_particle + p];
-  c.volume_ratio = st.sph.vol[p] / st.sph.vol0[p];
-  c.pressure = st.sph.p[p];
-  c.plastic_strain = st.sph.eps_p[p];
-  c.damage = static_cast<int>(st.sph.damage[p]);
+  c.position = position;
+  c.volume_ratio = fields[0];
+  c.pressure = fields[1];
+  c.plastic_strain = fields[2];
+  c.damage = static_cast<int>(fields[3]);
   c.steps_to_end = (settings_.end_time - st.t) / st.dt;
   step_collapses_.push_back(c);
 }

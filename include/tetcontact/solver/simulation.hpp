@@ -1,6 +1,7 @@
 // One explicit run: the step composed from the stages the case needs.
 #pragma once
 
+#include <array>
 #include <chrono>
 #include <limits>
 #include <string>
@@ -146,6 +147,8 @@ class Simulation {
   [[noreturn]] void rethrow_with_body(const InvertedElement& e) const;
   void watch_step();                         // step_collapses_
   void watch_particle_step(Index particle);  // the same, where an SPH particle sets the step
+  void record_fall(Index tet, Index particle, const Vec3& position,
+                   const std::array<double, 4>& fields);
 
   const Model model_;  // as set up: never changed during the run
   SolverSettings settings_;
