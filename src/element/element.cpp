@@ -267,7 +267,7 @@ struct CellKinematics {
   double w_p = 0.0, dvol = 0.0;
   bool eroding = false;
   const bool failed = options.fracture && st.damage[t] != Damage::intact;
-  const double w_dev = deviator_work(mat, c.m, rho_mid, failed, tau, pt, w_p, eroding);
+  const double w_dev = deviator_work(mat, c.m, c.m.d, rho_mid, failed, tau, pt, w_p, eroding);
   if (eroding) block.eroding.push_back(ti);
   // Viscosity from the mid-step strain rate, in compression only, over the smallest altitude.
   double q = 0.0;

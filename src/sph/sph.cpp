@@ -331,17 +331,25 @@ void Stage::update(const std::vector<Material>& materials, double tau, double ta
     }
     // Where faces stand in for neighbours, they give the body's velocity at the face, not its
     // gradient beyond it: the gradient is corrected there so that a linear field's is exact
-    // (L B⁻¹; B well conditioned, else the plain sum). Elsewhere the plain sum, whose work is
-    // the forces' to the bit.
-    if (met) {
-      const Mat3 inv = B.inverse();
-      if (inv.allFinite() && inv.norm() < 4.0) L = L * inv;
-    }
-    PointMotion c;
+    // (L B⁻¹; B well conditioned, else the plain sum), and the volume and the deviator follow
+    // the corrected rate. The work is taken with the plain sum's rate, whose work is the
+    // forces' to the bit: the corrected rate's work is not theirs (it broke the balance by
+    // 1e-2 on a Whipple shot whose intact crushed cells became particles).
+    PointMotion c, plain;
     double Lr[3][3];
     for (int a = 0; a < 3; ++a)
       for (int b = 0; b < 3; ++b) Lr[a][b] = L(a, b);
-    set_rates(Lr, c);
+    set_rates(Lr, plain);
+    c = plain;
+    if (met) {
+      const Mat3 inv = B.inverse();
+      if (inv.allFinite() && inv.norm() < 4.0) {
+        const Mat3 lc = L * inv;
+        for (int a = 0; a < 3; ++a)
+          for (int b = 0; b < 3; ++b) Lr[a][b] = lc(a, b);
+        set_rates(Lr, c);
+      }
+    }
     // dV/dt = V tr D by the trapezoid: ΔV = τ tr D V^{n+1/2}. A failed particle in expansion
     // opens cracks instead: its solid grows only up to the volume where its pressure at its
     // energy is zero (particle_volume), beyond which the particles part as fragments (their
@@ -377,10 +385,17 @@ void Stage::update(const std::vector<Material>& materials, double tau, double ta
     c.vol_mid = 0.5 * (pm.vol[i] + c.vol_end);
     const MaterialPoint pt = particle_point(st, static_cast<Index>(i));
     const double mass = st.m[fp + i];
+    const double vol_start = pm.vol[i];
     double w_p = 0.0, dvol = 0.0;
     bool eroding = false;
-    const double w_dev = deviator_work(mat, c, mass / c.vol_mid, failed, tau, pt, w_p, eroding);
+    const double w_dev =
+        deviator_work(mat, c, plain.d, mass / c.vol_mid, failed, tau, pt, w_p, eroding);
     double w_q = viscous_work(mat, c, 0.0, w_p, pt, dvol);
+    // The pressure's work over the plain rate's volume change, where it differs: the volume
+    // the EOS reads is the corrected one's, the energy the forces'.
+    const double half_plain = 0.5 * tau * plain.trace;
+    if (c.trace != plain.trace && !(failed && half > 0.0) && half_plain < 1.0 && half_plain > -1.0)
+      dvol = vol_start * 2.0 * half_plain / (1.0 - half_plain);
     // The pair heat of the last forces over the kick that applied them.
     if (i < heat_rate_.size()) {  // not for a particle made since the last forces
       const double w_pair = (heat_rate_[i] + heat_curve_[i] * tau_kick) * tau_kick;

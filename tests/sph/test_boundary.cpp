@@ -253,9 +253,9 @@ std::unique_ptr<Simulation> patch_run(bool convert, bool faces, double end) {
 // nodes, pressures over the twin's, velocities over ε̇ dx (4 m/s, the field's across a cell):
 //
 //                        faces: kernel   contact alone (the hole a free surface)
-//   particles' p             1.4 %          36 %
-//   particles' v             0.89           1.56
-//   cells around: p          8.5 %          15 %
+//   particles' p             1.2 %          36 %
+//   particles' v             0.88           1.56
+//   cells around: p          8.6 %          15 %
 //   hole's nodes: v          0.52           1.41
 //
 // The particles' velocities drift (2 % of a neighbour's term: a uniform stress is not exactly

@@ -1346,6 +1346,8 @@ WHIPPLE_DEBRIS = [  # (folder, label, --set)
     ("sph", "SPH particles", ["fracture.debris=sph"]),
     ("sph-erosion-0.5", "SPH particles, crushed cells converted at 50 % of the first step",
      ["fracture.debris=sph", "fracture.erosion_step_ratio=0.5"]),
+    ("kernel-erosion-0.75", "the same, converted at 75 % of the first step",
+     ["fracture.debris=sph", "fracture.erosion_step_ratio=0.75"]),
 ]
 WHIPPLE_DEBRIS_HEADER = settings_header(
     WHIPPLE_DEBRIS, "verdict (mass through), thickness left, contact work / initial energy",
@@ -1382,6 +1384,8 @@ WHIPPLE_SPH_FACES = [  # (folder, label, --set)
     ("kernel", "SPH particles, faces through the kernel", ["fracture.debris=sph"]),
     ("kernel-erosion-0.5", "the same, crushed cells converted at 50 % of the first step",
      ["fracture.debris=sph", "fracture.erosion_step_ratio=0.5"]),
+    ("kernel-erosion-0.75", "the same, converted at 75 % of the first step",
+     ["fracture.debris=sph", "fracture.erosion_step_ratio=0.75"]),
 ]
 WHIPPLE_SPH_FACES_HEADER = settings_header(
     WHIPPLE_SPH_FACES, "verdict (mass through), thickness left, contact work / initial energy",

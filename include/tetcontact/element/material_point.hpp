@@ -155,17 +155,20 @@ inline double sound_speed2(const Material& m, double mu, double p, const EosTerm
 ///   D += Δε̄p / ε_f(σ*, ε̇p, T),  σ* = −p / σ_eq  (the start's pressure, the returned deviator);
 /// the increments taken with ε_f at its floor are also summed apart (`ductile_floor`), or left
 /// out where the material has no ductile failure at the floor. `failed`: the point is damaged
-/// and the case has fracture (no deviator).
+/// and the case has fracture (no deviator). `d_work`: the rate the work is taken with, the
+/// forces' own where the stress is updated with a corrected one (an SPH particle at a face);
+/// c.d otherwise.
 [[gnu::always_inline]] inline double deviator_work(const Material& mat, const PointMotion& c,
-                                                   double rho_mid, bool failed, double tau,
-                                                   MaterialPoint pt, double& w_p, bool& eroding) {
+                                                   const Sym6& d_work, double rho_mid, bool failed,
+                                                   double tau, MaterialPoint pt, double& w_p,
+                                                   bool& eroding) {
   const Sym6 s_old = pt.s;
   const DeviatorIncrement inc =
       failed ? DeviatorIncrement{}
              : update_deviator6(mat, pt.s, c.d, c.w, tau, pt.eps_p, pt.temperature, rho_mid, pt.p);
   const Sym6& s_new = pt.s;
   double sd = 0.0;
-  for (int k = 0; k < 6; ++k) sd += (k < 3 ? 1.0 : 2.0) * (s_old[k] + s_new[k]) * c.d[k];
+  for (int k = 0; k < 6; ++k) sd += (k < 3 ? 1.0 : 2.0) * (s_old[k] + s_new[k]) * d_work[k];
   const double w_dev = 0.5 * tau * c.vol_mid * sd;
   w_p = 0.0;
   if (inc.dplastic > 0.0) {
