@@ -132,7 +132,7 @@ TEST(Sph, UniformStressInAMirrorBoxExertsNoForce) {
 
 // Two aluminium blocks meet at 1 km/s: momentum kept to round-off; energy (kinetic at the
 // whole step, U^{n+1/2} + ½ τ F/m, plus internal, plus the pair heat of that half kick, which the
-// next update books) to 5e-4 of the kinetic energy at every step (measured 4.8e-5). Without the
+// next update books) to 5e-4 of the kinetic energy at every step (measured 4.0e-5). Without the
 // half kick's heat the kinetic energy runs ahead of the heat by half a step's: 3.3e-3 at most
 // while the blocks are crushed (asserted above 1e-3).
 TEST(Sph, CollisionKeepsMomentumAndEnergy) {

@@ -71,7 +71,8 @@ ParticleRod particle_rod(const std::vector<std::string>& sets) {
 // against the tets' 8.45 and the measured 8.3 (+0.9 %, +2.7 %). With bilinear strength at
 // 0.1 GPa in place of Steinberg–Guinan's (Y0 0.29 GPa) the rod of particles ends at 6.07 mm
 // (−27 %): the strength the particles carry holds its length. The largest balance error,
-// 7.9e-3 (the tets' rod: 1.1e-4).
+// 1.4e-4 (the tets' rod: 1.1e-4); 7.9e-3 with the pairs' heat booked at the forces' kick
+// alone, not at the velocities the anvil leaves the particles it holds.
 TEST(SphTaylor, AluminiumRodOfParticlesKeepsItsTetTwinsAndTheMeasuredLength) {
   const test::CaseRun tets = test::run_case("data/cases/taylor.yaml", row());
   const double tet_length = tets.measured("final length");
@@ -90,7 +91,7 @@ TEST(SphTaylor, AluminiumRodOfParticlesKeepsItsTetTwinsAndTheMeasuredLength) {
   EXPECT_NEAR(rod.length / tet_length, 1.0, 0.05);
   EXPECT_LT(weak.length / k_lf_measured, 0.95);
   EXPECT_LT(rod.momentum_error, 1e-12);
-  EXPECT_LT(rod.balance_error_max, 1e-2);
+  EXPECT_LT(rod.balance_error_max, 1e-3);
 }
 
 }  // namespace

@@ -160,20 +160,30 @@ class Stage {
     unsigned mask;  // of the image (0: the particle)
     Face face;      // its nodes
     std::array<double, 3> w;
-    Vec3 coef;   // the heat's: rate = coef · v_if, in the point's frame
-    Vec3 force;  // on the point (the face's nodes take −w_v of it)
+    Vec3 coef;    // the heat's: rate = coef · v_if, in the point's frame
+    Vec3 force;   // on the point (the face's nodes take −w_v of it)
+    Vec3 v_face;  // Σ_v w_v v_v at the forces
   };
+  struct PairTerms {
+    Vec3 g;
+    Sym6 a;
+    double mu;
+    bool extra;  // A_ij ≠ 0
+  };
+  PairTerms pair_terms(const ParticleMatter& pm, std::size_t i, std::size_t k, Index j,
+                       const Vec3& r, const Vec3& dv) const;
+  std::vector<double> kick_heat(const State& st, double tau_kick) const;
   Options options_;
   std::vector<MirrorPlane> planes_;
   std::vector<SymmetryPlane> symmetry_;  // the same planes, to reflect across
   Neighbours neighbours_;
-  std::vector<Vec3> x_, v_;         // the points: the particles, then the ghosts
-  std::vector<Sym6> stress_, art_;  // per point: σ/ρ², and R (the artificial stress)
-  std::vector<Vec3> acc_;           // per point: the acceleration of the last forces
-  std::vector<double> heat_rate_;   // per particle: −½ Σ_j m_i m_j v_ij·A_ij ∇W, J/s
-  std::vector<Vec3> plane_force_;   // per particle: the mirror images' part of the force
-  std::vector<double> heat_curve_;  // per particle: its part in τ_v² (the kick's mean velocity)
-  std::vector<Index> ghost_begin_;  // per particle: its images n + [begin, end)
+  std::vector<Vec3> x_, v_;           // the points: the particles, then the ghosts
+  std::vector<Sym6> stress_, art_;    // per point: σ/ρ², and R (the artificial stress)
+  std::vector<double> heat_rate_;     // per particle: −½ Σ_j m_i m_j v_ij·A_ij ∇W, J/s
+  std::vector<Vec3> plane_force_;     // per particle: the mirror images' part of the force
+  std::vector<FaceTerm> face_terms_;  // the last forces' face terms, by particle
+  std::vector<Index> term_begin_;     // per particle: its terms [begin, end)
+  std::vector<Index> ghost_begin_;    // per particle: its images n + [begin, end)
   std::vector<Index> face_begin_, face_list_;  // per point: the faces within its reach
   bool fresh_ = false;                         // the lists are of the current positions (update's)
 };
