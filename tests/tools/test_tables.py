@@ -102,9 +102,9 @@ def test_command_line_refuses_before_running(tmp_path):
 def test_every_table_has_a_command():
     assert T.NAMES == ["stability", "micro", "profile", "ccd", "verify", "verify-full", "threads",
                        "mpi", "whipple", "whipple-mesh", "whipple-hole", "strength", "taylor-tests",
-                       "taylor-temper", "whipple-shots", "whipple-refined", "whipple-defaults",
-                       "whipple-wall", "whipple-tear", "whipple-debris", "whipple-sph-faces",
-                       "whipple-tillotson", "hugoniot"]
+                       "taylor-temper", "whipple-shots", "whipple-shots-sph", "whipple-refined",
+                       "whipple-defaults", "whipple-wall", "whipple-tear", "whipple-debris",
+                       "whipple-sph-faces", "whipple-tillotson", "hugoniot"]
     assert list(T.TABLES) == T.NAMES
 
 

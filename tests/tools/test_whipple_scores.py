@@ -46,6 +46,13 @@ def test_scores_and_figures(out):
     assert len(pngs) == 2
     for p in pngs:
         assert open(os.path.join(camp, p), "rb").read(8) == b"\x89PNG\r\n\x1a\n"
+    # --errors: the engine's one wrong call (row 2) is an NP shot called P.
+    r = run_tool("post/whipple_scores.py", table, camp, "--markdown", "--errors", check=0)
+    lines = r.stdout.splitlines()
+    assert lines[0].endswith("| engine wrong: P called NP / NP called P |")
+    assert lines[-1].endswith(f"({100 * q / 3:.0f} %) | 0 / 1 |")
+    assert any(x.startswith("| AA6061-T6 0.7874 mm | 50.8 mm | AA6061-T6 4.064 mm |")
+               and x.endswith("| 0 / 0 |") for x in lines)
     # --figures into a folder that is not there yet: made.
     figures = os.path.join(out, "figures", "new")
     run_tool("post/whipple_scores.py", table, camp, "--figures", figures, check=0)

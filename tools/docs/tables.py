@@ -45,6 +45,10 @@ NAME, the table:
                   measured ones per configuration, and the engine's ballistic limit
                   (`tetcontact limit`) of each shield at 3, 5 and 7 km/s;
                   data/figures/whipple-*.png (~60 min on 2 cores)
+    whipple-shots-sph the same shots with SPH debris, crushed cells converted at half the
+                  first step: per configuration the engine's and the equation's right calls,
+                  and the engine's wrong calls on each side (no limit search; ~90 min on 2
+                  cores)
     whipple-refined   sixteen of those shots (the 6061-T6 shield's) on the shipped mesh and with
                   the rear wall's cells three times finer: each verdict and the wall's thickness
                   left (~35 min on 2 cores)
@@ -113,7 +117,7 @@ from tools.common.summary_keys import get  # noqa: E402
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 NAMES = ["stability", "micro", "profile", "ccd", "verify", "verify-full", "threads", "mpi",
          "whipple", "whipple-mesh", "whipple-hole", "strength", "taylor-tests", "taylor-temper",
-         "whipple-shots", "whipple-refined", "whipple-defaults", "whipple-wall", "whipple-tear",
+         "whipple-shots", "whipple-shots-sph", "whipple-refined", "whipple-defaults", "whipple-wall", "whipple-tear",
          "whipple-debris", "whipple-sph-faces", "whipple-tillotson", "hugoniot"]
 
 
@@ -910,23 +914,32 @@ WHIPPLE_SHOTS = [  # (folder, --rows): normal shots of shields whose shots strad
 ]
 
 
-def whipple_shots(binary, work, opts):
-    """The shots of WHIPPLE_SHOTS (a campaign each, the cores at once), scored against the
-    Christiansen equation per configuration; the figures into data/figures."""
+def whipple_shot_campaigns(binary, work, prefix, sets):
+    """A campaign of data/cases/whipple.yaml per shield of WHIPPLE_SHOTS (the cores at once),
+    with these --set lines: the campaigns' folders, the runs' own seconds added up."""
     table = os.path.join(VALIDATION, "whipple-shots.csv")
     if not os.path.isfile(table):
         raise SystemExit(f"tables.py: error: {table}: no such file (the shared Whipple shots)")
     folders, seconds = [], 0.0
     for name, rows in WHIPPLE_SHOTS:
-        out = os.path.join(work, "whipple-" + name)
+        out = os.path.join(work, prefix + name)
         cmd = [binary, "campaign", os.path.join(ROOT, "data/cases/whipple.yaml"), table,
                "--quiet", "--out", out, "--rows", rows]
+        for x in sets:
+            cmd += ["--set", x]
         r = subprocess.run(cmd, capture_output=True, text=True)
         if r.returncode != 0:
             raise SystemExit(f"tables.py: error: {' '.join(cmd)}: exit {r.returncode}\n{r.stderr}")
         with open(os.path.join(out, "predictions.csv")) as f:
             seconds += sum(float(x["wall_seconds"] or 0) for x in csv.DictReader(f))
         folders.append(out)
+    return table, folders, seconds
+
+
+def whipple_shots(binary, work, opts):
+    """The shots of WHIPPLE_SHOTS (a campaign each, the cores at once), scored against the
+    Christiansen equation per configuration; the figures into data/figures."""
+    table, folders, seconds = whipple_shot_campaigns(binary, work, "whipple-", [])
     limits_csv = os.path.join(work, "whipple-limits.csv")
     limit_lines, limit_seconds = whipple_limits(binary, work, table, limits_csv)
     r = subprocess.run(["/usr/bin/python3", os.path.join(ROOT, "tools/post/whipple_scores.py"),
@@ -942,6 +955,29 @@ def whipple_shots(binary, work, opts):
     yield ""
     yield (f"The searches' runs' own times added up: {limit_seconds / 60:.0f} min (one thread "
            f"each, the cores at once).")
+
+
+# whipple-shots-sph: the same shots with SPH debris, crushed cells converted at half the first
+# step (the sixteen shots' measured choice, whipple-sph-faces); the engine's wrong calls on each
+# side beside its score. No limit search: with SPH debris it would cost about five times the
+# point masses' 67 minutes.
+WHIPPLE_SHOTS_SPH_SETS = ["fracture.debris=sph", "fracture.erosion_step_ratio=0.5"]
+
+
+def whipple_shots_sph(binary, work, opts):
+    """The shots of WHIPPLE_SHOTS with WHIPPLE_SHOTS_SPH_SETS, scored against the Christiansen
+    equation per configuration, with the engine's wrong calls on each side; the figures into the
+    work folder."""
+    table, folders, seconds = whipple_shot_campaigns(binary, work, "whipple-sph-",
+                                                     WHIPPLE_SHOTS_SPH_SETS)
+    r = subprocess.run(["/usr/bin/python3", os.path.join(ROOT, "tools/post/whipple_scores.py"),
+                        table] + folders + ["--markdown", "--errors", "--figures",
+                                            os.path.join(work, "whipple-sph-figures")],
+                       capture_output=True, text=True, check=True)
+    yield from r.stdout.splitlines()
+    yield ""
+    yield (f"The runs' own times added up: {seconds / 60:.0f} min (one thread each, with "
+           f"{', '.join('`--set ' + x + '`' for x in WHIPPLE_SHOTS_SPH_SETS)}).")
 
 
 # The engine's ballistic limit on each figure's shield: (the campaign's folder, the wall's cm,
@@ -1550,6 +1586,7 @@ TABLES = {"stability": stability, "micro": micro, "profile": profile, "ccd": ccd
           "verify-full": verify_full, "threads": threads, "mpi": mpi, "whipple": whipple,
           "whipple-mesh": whipple_mesh, "whipple-hole": whipple_hole, "strength": strength,
           "taylor-tests": taylor_tests, "taylor-temper": taylor_temper, "whipple-shots": whipple_shots,
+          "whipple-shots-sph": whipple_shots_sph,
           "whipple-refined": whipple_refined, "whipple-defaults": whipple_defaults,
           "whipple-wall": whipple_wall, "whipple-tear": whipple_tear,
           "whipple-debris": whipple_debris, "whipple-sph-faces": whipple_sph_faces,

@@ -2,7 +2,8 @@
 """Scores a campaign of Whipple-shield shots against the Christiansen equation on the same
 shots, per shield configuration, and draws each configuration's shots in diameter–speed.
 
-    whipple_scores.py TABLE.csv DIR... [--figures DIR] [--markdown] [--limits LIMITS.csv]
+    whipple_scores.py TABLE.csv DIR... [--figures DIR] [--markdown] [--errors]
+                      [--limits LIMITS.csv]
 
 TABLE.csv: the table the campaigns ran (the shared database's format: cm, km/s, ksi under a
 row of units); each DIR a `tetcontact campaign data/cases/whipple.yaml TABLE.csv` folder (its
@@ -12,7 +13,9 @@ tools/common/christiansen.py's critical diameter for that shot's bumper, wall (t
 yield `wall_yield`), standoff, densities, speed and obliquity. A configuration is the bumper's
 alloy and thickness, the standoff and the wall's alloy and thickness. Prints, per
 configuration and over all, the shots, P and NP measured, and the engine's and the equation's
-right calls and accuracy (a markdown table with --markdown), and writes
+right calls and accuracy (a markdown table with --markdown; with --errors a column more: the
+engine's wrong calls on each side, a perforated shield called safe / a safe one called
+perforated), and writes
 whipple-<configuration>.png per configuration into --figures (default the first DIR; made
 when missing): the
 shots, P filled and NP open, the engine's wrong calls crossed, and the equation's curve at the
@@ -73,7 +76,7 @@ def main(argv):
     if not argv or argv[0] in ("-h", "--help"):
         print(__doc__)
         return 0 if argv else 2
-    figures, markdown, args, limits_path = None, False, [], None
+    figures, markdown, errors, args, limits_path = None, False, False, [], None
     i = 0
     while i < len(argv):
         if argv[i] == "--figures":
@@ -89,12 +92,15 @@ def main(argv):
         elif argv[i] == "--markdown":
             markdown = True
             i += 1
+        elif argv[i] == "--errors":
+            errors = True
+            i += 1
         else:
             args.append(argv[i])
             i += 1
     if len(args) < 2:
         fail("usage: whipple_scores.py TABLE.csv DIR... [--figures DIR] [--markdown] "
-             "[--limits LIMITS.csv]")
+             "[--errors] [--limits LIMITS.csv]")
     table = read_table(args[0])
     limits = read_limits(limits_path) if limits_path else {}
     shots = {}  # row number → (shot, engine's verdict)
@@ -121,32 +127,42 @@ def main(argv):
                  f"shots (--limits)")
     lines = []
     if markdown:
-        lines += ["| bumper | standoff | wall | shots (P / NP) | engine right | equation right |",
-                  "|---|---|---|---|---|---|"]
-    totals = [0, 0, 0, 0]
+        head = "| bumper | standoff | wall | shots (P / NP) | engine right | equation right |"
+        rule = "|---|---|---|---|---|---|"
+        if errors:
+            head += " engine wrong: P called NP / NP called P |"
+            rule += "---|"
+        lines += [head, rule]
+    totals = [0, 0, 0, 0, 0, 0]
     for key, members in sorted(groups.items()):
         p = sum(1 for _, s, _ in members if s["result"] == "P")
         e = sum(1 for _, s, v in members if v == s["result"])
         q = sum(1 for _, s, _ in members if equation_says(s) == s["result"])
+        unsafe = sum(1 for _, s, v in members if s["result"] == "P" and v != "P")
         n = len(members)
-        totals = [totals[0] + n, totals[1] + p, totals[2] + e, totals[3] + q]
+        totals = [a + b for a, b in zip(totals, [n, p, e, q, unsafe, n - e - unsafe])]
         bumper = f"{key[0]} {float(key[1]) * 10:g} mm"
         wall = f"{key[3]} {float(key[4]) * 10:g} mm"
+        side = f" {unsafe} / {n - e - unsafe} |" if errors else ""
         if markdown:
             lines.append(f"| {bumper} | {float(key[2]) * 10:g} mm | {wall} | {n} ({p} / {n - p}) | "
-                         f"{e} ({100 * e / n:.0f} %) | {q} ({100 * q / n:.0f} %) |")
+                         f"{e} ({100 * e / n:.0f} %) | {q} ({100 * q / n:.0f} %) |" + side)
         else:
             lines.append(f"{bumper}, standoff {float(key[2]) * 10:g} mm, {wall}: {n} shots "
-                         f"({p} P, {n - p} NP): engine right on {e}, equation on {q}")
-    n, p, e, q = totals
+                         f"({p} P, {n - p} NP): engine right on {e}, equation on {q}"
+                         + (f"; engine wrong {unsafe} P called NP, {n - e - unsafe} NP called P"
+                            if errors else ""))
+    n, p, e, q, unsafe, safe = totals
     if n == 0:
         fail("no shot with a prediction")
     if markdown:
         lines.append(f"| all | | | {n} ({p} / {n - p}) | {e} ({100 * e / n:.0f} %) | "
-                     f"{q} ({100 * q / n:.0f} %) |")
+                     f"{q} ({100 * q / n:.0f} %) |" + (f" {unsafe} / {safe} |" if errors else ""))
     else:
         lines.append(f"all: {n} shots ({p} P, {n - p} NP): engine right on {e} "
-                     f"({100 * e / n:.0f} %), equation on {q} ({100 * q / n:.0f} %)")
+                     f"({100 * e / n:.0f} %), equation on {q} ({100 * q / n:.0f} %)"
+                     + (f"; engine wrong {unsafe} P called NP, {safe} NP called P"
+                        if errors else ""))
     print("\n".join(lines))
     figures = figures or args[1]
     if os.path.exists(figures) and not os.path.isdir(figures):
