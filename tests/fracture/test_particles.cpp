@@ -371,7 +371,10 @@ TEST(Fragmentation, AClusterCoheringWithItsMirrorImageSpansTheSymmetryPlane) {
 // energy are as exact as a point mass's. A destroyed cell drawn out far beyond its volume becomes
 // its material at the volume where its pressure at its energy is zero (no kick): with
 // Mie–Grüneisen on its linear branch of expansion, with Tillotson by Newton's iteration; a hot
-// Tillotson state (above E_cv) is a gas with no such volume and starts at twice V0.
+// Tillotson state (above E_cv) is a gas with no such volume and starts at twice V0. A compressed
+// cell whose EOS reads more than its pressure (a cell crushed under the average nodal pressure)
+// becomes its material at the larger volume where the EOS reads the cell's pressure; one whose
+// EOS reads less keeps its volume.
 static void particle_keeps_cells_state(const Material& al, double heat = 1e6) {
   Model model = test::single_body_model(make_box(Vec3(1, 1, 1), {3, 3, 3}, HexSplit::six), al);
   State st = initial_state(model);
@@ -380,11 +383,13 @@ static void particle_keeps_cells_state(const Material& al, double heat = 1e6) {
   const TetNeighbours nb = tet_neighbours(model.mesh);
   std::vector<Index> boundary;
   for (Index t = 0; t < model.mesh.tet_count(); ++t)
-    if (std::count(nb[t].begin(), nb[t].end(), -1) > 0 && boundary.size() < 2)
+    if (std::count(nb[t].begin(), nb[t].end(), -1) > 0 && boundary.size() < 3)
       boundary.push_back(t);
-  ASSERT_EQ(boundary.size(), 2u);
-  // An eroded cell, compressed and strained; a destroyed one drawn out to 50 times its volume.
-  const Index eroded = boundary[0], drawn = boundary[1];
+  ASSERT_EQ(boundary.size(), 3u);
+  // An eroded cell, compressed and strained, whose EOS reads far more than its 3 GPa; a
+  // destroyed one drawn out to 50 times its volume; an eroded one whose EOS reads 1 GPa less
+  // than its pressure.
+  const Index eroded = boundary[0], drawn = boundary[1], kept = boundary[2];
   st.vol[eroded] = 0.8 * st.vol0[eroded];
   st.s[eroded] = Sym6{1e8, -0.5e8, -0.5e8, 2e7, 0, -1e7};
   st.p[eroded] = 3e9;
@@ -395,17 +400,23 @@ static void particle_keeps_cells_state(const Material& al, double heat = 1e6) {
   st.damage[drawn] = Damage::destroyed;
   st.vol[drawn] = 50.0 * st.vol0[drawn];
   st.e_int[drawn] = heat * al.density * st.vol0[drawn];  // 1 MJ/kg of heat by default
+  st.vol[kept] = 0.9 * st.vol0[kept];
+  st.e_int[kept] = 2.0;
+  st.p[kept] = eos_pressure(al, 1.0 / 0.9 - 1.0, 2.0 / st.vol0[kept]) + 1e9;
+  ASSERT_GT(eos_pressure(al, 0.25, 2.0 / st.vol0[eroded]), 3.0 * st.p[eroded]);
   const Totals before = totals(st);
   const State cells = st;
 
   Fragmentation frag(model.mesh, Fragments::cells, 1.3);
-  frag.erode({eroded});
-  EXPECT_EQ(frag.convert(model.mesh, model.materials, st), 2);
-  ASSERT_EQ(st.particle_count(), 2);
-  ASSERT_EQ(st.sph.size(), 2);
-  for (Index i = 0; i < 2; ++i) {
+  frag.erode({eroded, kept});
+  EXPECT_EQ(frag.convert(model.mesh, model.materials, st), 3);
+  ASSERT_EQ(st.particle_count(), 3);
+  ASSERT_EQ(st.sph.size(), 3);
+  Index e = -1, d = -1, k = -1;
+  for (Index i = 0; i < 3; ++i) {
     const Index t = st.particle_tet[i], node = st.first_particle + i;
-    SCOPED_TRACE(t == eroded ? "eroded" : "drawn out");
+    (t == eroded ? e : t == drawn ? d : k) = i;
+    SCOPED_TRACE(t == eroded ? "eroded" : t == drawn ? "drawn out" : "kept");
     EXPECT_EQ(st.sph.s[i], cells.s[t]);
     EXPECT_EQ(st.sph.p[i], cells.p[t]);
     EXPECT_EQ(st.sph.eps_p[i], cells.eps_p[t]);
@@ -417,8 +428,15 @@ static void particle_keeps_cells_state(const Material& al, double heat = 1e6) {
     EXPECT_DOUBLE_EQ(st.sph.h[i], 1.3 * std::cbrt(cells.vol0[t]));
     EXPECT_DOUBLE_EQ(st.sph.rho[i] * st.sph.vol[i], st.m[node]);
   }
-  const Index e = st.particle_tet[0] == eroded ? 0 : 1, d = 1 - e;
-  EXPECT_EQ(st.sph.vol[e], cells.vol[eroded]);
+  ASSERT_TRUE(e >= 0 && d >= 0 && k >= 0);
+  // The crushed cell: at the volume where its EOS at its energy reads its 3 GPa, larger than its
+  // own; the other keeps its volume.
+  EXPECT_GT(st.sph.vol[e], cells.vol[eroded]);
+  EXPECT_LT(st.sph.vol[e], cells.vol0[eroded]);
+  EXPECT_NEAR(eos_pressure(al, st.sph.vol0[e] / st.sph.vol[e] - 1.0,
+                           st.particle_energy[e] / st.sph.vol0[e]),
+              3e9, 1e-9 * 3e9);
+  EXPECT_EQ(st.sph.vol[k], cells.vol[kept]);
   // The drawn-out cell: p(V, E) = 0 at its volume (k μ + Γ E / V0 with Mie–Grüneisen), well
   // below 50 V0.
   const double mu = st.sph.vol0[d] / st.sph.vol[d] - 1.0;

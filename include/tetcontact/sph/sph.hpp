@@ -197,7 +197,9 @@ Index append_matter(ParticleMatter& pm, const Material& m, Index material, doubl
 /// Appends the particle a cell of material m becomes: the cell's state as it stands (deviator,
 /// pressure, plastic strain, damage, temperature, sound speed, material; its volume, but for a
 /// cell stretched beyond the volume where its pressure at the particle's energy `energy` is
-/// zero: that volume), density mass/V, smoothing length h. Its internal energy is the
+/// zero: that volume, and for a compressed cell whose EOS reads more than the cell's pressure
+/// at that energy, as under the average nodal pressure: the larger volume where it reads the
+/// cell's pressure, at most 2 V0), density mass/V, smoothing length h. Its internal energy is the
 /// particle's (State::particle_energy), its mass, position and velocity its node's, both the
 /// caller's.
 Index append_cell_matter(ParticleMatter& pm, const State& st, Index tet, double mass, double h,
