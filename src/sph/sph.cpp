@@ -74,10 +74,11 @@ CellKey cell_of(const Vec3& x, double size) {
 // energy is the cell's pressure p_cell, the one the forces last took from it, if that volume is
 // larger than the cell's. Under the average nodal pressure a cell's pressure is its nodes' mean
 // and its energy follows that pressure's work, so a cell crushed alone reaches a volume whose
-// own EOS pressure is far above its neighbours' (a Whipple sphere's cell converted at
-// V/V0 = 0.45 under 80 GPa read 455 GPa from its EOS as a particle, expanded at once, left at
-// 3.6 km/s against the sphere's motion with −38 MJ/kg). On the bracket [V, 2 V0] the pressure
-// falls with the volume; a bracket whose far end still holds more than p_cell gives 2 V0.
+// own EOS pressure is far above its neighbours' (on a Whipple shot a sphere's cell held 80 GPa
+// at V/V0 = 0.46; cells crushed like it, made particles at their own volumes, read 163–455 GPa
+// from their EOS, expanded at once, and one left at 3.6 km/s against the shot with
+// −38 MJ/kg). On the bracket [V, 2 V0] the pressure falls with the volume; a bracket whose far
+// end still holds more than p_cell gives 2 V0.
 double compressed_volume(const Material& m, double vol, double vol0, double energy, double p_cell) {
   const double e = energy / vol0;
   const auto excess = [&](double mu) { return eos_pressure(m, mu, e) - p_cell; };
