@@ -959,8 +959,8 @@ def whipple_shots(binary, work, opts):
 
 # whipple-shots-sph: the same shots with SPH debris, crushed cells converted at half the first
 # step (the sixteen shots' measured choice, whipple-sph-faces); the engine's wrong calls on each
-# side beside its score. No limit search: with SPH debris it would cost about five times the
-# point masses' 67 minutes.
+# side beside its score. No limit search: with SPH debris its runs cost about seven times the
+# point masses' (the 66 shots: 179 min against 25), some 8 hours for their 67 minutes.
 WHIPPLE_SHOTS_SPH_SETS = ["fracture.debris=sph", "fracture.erosion_step_ratio=0.5"]
 
 
