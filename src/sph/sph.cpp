@@ -70,29 +70,6 @@ CellKey cell_of(const Vec3& x, double size) {
 // state below its reference energy keeps V0 (its pressure is tensile at any expansion). Its
 // pressure there is the cell's (none while it is loosened), so the particle starts without a
 // kick.
-// A compressed cell is, as a particle, its material at the volume where its pressure at its
-// energy is the cell's pressure p_cell, the one the forces last took from it, if that volume is
-// larger than the cell's. Under the average nodal pressure a cell's pressure is its nodes' mean
-// and its energy follows that pressure's work, so a cell crushed alone reaches a volume whose
-// own EOS pressure is far above its neighbours' (on a Whipple shot a sphere's cell held 80 GPa
-// at V/V0 = 0.46; cells crushed like it, made particles at their own volumes, read 163–455 GPa
-// from their EOS, expanded at once, and one left at 3.6 km/s against the shot with
-// −38 MJ/kg). On the bracket [V, 2 V0] the pressure falls with the volume; a bracket whose far
-// end still holds more than p_cell gives 2 V0.
-double compressed_volume(const Material& m, double vol, double vol0, double energy, double p_cell) {
-  const double e = energy / vol0;
-  const auto excess = [&](double mu) { return eos_pressure(m, mu, e) - p_cell; };
-  double hi = vol0 / vol - 1.0;  // the cell's μ: excess(hi) > 0, else the cell's volume
-  if (!(excess(hi) > 0.0)) return vol;
-  double lo = -0.5;
-  if (excess(lo) > 0.0) return 2.0 * vol0;
-  for (int k = 0; k < 200 && hi - lo > 1e-13 * (1.0 + std::abs(hi)); ++k) {
-    const double mid = 0.5 * (lo + hi);
-    (excess(mid) > 0.0 ? hi : lo) = mid;
-  }
-  return vol0 / (1.0 + hi);
-}
-
 double particle_volume(const Material& m, double vol, double vol0, double energy) {
   if (!(vol > vol0)) return vol;
   if (m.eos == EosKind::tillotson) {
@@ -117,6 +94,29 @@ double particle_volume(const Material& m, double vol, double vol0, double energy
   const EosTerms t = eos_terms(m, -1e-12);  // the branch of expansion: A = k μ
   const double mu = std::clamp(-t.b * energy / (t.da_dmu * vol0), -0.5, 0.0);
   return std::min(vol, vol0 / (1.0 + mu));
+}
+
+// A compressed cell is, as a particle, its material at the volume where its pressure at its
+// energy is the cell's pressure p_cell, the one the forces last took from it, if that volume is
+// larger than the cell's. Under the average nodal pressure a cell's pressure is its nodes' mean
+// and its energy follows that pressure's work, so a cell crushed alone reaches a volume whose
+// own EOS pressure is far above its neighbours' (on a Whipple shot a sphere's cell held 80 GPa
+// at V/V0 = 0.46; cells crushed like it, made particles at their own volumes, read 163–455 GPa
+// from their EOS, expanded at once, and one left at 3.6 km/s against the shot with
+// −38 MJ/kg). On the bracket [V, 2 V0] the pressure falls with the volume; a bracket whose far
+// end still holds more than p_cell gives 2 V0.
+double compressed_volume(const Material& m, double vol, double vol0, double energy, double p_cell) {
+  const double e = energy / vol0;
+  const auto excess = [&](double mu) { return eos_pressure(m, mu, e) - p_cell; };
+  double hi = vol0 / vol - 1.0;  // the cell's μ: excess(hi) > 0, else the cell's volume
+  if (!(excess(hi) > 0.0)) return vol;
+  double lo = -0.5;
+  if (excess(lo) > 0.0) return 2.0 * vol0;
+  for (int k = 0; k < 200 && hi - lo > 1e-13 * (1.0 + std::abs(hi)); ++k) {
+    const double mid = 0.5 * (lo + hi);
+    (excess(mid) > 0.0 ? hi : lo) = mid;
+  }
+  return vol0 / (1.0 + hi);
 }
 
 // The points of particle i after point k: the particle, then its images (n + [begin, end)

@@ -117,8 +117,9 @@ from tools.common.summary_keys import get  # noqa: E402
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 NAMES = ["stability", "micro", "profile", "ccd", "verify", "verify-full", "threads", "mpi",
          "whipple", "whipple-mesh", "whipple-hole", "strength", "taylor-tests", "taylor-temper",
-         "whipple-shots", "whipple-shots-sph", "whipple-refined", "whipple-defaults", "whipple-wall", "whipple-tear",
-         "whipple-debris", "whipple-sph-faces", "whipple-tillotson", "hugoniot"]
+         "whipple-shots", "whipple-shots-sph", "whipple-refined", "whipple-defaults",
+         "whipple-wall", "whipple-tear", "whipple-debris", "whipple-sph-faces", "whipple-tillotson",
+         "hugoniot"]
 
 
 def g(x):

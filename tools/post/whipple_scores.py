@@ -138,19 +138,20 @@ def main(argv):
         p = sum(1 for _, s, _ in members if s["result"] == "P")
         e = sum(1 for _, s, v in members if v == s["result"])
         q = sum(1 for _, s, _ in members if equation_says(s) == s["result"])
-        unsafe = sum(1 for _, s, v in members if s["result"] == "P" and v != "P")
         n = len(members)
-        totals = [a + b for a, b in zip(totals, [n, p, e, q, unsafe, n - e - unsafe])]
+        unsafe = sum(1 for _, s, v in members if s["result"] == "P" and v != "P")
+        safe = n - e - unsafe  # NP shots called P
+        totals = [a + b for a, b in zip(totals, [n, p, e, q, unsafe, safe])]
         bumper = f"{key[0]} {float(key[1]) * 10:g} mm"
         wall = f"{key[3]} {float(key[4]) * 10:g} mm"
-        side = f" {unsafe} / {n - e - unsafe} |" if errors else ""
+        side = f" {unsafe} / {safe} |" if errors else ""
         if markdown:
             lines.append(f"| {bumper} | {float(key[2]) * 10:g} mm | {wall} | {n} ({p} / {n - p}) | "
                          f"{e} ({100 * e / n:.0f} %) | {q} ({100 * q / n:.0f} %) |" + side)
         else:
             lines.append(f"{bumper}, standoff {float(key[2]) * 10:g} mm, {wall}: {n} shots "
                          f"({p} P, {n - p} NP): engine right on {e}, equation on {q}"
-                         + (f"; engine wrong {unsafe} P called NP, {n - e - unsafe} NP called P"
+                         + (f"; engine wrong {unsafe} P called NP, {safe} NP called P"
                             if errors else ""))
     n, p, e, q, unsafe, safe = totals
     if n == 0:
