@@ -103,7 +103,7 @@ def test_every_table_has_a_command():
     assert T.NAMES == ["stability", "micro", "profile", "ccd", "verify", "verify-full", "threads",
                        "mpi", "whipple", "whipple-mesh", "whipple-hole", "strength", "taylor-tests",
                        "taylor-temper", "whipple-shots", "whipple-shots-sph", "whipple-refined",
-                       "whipple-defaults", "whipple-wall", "whipple-tear", "whipple-debris",
+                       "whipple-refined-sph", "whipple-defaults", "whipple-wall", "whipple-tear", "whipple-debris",
                        "whipple-sph-faces", "whipple-tillotson", "hugoniot"]
     assert list(T.TABLES) == T.NAMES
 
@@ -319,6 +319,23 @@ def test_whipple_rows():
     assert T.ductile_parts(s) == [(321, 300), (3000, 1234), (1000, 0)]
     with pytest.raises(KeyError):  # a run without the case's measures
         T.whipple_mesh_row("coarse", fake_summary(references=[], fracture=s["fracture"]))
+
+
+def test_whipple_refined_sph_runs_both_meshes_with_sph_debris(monkeypatch):
+    seen = {}
+
+    def rows(binary, work, prefix, rows, meshes):
+        seen.update(prefix=prefix, rows=rows, meshes=meshes)
+        return [], [("P", "NP", ["NP", "P"])]
+    monkeypatch.setattr(T, "whipple_mesh_rows", rows)
+    lines = list(T.whipple_refined_sph("tetcontact", "work", None))
+    assert seen["prefix"] == "whipple-refined-sph-"
+    assert seen["rows"] == T.WHIPPLE_REFINED_ROWS
+    assert [m[2] for m in seen["meshes"]] == [
+        ["fracture.debris=sph", "fracture.erosion_step_ratio=0.5"],
+        ["fracture.debris=sph", "fracture.erosion_step_ratio=0.5", 'parameters.hw="= tw / 6"']]
+    assert lines[-1] == ("Right: the equation 0 of 1, the shipped mesh 0, the finer wall 1; the "
+                         "verdict changes with the wall's refinement on 1 of 1.")
 
 
 def test_whipple_refined_row():

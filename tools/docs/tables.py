@@ -52,6 +52,9 @@ NAME, the table:
     whipple-refined   sixteen of those shots (the 6061-T6 shield's) on the shipped mesh and with
                   the rear wall's cells three times finer: each verdict and the wall's thickness
                   left (~35 min on 2 cores)
+    whipple-refined-sph the same with SPH debris, crushed cells converted at half the first
+                  step (as whipple-shots-sph; ~60 min on 2 cores, the shipped mesh's runs reused
+                  from a campaign of the same build)
     whipple-defaults  the same sixteen shots at the shipped mesh with each setting a
                   hypervelocity user chooses changed alone (average nodal pressure off, erosion
                   at 20 % and 5 % of the first step, the sphere 12 cells across, ductile
@@ -117,8 +120,8 @@ from tools.common.summary_keys import get  # noqa: E402
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 NAMES = ["stability", "micro", "profile", "ccd", "verify", "verify-full", "threads", "mpi",
          "whipple", "whipple-mesh", "whipple-hole", "strength", "taylor-tests", "taylor-temper",
-         "whipple-shots", "whipple-shots-sph", "whipple-refined", "whipple-defaults",
-         "whipple-wall", "whipple-tear", "whipple-debris", "whipple-sph-faces", "whipple-tillotson",
+         "whipple-shots", "whipple-shots-sph", "whipple-refined", "whipple-refined-sph",
+         "whipple-defaults", "whipple-wall", "whipple-tear", "whipple-debris", "whipple-sph-faces", "whipple-tillotson",
          "hugoniot"]
 
 
@@ -1178,12 +1181,13 @@ def settings_header(settings, measures, times):
         "|---|---|---|---|---|" + "---|" * len(settings) + "---|"]
 
 
-def whipple_refined(binary, work, opts):
+def whipple_refined(binary, work, opts, prefix="whipple-refined-", sets=()):
     """The shots of WHIPPLE_REFINED_ROWS on the shipped mesh and with the rear wall's cells three
-    times finer (6 through it instead of 2; the sphere and the bumper as shipped): each verdict
-    and the wall's thickness left beside the measured verdict and the equation's."""
-    lines, verdicts = whipple_mesh_rows(binary, work, "whipple-refined-", WHIPPLE_REFINED_ROWS,
-                                        WHIPPLE_REFINED)
+    times finer (6 through it instead of 2; the sphere and the bumper as shipped), with these
+    --set lines on both: each verdict and the wall's thickness left beside the measured verdict
+    and the equation's."""
+    meshes = [(name, label, list(sets) + mesh) for name, label, mesh in WHIPPLE_REFINED]
+    lines, verdicts = whipple_mesh_rows(binary, work, prefix, WHIPPLE_REFINED_ROWS, meshes)
     yield from WHIPPLE_REFINED_HEADER
     yield from lines
     total = len(verdicts)
@@ -1194,6 +1198,12 @@ def whipple_refined(binary, work, opts):
     yield ""
     yield (f"Right: the equation {eq} of {total}, the shipped mesh {shipped}, the finer wall "
            f"{wall6}; the verdict changes with the wall's refinement on {changed} of {total}.")
+
+
+def whipple_refined_sph(binary, work, opts):
+    """whipple_refined with SPH debris, crushed cells converted at half the first step
+    (WHIPPLE_SHOTS_SPH_SETS: the shipped mesh's runs are the 66 shots' own)."""
+    yield from whipple_refined(binary, work, opts, "whipple-refined-sph-", WHIPPLE_SHOTS_SPH_SETS)
 
 
 WHIPPLE_PARTS = ("projectile", "bumper", "wall")  # the shield's bodies, as whipple.yaml names them
@@ -1588,7 +1598,8 @@ TABLES = {"stability": stability, "micro": micro, "profile": profile, "ccd": ccd
           "whipple-mesh": whipple_mesh, "whipple-hole": whipple_hole, "strength": strength,
           "taylor-tests": taylor_tests, "taylor-temper": taylor_temper, "whipple-shots": whipple_shots,
           "whipple-shots-sph": whipple_shots_sph,
-          "whipple-refined": whipple_refined, "whipple-defaults": whipple_defaults,
+          "whipple-refined": whipple_refined, "whipple-refined-sph": whipple_refined_sph,
+          "whipple-defaults": whipple_defaults,
           "whipple-wall": whipple_wall, "whipple-tear": whipple_tear,
           "whipple-debris": whipple_debris, "whipple-sph-faces": whipple_sph_faces,
           "whipple-tillotson": whipple_tillotson,
