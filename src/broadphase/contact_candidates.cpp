@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <map>
+#include <stdexcept>
 
 namespace tc {
 
@@ -109,10 +110,13 @@ bool ContactCandidates::particles_hold(const State& st) const {
 // (edge–edge), then each particle as an edge of one point (particle–particle). A particle is a
 // body of its own (−2 − i), so that it pairs with every face, its own body's too, and with every
 // other particle; the pairs of a particle and a surface edge are dropped.
-void ContactCandidates::search(const State& st, bool bodies, bool particles) {
+void ContactCandidates::search(const State& st, bool bodies, bool particles,
+                               const std::vector<Vec3>& x1) {
   const std::vector<Vec3>& x0 = st.x;
-  const std::vector<Vec3>& x1 = st.x_star;
   const double reach = body_lists_.reach();
+  const double kernel = settings_.kernel_reach;
+  if (particles && kernel > 0.0 && st.sph.size() != st.particle_count())
+    throw std::logic_error("ContactCandidates: kernel_reach without a smoothing length a particle");
   const double margin = settings_.margin + reach;
   const Index count = particles ? st.particle_count() : 0;
   BroadphaseInput in;
@@ -133,12 +137,14 @@ void ContactCandidates::search(const State& st, bool bodies, bool particles) {
   const Index edge_base = static_cast<Index>(in.edge_nodes.size());
   for (Index i = 0; i < count; ++i) {
     const Index p = st.first_particle + i;
-    const Box b = swept_box({&x0[p], &x1[p]}, st.particle_radius[i] + reach);
-    in.node_box.push_back(b);
+    const double h = kernel > 0.0 ? st.sph.h[static_cast<std::size_t>(i)] : 0.0;
+    const double radius = st.particle_radius[i];
+    in.node_box.push_back(swept_box({&x0[p], &x1[p]}, std::max(radius, kernel * h) + reach));
     in.node_id.push_back(p);
     in.node_body.push_back(-2 - i);
     if (!settings_.particle_pairs) continue;
-    in.edge_box.push_back(b);
+    in.edge_box.push_back(
+        swept_box({&x0[p], &x1[p]}, (kernel > 0.0 ? 0.5 * kernel * h : radius) + reach));
     in.edge_nodes.push_back({p, p});
     in.edge_body.push_back(-2 - i);
   }
@@ -208,12 +214,21 @@ CandidateStats ContactCandidates::update(const State& st) {
   // layer boxes, lists far more particle pairs: 0.8 s more of the coarse ball-plate's 16 s).
   for (const bool part_bodies : {true, false}) {
     if (!(part_bodies ? bodies : particles)) continue;
-    search(st, part_bodies, !part_bodies);
+    search(st, part_bodies, !part_bodies, st.x_star);
     stats.build_seconds += broadphase_->build_seconds;
     stats.query_seconds += broadphase_->query_seconds;
   }
   stats.seconds = std::chrono::duration<double>(Clock::now() - t0).count();
   return stats;
+}
+
+const CandidateLists& ContactCandidates::particles_at(const State& st, bool* rebuilt) {
+  if (!settings_.particles) throw std::logic_error("ContactCandidates: no particles listed");
+  const bool hold = settings_.binding_lists && particles_listed_ == st.particle_count() &&
+                    particle_lists_.holds(particle_anchored_, st.x);
+  if (!hold) search(st, false, true, st.x);
+  if (rebuilt) *rebuilt = !hold;
+  return particles_;
 }
 
 }  // namespace tc

@@ -108,6 +108,7 @@ std::vector<ContactPoint> ParticleContact::detect(const Mesh& mesh, const State&
     }
   for (Index i = 0; i < count; ++i)
     if (deepest[i] > 0.0) moves_.emplace_back(first + i, move[i]);
+  if (!pairs_) return out;
   for (const auto& [i, j] : lists.edge_edge) {
     if (!boxes_overlap(pbox[i], pbox[j])) continue;
     const Index p = first + i, o = first + j;

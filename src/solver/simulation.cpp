@@ -14,6 +14,7 @@
 #include "tetcontact/parallel/parallel.hpp"
 #include "tetcontact/response/heat.hpp"
 #include "tetcontact/solver/integrator.hpp"
+#include "tetcontact/sph/kernel.hpp"
 
 namespace tc {
 namespace {
@@ -112,8 +113,8 @@ Simulation::Simulation(Model model, SolverSettings settings)
     fragmentation_ = std::make_unique<Fragmentation>(
         model_.mesh, model_.fragment_clusters ? Fragments::clusters : Fragments::cells,
         model_.sph_debris ? model_.sph.smoothing : 0.0);
-    particle_contact_ =
-        std::make_unique<ParticleContact>(model_.sph_debris && model_.sph.faces ? 0.0 : 1.0);
+    particle_contact_ = std::make_unique<ParticleContact>(
+        model_.sph_debris && model_.sph.faces ? 0.0 : 1.0, !model_.sph_debris);
     modules_.push_back("fracture:particles");
     if (model_.fragment_clusters) modules_.push_back("fracture:clusters");
     if (model_.sph_debris) {
@@ -139,14 +140,15 @@ Simulation::Simulation(Model model, SolverSettings settings)
     surface_nodes_ = all_surface_nodes(state_.surfaces);
     wall_force_max_.assign(model_.walls.size(), 0.0);
   }
-  // One broadphase for the detection: between bodies with contact, for particles with them (and
-  // with each other, but for SPH particles, which meet through their kernel).
+  // One broadphase for the detection: between bodies with contact, for particles with them and
+  // with each other; for SPH particles, every pair and face within their kernel's reach too (the
+  // SPH stage's neighbours).
   if (model_.contact || fragmentation_) {
     CandidateSettings cs =
         model_.contact
             ? candidate_settings(*model_.contact, fragmentation_ != nullptr)
             : CandidateSettings{.broadphase = "sweep", .bodies = false, .particles = true};
-    cs.particle_pairs = !sph_;
+    if (sph_) cs.kernel_reach = sph_->options().reach * sph::k_support;
     candidates_ = std::make_unique<ContactCandidates>(model_.mesh, state_.surfaces, cs);
   }
   if (model_.contact) {
@@ -206,8 +208,11 @@ void Simulation::convert_cells(const std::vector<Index>& tets) {
   fracture_stage();
   elements_stage();
   if (sph_) {
-    const std::vector<Face>& faces = candidates_->primitives().faces;
-    state_.dt = std::min(state_.dt, settings_.cfl * sph_->forces(state_, faces).dt_stable);
+    const CandidateLists& lists = candidates_->particles_at(state_);
+    state_.dt =
+        std::min(state_.dt, settings_.cfl * sph_->forces(state_, candidates_->primitives().faces,
+                                                         {lists.edge_edge, lists.node_face})
+                                                .dt_stable);
   }
 }
 
@@ -527,8 +532,10 @@ void Simulation::sph_stage() {
   State& st = state_;
   if (st.sph.size() == 0) return;
   const std::vector<Face>& faces = candidates_->primitives().faces;
-  sph_->update(model_.materials, st.dt_prev, kick_, st, faces);
-  const sph::StepLimit limit = sph_->forces(st, faces);
+  const CandidateLists& lists = candidates_->particles_at(st);  // the detection's lists at xⁿ⁺¹
+  const sph::Candidates candidates{lists.edge_edge, lists.node_face};
+  sph_->update(model_.materials, st.dt_prev, kick_, st, faces, candidates);
+  const sph::StepLimit limit = sph_->forces(st, faces, candidates);
   const double dt = settings_.cfl * limit.dt_stable;
   particle_min_dt_ = std::min(particle_min_dt_, dt);
   if (dt < st.dt) {

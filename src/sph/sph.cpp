@@ -5,7 +5,9 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <span>
 #include <sstream>
+#include <stdexcept>
 #include <tuple>
 
 #include "tetcontact/element/element.hpp"
@@ -49,13 +51,6 @@ bool same_axis_twice(const std::vector<MirrorPlane>& planes, unsigned mask) {
     axes |= bit;
   }
   return false;
-}
-
-using CellKey = std::array<long, 3>;
-
-CellKey cell_of(const Vec3& x, double size) {
-  return {static_cast<long>(std::floor(x[0] / size)), static_cast<long>(std::floor(x[1] / size)),
-          static_cast<long>(std::floor(x[2] / size))};
 }
 
 // A cell stretched past its reference volume (a loosened, destroyed cell carries no tension and
@@ -160,8 +155,38 @@ Sym6 mirror_stress(Sym6 s, const std::vector<SymmetryPlane>& planes, unsigned ma
   return s;
 }
 
+// Each particle's candidates (the pairs' other particles), ascending: the pairs sorted by (i, j)
+// give particle i its j < i from the blocks before its own, then its j > i.
+std::pair<std::vector<Index>, std::vector<Index>> candidates_by_particle(
+    std::size_t n, std::span<const std::pair<Index, Index>> pairs) {
+  std::vector<std::pair<Index, Index>> sorted;
+  if (!std::is_sorted(pairs.begin(), pairs.end())) {
+    sorted.assign(pairs.begin(), pairs.end());
+    std::sort(sorted.begin(), sorted.end());
+    pairs = sorted;
+  }
+  std::vector<Index> begin(n + 1, 0), list(2 * pairs.size());
+  for (const auto& [i, j] : pairs) {
+    if (!(i >= 0 && i < j && static_cast<std::size_t>(j) < n))
+      throw std::logic_error("SPH candidates: a pair not (i, j) with i < j < particles");
+    ++begin[static_cast<std::size_t>(i) + 1];
+    ++begin[static_cast<std::size_t>(j) + 1];
+  }
+  for (std::size_t i = 0; i < n; ++i) begin[i + 1] += begin[i];
+  std::vector<Index> next(begin.begin(), begin.end() - 1);
+  for (const auto& [i, j] : pairs) {
+    list[static_cast<std::size_t>(next[i]++)] = j;
+    list[static_cast<std::size_t>(next[j]++)] = i;
+  }
+  return {std::move(begin), std::move(list)};
+}
+
+// The mirror images' pairs come from the particles' own: for planes whose side holds both
+// points, each coordinate of an image differs from a point's by |a + b| ≥ |a − b| (a, b the two
+// distances from the plane, of one sign), so an image is no nearer than its particle.
 Neighbours find_neighbours(const std::vector<Vec3>& x, const std::vector<double>& h,
-                           const std::vector<MirrorPlane>& planes, double reach) {
+                           const std::vector<MirrorPlane>& planes, double reach,
+                           std::span<const std::pair<Index, Index>> pairs) {
   Neighbours nb;
   const std::size_t n = x.size();
   nb.particles = static_cast<Index>(n);
@@ -170,9 +195,12 @@ Neighbours find_neighbours(const std::vector<Vec3>& x, const std::vector<double>
   const double hmax = *std::max_element(h.begin(), h.end());
   const double radius = reach * k_support * hmax;
   const std::vector<SymmetryPlane> symmetry = symmetry_planes(planes);
-  // The points: the particles, then the images of those within reach of every plane of a set.
+  // The points: the particles, then the images of those within reach of every plane of a set,
+  // each particle's together.
   std::vector<Vec3> pts(x);
-  for (std::size_t i = 0; i < n; ++i)
+  std::vector<Index> ghosts(n + 1, 0);  // per particle: its images n + [ghosts[i], ghosts[i + 1])
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!x[i].allFinite()) bad_particle(static_cast<Index>(i), "position not finite:", x[i].norm());
     for (unsigned mask = 1; mask < (1u << planes.size()); ++mask) {
       if (same_axis_twice(planes, mask)) continue;
       bool near = true;
@@ -183,33 +211,33 @@ Neighbours find_neighbours(const std::vector<Vec3>& x, const std::vector<double>
       nb.ghost_planes.push_back(mask);
       pts.push_back(mirror_image(x[i], symmetry, static_cast<int>(mask)));
     }
-  const auto source = [&](std::size_t k) {
-    return k < n ? static_cast<Index>(k) : nb.ghost_source[k - n];
-  };
-  // A uniform grid of cells of the largest reach: the points sorted by cell, then by index.
-  std::vector<std::pair<CellKey, Index>> cells(pts.size());
-  for (std::size_t k = 0; k < pts.size(); ++k) {
-    if (!pts[k].allFinite()) bad_particle(source(k), "position not finite:", pts[k].norm());
-    cells[k] = {cell_of(pts[k], radius), static_cast<Index>(k)};
+    ghosts[i + 1] = static_cast<Index>(nb.ghost_source.size());
   }
-  std::sort(cells.begin(), cells.end());
+  const auto [cand_begin, cand] = candidates_by_particle(n, pairs);
   std::vector<std::vector<Index>> lists(n);
   parallel::for_each(n, [&](std::size_t i) {
-    const CellKey c = cell_of(x[i], radius);
     std::vector<Index>& out = lists[i];
-    // The cells sort by x, then y, then z: the three cells along z of a column lie together.
-    for (long dx = -1; dx <= 1; ++dx)
-      for (long dy = -1; dy <= 1; ++dy) {
-        const CellKey first{c[0] + dx, c[1] + dy, c[2] - 1}, last{c[0] + dx, c[1] + dy, c[2] + 1};
-        auto it = std::lower_bound(cells.begin(), cells.end(), std::make_pair(first, Index{-1}));
-        for (; it != cells.end() && !(last < it->first); ++it) {
-          const std::size_t k = static_cast<std::size_t>(it->second);
-          if (k == i) continue;
-          const double hij = 0.5 * (h[i] + h[source(k)]);
-          if ((x[i] - pts[k]).norm() < reach * k_support * hij) out.push_back(it->second);
-        }
+    const auto within = [&](std::size_t k, std::size_t src) {
+      return (x[i] - pts[k]).norm() < reach * k_support * 0.5 * (h[i] + h[src]);
+    };
+    for (Index e = cand_begin[i]; e < cand_begin[i + 1]; ++e)
+      if (within(static_cast<std::size_t>(cand[e]), static_cast<std::size_t>(cand[e])))
+        out.push_back(cand[e]);
+    // The images of the particle itself and of its candidates, in ascending source order.
+    const auto images_of = [&](std::size_t src) {
+      for (Index g = ghosts[src]; g < ghosts[src + 1]; ++g)
+        if (within(n + static_cast<std::size_t>(g), src)) out.push_back(static_cast<Index>(n) + g);
+    };
+    bool self = false;
+    for (Index e = cand_begin[i]; e < cand_begin[i + 1]; ++e) {
+      const std::size_t j = static_cast<std::size_t>(cand[e]);
+      if (!self && j > i) {
+        images_of(i);
+        self = true;
       }
-    std::sort(out.begin(), out.end());
+      images_of(j);
+    }
+    if (!self) images_of(i);
   });
   for (std::size_t i = 0; i < n; ++i)
     nb.begin[i + 1] = nb.begin[i] + static_cast<Index>(lists[i].size());
@@ -218,11 +246,11 @@ Neighbours find_neighbours(const std::vector<Vec3>& x, const std::vector<double>
   return nb;
 }
 
-void Stage::find(const State& st, const std::vector<Face>& faces) {
+void Stage::find(const State& st, const std::vector<Face>& faces, const Candidates& candidates) {
   const std::size_t n = static_cast<std::size_t>(st.sph.size());
   std::vector<Vec3> x(n);
   for (std::size_t i = 0; i < n; ++i) x[i] = st.x[st.first_particle + i];
-  neighbours_ = find_neighbours(x, st.sph.h, planes_, options_.reach);
+  neighbours_ = find_neighbours(x, st.sph.h, planes_, options_.reach, candidates.pairs);
   const Neighbours& nb = neighbours_;
   // The images of a particle are listed together, in particle order.
   ghost_begin_.assign(n + 1, 0);
@@ -232,62 +260,38 @@ void Stage::find(const State& st, const std::vector<Face>& faces) {
   face_begin_.assign(points + 1, 0);
   face_list_.clear();
   if (!options_.faces || faces.empty() || n == 0) return;
-  // The faces within reach × 2h of each point (particle or image): the points on a grid of the
-  // largest reach; a face whose box, widened by the reach, misses the points' box is passed
-  // over; the others look in the cells their box covers (or at every point, for a face much
-  // larger than a cell). The pairs come face by face; counted out by point, they stand sorted by
-  // point, then face.
-  std::vector<Vec3> pts(x);
-  std::vector<double> reach(points);
-  for (std::size_t k = 0; k < points; ++k) {
+  // The faces within reach × 2 h of each point (particle or image), of its particle's candidate
+  // faces (an image is no nearer than its particle to a face on the planes' side): by point, then
+  // face.
+  if (!std::is_sorted(candidates.faces.begin(), candidates.faces.end()))
+    throw std::logic_error("SPH candidates: the face pairs are not sorted");
+  std::vector<Index> cand_begin(n + 1, 0);
+  for (const auto& [i, f] : candidates.faces) {
+    if (!(i >= 0 && static_cast<std::size_t>(i) < n && f >= 0 &&
+          static_cast<std::size_t>(f) < faces.size()))
+      throw std::logic_error("SPH candidates: a face pair out of range");
+    ++cand_begin[static_cast<std::size_t>(i) + 1];
+  }
+  for (std::size_t i = 0; i < n; ++i) cand_begin[i + 1] += cand_begin[i];
+  std::vector<std::vector<Index>> found(points);
+  parallel::for_each(points, [&](std::size_t k) {
     const Index src = k < n ? static_cast<Index>(k) : nb.ghost_source[k - n];
-    if (k >= n)
-      pts.push_back(mirror_image(x[src], symmetry_, static_cast<int>(nb.ghost_planes[k - n])));
-    reach[k] = options_.reach * k_support * st.sph.h[src];
-  }
-  const double size = *std::max_element(reach.begin(), reach.end());
-  std::vector<std::pair<CellKey, Index>> cells(points);
-  for (std::size_t k = 0; k < points; ++k)
-    cells[k] = {cell_of(pts[k], size), static_cast<Index>(k)};
-  std::sort(cells.begin(), cells.end());
-  Vec3 points_lo = pts[0], points_hi = pts[0];
-  for (const Vec3& q : pts) {
-    points_lo = points_lo.cwiseMin(q);
-    points_hi = points_hi.cwiseMax(q);
-  }
-  std::vector<std::vector<std::pair<Index, Index>>> found(faces.size());
-  parallel::for_each(faces.size(), [&](std::size_t f) {
-    const Face& k = faces[f];
-    const Vec3 lo = st.x[k[0]].cwiseMin(st.x[k[1]]).cwiseMin(st.x[k[2]]);
-    const Vec3 hi = st.x[k[0]].cwiseMax(st.x[k[1]]).cwiseMax(st.x[k[2]]);
-    if ((lo.array() - size > points_hi.array()).any() ||
-        (hi.array() + size < points_lo.array()).any())
-      return;
-    const auto near = [&](Index p) {
-      const Vec3 gap = (lo - pts[p]).cwiseMax(pts[p] - hi).cwiseMax(Vec3::Zero());
-      if (gap.norm() < reach[p]) found[f].emplace_back(p, static_cast<Index>(f));
-    };
-    const CellKey a = cell_of(lo - Vec3::Constant(size), size);
-    const CellKey b = cell_of(hi + Vec3::Constant(size), size);
-    const double span = double(b[0] - a[0] + 1) * double(b[1] - a[1] + 1) * double(b[2] - a[2] + 1);
-    if (span > static_cast<double>(points)) {
-      for (std::size_t p = 0; p < points; ++p) near(static_cast<Index>(p));
-      return;
+    const Vec3 p =
+        k < n ? x[k] : mirror_image(x[src], symmetry_, static_cast<int>(nb.ghost_planes[k - n]));
+    const double reach = options_.reach * k_support * st.sph.h[src];
+    for (Index e = cand_begin[src]; e < cand_begin[src + 1]; ++e) {
+      const Index f = candidates.faces[static_cast<std::size_t>(e)].second;
+      const Face& q = faces[static_cast<std::size_t>(f)];
+      const Vec3 lo = st.x[q[0]].cwiseMin(st.x[q[1]]).cwiseMin(st.x[q[2]]);
+      const Vec3 hi = st.x[q[0]].cwiseMax(st.x[q[1]]).cwiseMax(st.x[q[2]]);
+      const Vec3 gap = (lo - p).cwiseMax(p - hi).cwiseMax(Vec3::Zero());
+      if (gap.norm() < reach) found[k].push_back(f);
     }
-    for (long cx = a[0]; cx <= b[0]; ++cx)
-      for (long cy = a[1]; cy <= b[1]; ++cy) {  // a column's cells along z lie together
-        const CellKey first{cx, cy, a[2]}, last{cx, cy, b[2]};
-        auto it = std::lower_bound(cells.begin(), cells.end(), std::make_pair(first, Index{-1}));
-        for (; it != cells.end() && !(last < it->first); ++it) near(it->second);
-      }
   });
-  for (const auto& list : found)
-    for (const auto& pair : list) ++face_begin_[static_cast<std::size_t>(pair.first) + 1];
-  for (std::size_t k = 0; k < points; ++k) face_begin_[k + 1] += face_begin_[k];
-  face_list_.resize(static_cast<std::size_t>(face_begin_[points]));
-  std::vector<Index> next(face_begin_.begin(), face_begin_.end() - 1);
-  for (const auto& list : found)
-    for (const auto& [p, f] : list) face_list_[static_cast<std::size_t>(next[p]++)] = f;
+  for (std::size_t k = 0; k < points; ++k)
+    face_begin_[k + 1] = face_begin_[k] + static_cast<Index>(found[k].size());
+  face_list_.reserve(static_cast<std::size_t>(face_begin_[points]));
+  for (const std::vector<Index>& l : found) face_list_.insert(face_list_.end(), l.begin(), l.end());
 }
 
 // The pair's ∇_i W_ij and A_ij = −Π_ij I + f_ijⁿ (R_i + R_j); μ_ij where it approaches (point k,
@@ -362,12 +366,12 @@ std::vector<double> Stage::kick_heat(const State& st, double tau_kick) const {
 }
 
 void Stage::update(const std::vector<Material>& materials, double tau, double tau_kick, State& st,
-                   const std::vector<Face>& faces) {
+                   const std::vector<Face>& faces, const Candidates& candidates) {
   ParticleMatter& pm = st.sph;
   const std::size_t n = static_cast<std::size_t>(pm.size());
   const Index fp = st.first_particle;
   const std::vector<double> pair_heat = kick_heat(st, tau_kick);
-  find(st, faces);
+  find(st, faces, candidates);
   fresh_ = true;
   const Neighbours& nb = neighbours_;
   // The points at mid-step, x^{n+1} − τ/2 U^{n+1/2}, with their velocities.
@@ -528,11 +532,11 @@ void Stage::update(const std::vector<Material>& materials, double tau, double ta
   });
 }
 
-StepLimit Stage::forces(State& st, const std::vector<Face>& faces) {
+StepLimit Stage::forces(State& st, const std::vector<Face>& faces, const Candidates& candidates) {
   ParticleMatter& pm = st.sph;
   const std::size_t n = static_cast<std::size_t>(pm.size());
   const Index fp = st.first_particle;
-  if (!fresh_ || neighbours_.particles != static_cast<Index>(n)) find(st, faces);
+  if (!fresh_ || neighbours_.particles != static_cast<Index>(n)) find(st, faces, candidates);
   fresh_ = false;
   const Neighbours& nb = neighbours_;
   const std::size_t points = n + nb.ghost_source.size();

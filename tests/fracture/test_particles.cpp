@@ -383,13 +383,14 @@ static void particle_keeps_cells_state(const Material& al, double heat = 1e6) {
   const TetNeighbours nb = tet_neighbours(model.mesh);
   std::vector<Index> boundary;
   for (Index t = 0; t < model.mesh.tet_count(); ++t)
-    if (std::count(nb[t].begin(), nb[t].end(), -1) > 0 && boundary.size() < 3)
+    if (std::count(nb[t].begin(), nb[t].end(), -1) > 0 && boundary.size() < 4)
       boundary.push_back(t);
-  ASSERT_EQ(boundary.size(), 3u);
+  ASSERT_EQ(boundary.size(), 4u);
   // An eroded cell, compressed and strained, whose EOS reads far more than its 3 GPa; a
   // destroyed one drawn out to 50 times its volume; an eroded one whose EOS reads 1 GPa less
-  // than its pressure.
-  const Index eroded = boundary[0], drawn = boundary[1], kept = boundary[2];
+  // than its pressure; an eroded one so hot (20 MJ/kg) that its EOS reads more than its 3 GPa
+  // even at twice its reference volume.
+  const Index eroded = boundary[0], drawn = boundary[1], kept = boundary[2], hot = boundary[3];
   st.vol[eroded] = 0.8 * st.vol0[eroded];
   st.s[eroded] = Sym6{1e8, -0.5e8, -0.5e8, 2e7, 0, -1e7};
   st.p[eroded] = 3e9;
@@ -403,20 +404,24 @@ static void particle_keeps_cells_state(const Material& al, double heat = 1e6) {
   st.vol[kept] = 0.9 * st.vol0[kept];
   st.e_int[kept] = 2.0;
   st.p[kept] = eos_pressure(al, 1.0 / 0.9 - 1.0, 2.0 / st.vol0[kept]) + 1e9;
+  st.vol[hot] = 0.9 * st.vol0[hot];
+  st.e_int[hot] = 20e6 * al.density * st.vol0[hot];
+  st.p[hot] = 3e9;
+  ASSERT_GT(eos_pressure(al, -0.5, st.e_int[hot] / st.vol0[hot]), st.p[hot]);
   ASSERT_GT(eos_pressure(al, 0.25, 2.0 / st.vol0[eroded]), 3.0 * st.p[eroded]);
   const Totals before = totals(st);
   const State cells = st;
 
   Fragmentation frag(model.mesh, Fragments::cells, 1.3);
-  frag.erode({eroded, kept});
-  EXPECT_EQ(frag.convert(model.mesh, model.materials, st), 3);
-  ASSERT_EQ(st.particle_count(), 3);
-  ASSERT_EQ(st.sph.size(), 3);
-  Index e = -1, d = -1, k = -1;
-  for (Index i = 0; i < 3; ++i) {
+  frag.erode({eroded, kept, hot});
+  EXPECT_EQ(frag.convert(model.mesh, model.materials, st), 4);
+  ASSERT_EQ(st.particle_count(), 4);
+  ASSERT_EQ(st.sph.size(), 4);
+  Index e = -1, d = -1, k = -1, g = -1;
+  for (Index i = 0; i < 4; ++i) {
     const Index t = st.particle_tet[i], node = st.first_particle + i;
-    (t == eroded ? e : t == drawn ? d : k) = i;
-    SCOPED_TRACE(t == eroded ? "eroded" : t == drawn ? "drawn out" : "kept");
+    (t == eroded ? e : t == drawn ? d : t == kept ? k : g) = i;
+    SCOPED_TRACE(t == eroded ? "eroded" : t == drawn ? "drawn out" : t == kept ? "kept" : "hot");
     EXPECT_EQ(st.sph.s[i], cells.s[t]);
     EXPECT_EQ(st.sph.p[i], cells.p[t]);
     EXPECT_EQ(st.sph.eps_p[i], cells.eps_p[t]);
@@ -428,7 +433,7 @@ static void particle_keeps_cells_state(const Material& al, double heat = 1e6) {
     EXPECT_DOUBLE_EQ(st.sph.h[i], 1.3 * std::cbrt(cells.vol0[t]));
     EXPECT_DOUBLE_EQ(st.sph.rho[i] * st.sph.vol[i], st.m[node]);
   }
-  ASSERT_TRUE(e >= 0 && d >= 0 && k >= 0);
+  ASSERT_TRUE(e >= 0 && d >= 0 && k >= 0 && g >= 0);
   // The crushed cell: at the volume where its EOS at its energy reads its 3 GPa, larger than its
   // own; the other keeps its volume.
   EXPECT_GT(st.sph.vol[e], cells.vol[eroded]);
@@ -437,6 +442,8 @@ static void particle_keeps_cells_state(const Material& al, double heat = 1e6) {
                            st.particle_energy[e] / st.sph.vol0[e]),
               3e9, 1e-9 * 3e9);
   EXPECT_EQ(st.sph.vol[k], cells.vol[kept]);
+  // The hot one: held at twice its reference volume, the largest a conversion gives.
+  EXPECT_EQ(st.sph.vol[g], 2.0 * cells.vol0[hot]);
   // The drawn-out cell: p(V, E) = 0 at its volume (k μ + Γ E / V0 with Mie–Grüneisen), well
   // below 50 V0.
   const double mu = st.sph.vol0[d] / st.sph.vol[d] - 1.0;

@@ -5,10 +5,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
+#include <utility>
 #include <vector>
 
+#include "tetcontact/broadphase/contact_candidates.hpp"
 #include "tetcontact/io/case.hpp"
 #include "tetcontact/material/material.hpp"
+#include "tetcontact/sph/kernel.hpp"
 #include "tetcontact/sph/sph.hpp"
 
 namespace tc::test {
@@ -23,9 +27,32 @@ struct ParticleRun {
   State st;
   std::vector<Material> materials;
   sph::Stage stage;
+  std::vector<Face> faces;  // bodies' faces the particles meet (nodes before the particles)
   double cfl = 0.5;
   double t = 0.0, dt = 0.0, dt_prev = 0.0;
   long steps = 0;
+
+  /// The candidates at st.x: the particles' pairs from the engine's broadphase update over the
+  /// particles alone (no body: a mesh of none), and every face for every particle.
+  sph::Candidates candidates() {
+    if (!lists_) {
+      const CandidateSettings cs{.broadphase = "grid",
+                                 .bodies = false,
+                                 .particles = true,
+                                 .kernel_reach = stage.options().reach * sph::k_support};
+      lists_ = std::make_unique<ContactCandidates>(no_mesh_, std::vector<Surface>{}, cs);
+    }
+    const CandidateLists& l = lists_->particles_at(st);
+    face_pairs_.clear();
+    for (Index i = 0; i < st.particle_count(); ++i)
+      for (std::size_t f = 0; f < faces.size(); ++f)
+        face_pairs_.emplace_back(i, static_cast<Index>(f));
+    return {l.edge_edge, face_pairs_};
+  }
+  sph::StepLimit forces() {
+    const sph::Candidates c = candidates();
+    return stage.forces(st, faces, c);
+  }
 
   ParticleRun(std::vector<Material> m, sph::Options options, std::vector<sph::MirrorPlane> planes)
       : materials(std::move(m)), stage(options, std::move(planes)) {}
@@ -55,7 +82,7 @@ struct ParticleRun {
     return first;
   }
 
-  void start() { dt = cfl * stage.forces(st).dt_stable; }
+  void start() { dt = cfl * forces().dt_stable; }
 
   void step() {
     const double kick = steps == 0 ? 0.5 * dt : 0.5 * (dt_prev + dt);
@@ -63,8 +90,8 @@ struct ParticleRun {
       st.v[i] += (kick / st.m[i]) * st.f[i];
       st.x[i] += dt * st.v[i];
     }
-    stage.update(materials, dt, kick, st);
-    const sph::StepLimit limit = stage.forces(st);
+    stage.update(materials, dt, kick, st, faces, candidates());
+    const sph::StepLimit limit = forces();
     t += dt;
     dt_prev = dt;
     dt = cfl * limit.dt_stable;
@@ -90,6 +117,11 @@ struct ParticleRun {
     for (double v : st.particle_energy) e += v;
     return e;
   }
+
+ private:
+  Mesh no_mesh_;
+  std::unique_ptr<ContactCandidates> lists_;
+  std::vector<std::pair<Index, Index>> face_pairs_;
 };
 
 }  // namespace tc::test

@@ -141,6 +141,7 @@ struct BlockOnFace {
       : run({test::library_material("al6061-t6")}, options, planes(dx, top_open)) {
     const Tiling t = tile(6.0 * dx, 12);
     faces = t.faces;
+    run.faces = t.faces;
     face_nodes = t.x.size();
     for (const Vec3& x : t.x) {
       run.st.x.push_back(x);
@@ -177,7 +178,7 @@ TEST(SphBoundary, UniformStressOnAFaceExertsNoForceAndPressesWithItsTraction) {
       st.sph.p[i] = p;
       st.sph.s[i] = Sym6{0.1e9, -0.05e9, -0.05e9, 0, 0, 0};
     }
-    b.run.stage.forces(st, b.faces);
+    b.run.forces();
     const double scale = st.m[st.first_particle] * p / (2700.0 * 1.3 * dx);
     double largest = 0.0;
     Vec3 on_face = Vec3::Zero();

@@ -38,15 +38,18 @@ Box layer_box(const Face& face, const Tet& tet, const std::vector<Vec3>& x0,
 
 /// What is listed. Bodies: node–face pairs (and edge–edge pairs with `edges`) between different
 /// bodies, a face's box its layer box (`rim`, `margin`). Particles: each particle against every
-/// face and every other particle, a particle's box its path inflated by its radius.
+/// face and every other particle, a particle's box its path inflated by its radius; with
+/// `kernel_reach` k > 0 (SPH particles, State::sph.h), also every face within k h_i of particle
+/// i and every pair within k (h_i + h_j) / 2 (its box for faces inflated by max(radius, k h_i),
+/// for pairs by k h_i / 2).
 struct CandidateSettings {
   std::string broadphase = "fcl_tree";
   bool binding_lists = true;
   bool bodies = true;
   bool edges = false;
   bool particles = false;
-  bool particle_pairs = true;  // with particles: their pairs with each other too (not for SPH
-                               // particles, which meet through their kernel)
+  bool particle_pairs = true;  // with particles: their pairs with each other too
+  double kernel_reach = 0.0;   // SPH particles: the reach of their kernel over h
   double margin = 0.0;         // m, added to the bodies' boxes
   double rim = 0.0;            // of the layer box
 };
@@ -82,6 +85,11 @@ class ContactCandidates {
   /// the lists; the narrow phases skip listed pairs whose boxes of the step do not overlap, and
   /// find what a fresh search finds.
   CandidateStats update(const State& st);
+  /// The particles' lists for the positions st.x alone (the SPH stage's, after the step's
+  /// commit): kept when every particle and surface node is within the reach of where it was at
+  /// their search and no particle was added, else found anew at st.x (the next update then
+  /// checks them at both ends of its step). `rebuilt` says whether a search ran.
+  const CandidateLists& particles_at(const State& st, bool* rebuilt = nullptr);
 
   const SurfacePrimitives& primitives() const { return prims_; }
   /// (surface node, face) and (edge, edge) between bodies; indices into primitives().
@@ -97,7 +105,8 @@ class ContactCandidates {
  private:
   bool bodies_hold(const State& st) const;
   bool particles_hold(const State& st) const;
-  void search(const State& st, bool bodies, bool particles);
+  // The step x0 = st.x → x1.
+  void search(const State& st, bool bodies, bool particles, const std::vector<Vec3>& x1);
   const Mesh& mesh_;
   CandidateSettings settings_;
   std::unique_ptr<Broadphase> broadphase_;

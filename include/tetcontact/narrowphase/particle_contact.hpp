@@ -29,8 +29,10 @@ class ParticleContact {
  public:
   /// `radius_factor`: the particles' radius in the gap to a face, as a fraction of
   /// State::particle_radius (0: the centre; SPH particles that meet the faces through their
-  /// kernel touch them by contact only with their centre).
-  explicit ParticleContact(double radius_factor = 1.0) : radius_factor_(radius_factor) {}
+  /// kernel touch them by contact only with their centre). `pairs`: the listed particle pairs
+  /// are contacts (not for SPH particles, which meet each other through their kernel).
+  explicit ParticleContact(double radius_factor = 1.0, bool pairs = true)
+      : radius_factor_(radius_factor), pairs_(pairs) {}
   /// The pairs are `candidates.particles()`, updated for this step.
   std::vector<ContactPoint> detect(const Mesh& mesh, const State& st,
                                    const ContactCandidates& candidates);
@@ -40,6 +42,7 @@ class ParticleContact {
 
  private:
   double radius_factor_;
+  bool pairs_;
   std::vector<std::pair<Index, Vec3>> moves_;
   std::vector<Box> step_face_box_;  // this step's boxes of the faces the lists name
 };

@@ -60,6 +60,8 @@
 #pragma once
 
 #include <array>
+#include <span>
+#include <utility>
 #include <vector>
 
 #include "tetcontact/material/material.hpp"
@@ -99,10 +101,22 @@ struct Neighbours {
   Index pairs() const { return static_cast<Index>(list.size()); }
 };
 
-/// The neighbours within reach × 2 h_ij of every particle at positions x (one per particle),
-/// found by a uniform grid and sorted (the brute-force search gives the same lists; tested).
+/// The candidates of the particles' pairs, as the detection's one broadphase update lists them
+/// (broadphase/contact_candidates.hpp, `ContactCandidates::particles_at`, on its binding lists):
+/// `pairs` (i, j) with i < j, sorted, holding every pair of particles within reach × 2 h_ij at
+/// the positions the stage is given; `faces` (i, f) sorted, holding every face (an index into
+/// the faces the stage is given) whose box lies within reach × 2 h_i of particle i. Lists that
+/// hold more are filtered to these.
+struct Candidates {
+  std::span<const std::pair<Index, Index>> pairs, faces;
+};
+
+/// The neighbours within reach × 2 h_ij of every particle at positions x (one per particle), of
+/// the candidate pairs (i < j, holding every such pair), with the mirror images', sorted (the
+/// brute-force search gives the same lists; tested).
 Neighbours find_neighbours(const std::vector<Vec3>& x, const std::vector<double>& h,
-                           const std::vector<MirrorPlane>& planes, double reach);
+                           const std::vector<MirrorPlane>& planes, double reach,
+                           std::span<const std::pair<Index, Index>> pairs);
 
 /// The planes as mesh/symmetry.hpp reflects across them (mirror_image, mirror_direction: plane k
 /// is bit k of a mask); `side` only says which of its sides holds the particles.
@@ -127,13 +141,14 @@ class Stage {
   /// (x^{n+1}); tau_kick: the step over which the last forces were applied to the velocities
   /// (the pair heat's). Throws RunFailure naming the particle for a non-finite state.
   /// `faces`: the bodies' surface faces (outward by the right-hand rule), met through the kernel
-  /// with Options::faces.
+  /// with Options::faces; `candidates`: the particles' candidate pairs at st.x.
   void update(const std::vector<Material>& materials, double tau, double tau_kick, State& st,
-              const std::vector<Face>& faces = {});
+              const std::vector<Face>& faces, const Candidates& candidates);
 
   /// The forces at the current state into st.f (the particles' nodes; the faces' share added
-  /// to their nodes' forces), the pair heat rate kept for the next update, and the stable step.
-  StepLimit forces(State& st, const std::vector<Face>& faces = {});
+  /// to their nodes' forces), the pair heat rate kept for the next update, and the stable step;
+  /// the candidates as update's (used when update has not found the lists at st.x).
+  StepLimit forces(State& st, const std::vector<Face>& faces, const Candidates& candidates);
 
   /// Per particle, the part of the last forces that its and its neighbours' mirror images
   /// exert: the symmetry planes' reaction, an external force to the model (the balance books
@@ -153,7 +168,7 @@ class Stage {
   std::size_t face_pairs() const { return face_list_.size(); }
 
  private:
-  void find(const State& st, const std::vector<Face>& faces);
+  void find(const State& st, const std::vector<Face>& faces, const Candidates& candidates);
   // The step's terms of the particle's points (itself, then its images) with the faces.
   struct FaceTerm {
     Index particle;
