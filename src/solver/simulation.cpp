@@ -208,7 +208,9 @@ void Simulation::convert_cells(const std::vector<Index>& tets) {
   fracture_stage();
   elements_stage();
   if (sph_) {
-    const CandidateLists& lists = candidates_->particles_at(state_);
+    bool searched = false;
+    const CandidateLists& lists = candidates_->particles_at(state_, &searched);
+    contact_totals_.rebuilds += searched;
     state_.dt =
         std::min(state_.dt, settings_.cfl * sph_->forces(state_, candidates_->primitives().faces,
                                                          {lists.edge_edge, lists.node_face})
@@ -532,7 +534,9 @@ void Simulation::sph_stage() {
   State& st = state_;
   if (st.sph.size() == 0) return;
   const std::vector<Face>& faces = candidates_->primitives().faces;
-  const CandidateLists& lists = candidates_->particles_at(st);  // the detection's lists at xⁿ⁺¹
+  bool searched = false;
+  const CandidateLists& lists = candidates_->particles_at(st, &searched);  // the lists at xⁿ⁺¹
+  contact_totals_.rebuilds += searched;
   const sph::Candidates candidates{lists.edge_edge, lists.node_face};
   sph_->update(model_.materials, st.dt_prev, kick_, st, faces, candidates);
   const sph::StepLimit limit = sph_->forces(st, faces, candidates);
