@@ -330,7 +330,8 @@ def test_whipple_refined_sph_runs_both_meshes_with_sph_debris(monkeypatch):
     monkeypatch.setattr(T, "whipple_mesh_rows", rows)
     lines = list(T.whipple_refined_sph("tetcontact", "work", None))
     assert seen["prefix"] == "whipple-refined-sph-"
-    assert seen["rows"] == T.WHIPPLE_REFINED_ROWS
+    assert seen["rows"] == T.WHIPPLE_REFINED_SPH_ROWS
+    assert set(T.WHIPPLE_REFINED_SPH_ROWS.split(",")) < set(T.WHIPPLE_REFINED_ROWS.split(","))
     assert [m[2] for m in seen["meshes"]] == [
         ["fracture.debris=sph", "fracture.erosion_step_ratio=0.5"],
         ["fracture.debris=sph", "fracture.erosion_step_ratio=0.5", 'parameters.hw="= tw / 6"']]
