@@ -116,7 +116,8 @@ void ContactCandidates::search(const State& st, bool bodies, bool particles,
   const double reach = body_lists_.reach();
   const double kernel = settings_.kernel_reach;
   if (particles && kernel > 0.0 && st.sph.size() != st.particle_count())
-    throw std::logic_error("ContactCandidates: kernel_reach without a smoothing length a particle");
+    throw std::logic_error(
+        "ContactCandidates: kernel_reach needs a smoothing length per particle (State::sph.h)");
   const double margin = settings_.margin + reach;
   const Index count = particles ? st.particle_count() : 0;
   BroadphaseInput in;
