@@ -208,13 +208,10 @@ void Simulation::convert_cells(const std::vector<Index>& tets) {
   fracture_stage();
   elements_stage();
   if (sph_) {
-    bool searched = false;
-    const CandidateLists& lists = candidates_->particles_at(state_, &searched);
-    contact_totals_.rebuilds += searched;
-    state_.dt =
-        std::min(state_.dt, settings_.cfl * sph_->forces(state_, candidates_->primitives().faces,
-                                                         {lists.edge_edge, lists.node_face})
-                                                .dt_stable);
+    state_.dt = std::min(
+        state_.dt,
+        settings_.cfl *
+            sph_->forces(state_, candidates_->primitives().faces, sph_candidates()).dt_stable);
   }
 }
 
@@ -527,6 +524,16 @@ void Simulation::elements_stage() {
   }
 }
 
+// The SPH particles' candidate pairs and faces: the detection's lists at the committed
+// positions (found anew there when they no longer hold; the search is counted as the
+// broadphase's).
+sph::Candidates Simulation::sph_candidates() {
+  bool searched = false;
+  const CandidateLists& lists = candidates_->particles_at(state_, &searched);
+  contact_totals_.rebuilds += searched;
+  return {lists.edge_edge, lists.node_face};
+}
+
 // The SPH particles (fracture.debris: sph): their material over the step just committed, from
 // U^{n+1/2}, the pair heat of the last forces over the prediction's τ_v; their forces at x^{n+1}
 // into the particles' nodes; the next step no longer than their stable step allows.
@@ -534,10 +541,7 @@ void Simulation::sph_stage() {
   State& st = state_;
   if (st.sph.size() == 0) return;
   const std::vector<Face>& faces = candidates_->primitives().faces;
-  bool searched = false;
-  const CandidateLists& lists = candidates_->particles_at(st, &searched);  // the lists at xⁿ⁺¹
-  contact_totals_.rebuilds += searched;
-  const sph::Candidates candidates{lists.edge_edge, lists.node_face};
+  const sph::Candidates candidates = sph_candidates();
   sph_->update(model_.materials, st.dt_prev, kick_, st, faces, candidates);
   const sph::StepLimit limit = sph_->forces(st, faces, candidates);
   const double dt = settings_.cfl * limit.dt_stable;

@@ -159,12 +159,8 @@ Sym6 mirror_stress(Sym6 s, const std::vector<SymmetryPlane>& planes, unsigned ma
 // give particle i its j < i from the blocks before its own, then its j > i.
 std::pair<std::vector<Index>, std::vector<Index>> candidates_by_particle(
     std::size_t n, std::span<const std::pair<Index, Index>> pairs) {
-  std::vector<std::pair<Index, Index>> sorted;
-  if (!std::is_sorted(pairs.begin(), pairs.end())) {
-    sorted.assign(pairs.begin(), pairs.end());
-    std::sort(sorted.begin(), sorted.end());
-    pairs = sorted;
-  }
+  if (!std::is_sorted(pairs.begin(), pairs.end()))
+    throw std::logic_error("SPH candidates: the pairs are not sorted");
   std::vector<Index> begin(n + 1, 0), list(2 * pairs.size());
   for (const auto& [i, j] : pairs) {
     if (!(i >= 0 && i < j && static_cast<std::size_t>(j) < n))

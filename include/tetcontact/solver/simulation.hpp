@@ -134,6 +134,7 @@ class Simulation {
   void output_stage();
   void commit_stage();
   void sph_stage();
+  sph::Candidates sph_candidates();
   void elements_stage();
   void fracture_stage();
   void heat_stage();
