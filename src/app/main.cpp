@@ -258,6 +258,10 @@ CLI::App* add_profile(CLI::App& app, tc::ProfileOptions& p) {
       ->check(CLI::PositiveNumber);
   cmd->add_option("--margin", p.margin, "frames mode: box inflation, m (default 0)")
       ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--repeat", p.repeat,
+                  "frames mode: calls per method, the last one's times reported beside the "
+                  "first's (default 1)")
+      ->check(CLI::PositiveNumber);
   cmd->add_flag("--json", p.json, "stdout is one JSON array, an object per method");
   cmd->add_option("--ccd-queries", p.ccd_queries,
                   "case mode: write the exact CCD queries of the first method's steps (contact "

@@ -99,6 +99,17 @@ TEST(Profile, FramesAtMarginZeroAgreeAcrossMethods) {
   ASSERT_EQ(c2.size(), 1u);
   EXPECT_GT(c2[0].first, c[3].first);
   EXPECT_GT(c2[0].second, c[3].second);
+  // Repeated calls list the same pairs (the command checks) and report the last call's times.
+  const auto r3 = test::run_cli("profile --frames '" + dir / "a.ply" + "' '" + dir / "b.ply" +
+                                    "' --margin 0 --json --broadphase grid --repeat 3",
+                                dir.str());
+  ASSERT_EQ(r3.code, 0) << r3.err;
+  const auto c3 = counts(r3.out);
+  ASSERT_EQ(c3.size(), 1u);
+  EXPECT_EQ(c3[0], c[3]);
+  const test::Json j3 = test::Json::parse(r3.out);
+  EXPECT_GE(j3[0].at("last_query_seconds").get<double>(), 0.0);
+  EXPECT_GE(j3[0].at("last_build_seconds").get<double>(), 0.0);
   // Mismatched frames are bad input.
   write_sphere_ply(dir / "c.ply", Vec3::Zero(), 1.0, true);
   test::write_text(dir / "d.ply",

@@ -131,3 +131,63 @@ TEST(Broadphase, TouchingBoxesCountAndSharedVerticesAreSkipped) {
   }
   EXPECT_THROW(make_broadphase("octree"), std::invalid_argument);
 }
+
+// The grid tests its boxes in single precision, in lanes: every lane width must give the
+// oracle's pairs, also where the float boxes meet and the double boxes do not (the double test
+// must decide those), far from the origin (a float's step there is 0.008 against boxes of 0.08),
+// and with a box a thousand times larger than the rest (the grid coarsens its cubes).
+TEST(Broadphase, GridInEveryLaneWidthGivesTheOraclesPairs) {
+  std::vector<BroadphaseInput> scenes;
+  for (unsigned seed : {4u, 5u}) scenes.push_back(random_scene(seed, 400, seed == 5u));
+  BroadphaseInput far = random_scene(6, 400, true);
+  for (auto* set : {&far.node_box, &far.face_box, &far.edge_box})
+    for (Box& b : *set) {
+      b.lo.array() += 1.0e5;
+      b.hi.array() += 1.0e5;
+    }
+  scenes.push_back(far);
+  // Pairs a double's step apart: lo of one just above hi of the other, on every axis in turn.
+  BroadphaseInput ties = random_scene(7, 300, false);
+  std::size_t float_only = 0;
+  for (std::size_t k = 0; k + 1 < ties.edge_box.size(); k += 2) {
+    const int axis = static_cast<int>(k / 2 % 3);
+    Box& a = ties.edge_box[k];
+    Box& b = ties.edge_box[k + 1];
+    b = a;
+    b.lo[axis] = std::nextafter(a.hi[axis], 2.0);
+    b.hi[axis] = b.lo[axis] + 0.01;
+    Box& f = ties.face_box[k];
+    f = ties.node_box[k];
+    f.lo[axis] = std::nextafter(ties.node_box[k].hi[axis], 2.0);
+    f.hi[axis] = f.lo[axis] + 0.01;
+    float_only += static_cast<float>(b.lo[axis]) <= static_cast<float>(a.hi[axis]);
+  }
+  ASSERT_GT(float_only, 50u);  // the double test decides these
+  scenes.push_back(ties);
+  BroadphaseInput giant = random_scene(8, 400, true);
+  giant.edge_box[17].hi = giant.edge_box[17].lo + Vec3(80.0, 80.0, 80.0);
+  giant.face_box[23].hi = giant.face_box[23].lo + Vec3(80.0, 80.0, 80.0);
+  scenes.push_back(giant);
+
+  std::vector<int> widths;
+  for (int n : {1, 4, 8})
+    if (const int w = set_grid_lanes(n); widths.empty() || widths.back() != w) widths.push_back(w);
+  for (const int w : widths) {
+    ASSERT_EQ(set_grid_lanes(w), w);
+    auto grid = make_broadphase("grid");  // one object for all scenes: its memory is reused
+    for (std::size_t s = 0; s < scenes.size(); ++s) {
+      const Candidates oracle = make_broadphase("brute_force")->find(scenes[s]);
+      const Candidates got = grid->find(scenes[s]);
+      EXPECT_EQ(got.node_face, oracle.node_face) << "lanes " << w << " scene " << s;
+      EXPECT_EQ(got.edge_edge, oracle.edge_edge) << "lanes " << w << " scene " << s;
+      EXPECT_GT(oracle.edge_edge.size() + oracle.node_face.size(), 5u);
+    }
+  }
+  set_grid_lanes(0);
+  EXPECT_GE(widths.size(), 1u);
+  if (widths.size() == 1) GTEST_LOG_(INFO) << "only one lane width on this processor";
+
+  BroadphaseInput bad = random_scene(9, 50, false);
+  bad.edge_box[3].hi.x() = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_THROW(make_broadphase("grid")->find(bad), std::invalid_argument);
+}

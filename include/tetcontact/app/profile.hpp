@@ -11,7 +11,10 @@ struct ProfileOptions {
   std::vector<std::string> frames;  // frames mode: A.ply B.ply
   std::string method = "all";
   double margin = 0.0;  // frames mode
-  long steps = 100;     // case mode: steps per method (the whole case when shorter)
+  /// frames mode: calls per method; the last one's times are reported beside the first's (a run
+  /// calls its broadphase every step, keeping what the method keeps between calls).
+  int repeat = 1;
+  long steps = 100;  // case mode: steps per method (the whole case when shorter)
   bool json = false;
   /// case mode: write the exact CCD queries the first method's steps asked (contact detection
   /// and verification) to this file, in `ccd`'s format (time them with `ccd FILE --fcl`).

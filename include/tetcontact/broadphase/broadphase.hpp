@@ -75,4 +75,9 @@ std::unique_ptr<Broadphase> make_broadphase(const std::string& name, double cell
 
 const std::vector<std::string>& broadphase_names();
 
+/// The grid's lanes: 8 boxes a test where the processor has AVX2, 4 (SSE2) on any x86-64, or 1.
+/// Sets them (n ≤ 0 or above the processor's: its best) and returns those in use. The answers
+/// are the same for every width (the tests compare them); the switch is for those tests.
+int set_grid_lanes(int n);
+
 }  // namespace tc
