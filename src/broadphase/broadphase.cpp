@@ -40,11 +40,14 @@ bool admissible_edge_edge(const BroadphaseInput& in, Index a, Index b) {
 }
 
 std::vector<Index> listed_faces(const std::vector<std::pair<Index, Index>>& node_face) {
+  // Marked, then read in order: no sort of the (many) pairs' faces.
+  Index top = -1;
+  for (const auto& p : node_face) top = std::max(top, p.second);
+  std::vector<char> listed(static_cast<std::size_t>(top + 1), 0);
+  for (const auto& p : node_face) listed[p.second] = 1;
   std::vector<Index> faces;
-  faces.reserve(node_face.size());
-  for (const auto& [node, face] : node_face) faces.push_back(face);
-  std::sort(faces.begin(), faces.end());
-  faces.erase(std::unique(faces.begin(), faces.end()), faces.end());
+  for (Index f = 0; f <= top; ++f)
+    if (listed[f]) faces.push_back(f);
   return faces;
 }
 

@@ -94,7 +94,7 @@ struct Cubes {
   std::vector<Index> entry_begin, entry, entry_cube;
   // Scratch of the build, kept with the rest between calls (no allocation once warm).
   std::vector<CubeRange> ranges;
-  std::vector<Index> next;
+  std::vector<Index> next, rank;
 
   std::int64_t cube_of(double v) const { return static_cast<std::int64_t>(std::floor(v / h)); }
   CubeRange range(const Box& b) const {
@@ -178,12 +178,19 @@ void enter(Cubes& g, const std::vector<Box>& boxes, double h) {
   g.h = h;
   const std::size_t n = boxes.size();
   g.ranges.resize(n);
+  // On the threads: each box's cubes, and their count.
   const double limit = 64.0 * static_cast<double>(n) + 1.0e6;
-  double counted = 0.0;
-  for (std::size_t i = 0; i < n && counted <= limit; ++i) {
-    g.ranges[i] = g.range(boxes[i]);
-    counted += static_cast<double>(g.ranges[i].count());
-  }
+  const double counted = parallel::sum_blocks<double>(
+      n,
+      [&](std::size_t begin, std::size_t end) {
+        double c = 0.0;
+        for (std::size_t i = begin; i < end; ++i) {
+          g.ranges[i] = g.range(boxes[i]);
+          c += static_cast<double>(g.ranges[i].count());  // whole numbers: exact
+        }
+        return c;
+      },
+      parallel::k_light_block);
   if (counted > limit) return enter(g, boxes, 2.0 * h);
   const std::size_t entries = static_cast<std::size_t>(counted);
   for (int a = 0; a < 3; ++a) {
@@ -208,8 +215,10 @@ void enter(Cubes& g, const std::vector<Box>& boxes, double h) {
   g.mask = size - 1;
   g.keys.assign(size, Cubes::kEmpty);
   g.ids.resize(size);
-  // Number the cubes in order of first entry; count each cube's entries.
+  // Serial: number the cubes in order of first entry, and give each entry its rank in its cube
+  // (the entries of a cube in primitive order).
   g.entry_cube.resize(entries);
+  g.rank.resize(entries);
   g.next.clear();
   g.entry_begin.resize(n + 1);
   g.entry_begin[0] = 0;
@@ -222,7 +231,7 @@ void enter(Cubes& g, const std::vector<Box>& boxes, double h) {
           const Index fresh = static_cast<Index>(g.next.size());
           const Index c = g.insert(g.key(x, y, z), fresh);
           if (c == fresh) g.next.push_back(0);
-          ++g.next[c];
+          g.rank[e] = g.next[c]++;
           g.entry_cube[e++] = c;
         }
     g.entry_begin[i + 1] = static_cast<Index>(e);
@@ -230,10 +239,7 @@ void enter(Cubes& g, const std::vector<Box>& boxes, double h) {
   const std::size_t cubes = g.next.size();
   g.start.resize(cubes + 1);
   g.start[0] = 0;
-  for (std::size_t c = 0; c < cubes; ++c) {
-    g.start[c + 1] = g.start[c] + g.next[c];
-    g.next[c] = g.start[c];  // now the next free entry of each cube
-  }
+  for (std::size_t c = 0; c < cubes; ++c) g.start[c + 1] = g.start[c] + g.next[c];
   // Eight entries of padding (NaN boxes: no test passes), so that lanes may read past the last.
   const float nan = std::numeric_limits<float>::quiet_NaN();
   for (auto* v : {&g.lox, &g.loy, &g.loz, &g.hix, &g.hiy, &g.hiz}) {
@@ -244,27 +250,31 @@ void enter(Cubes& g, const std::vector<Box>& boxes, double h) {
   std::fill(g.first.begin() + static_cast<std::ptrdiff_t>(entries), g.first.end(), 0);
   g.item.resize(entries);
   g.entry.resize(entries);
-  e = 0;
-  for (std::size_t i = 0; i < n; ++i) {
-    const CubeRange& r = g.ranges[i];
-    const Box& b = boxes[i];
-    const float lx = round_down(b.lo.x()), ly = round_down(b.lo.y()), lz = round_down(b.lo.z());
-    const float ux = round_up(b.hi.x()), uy = round_up(b.hi.y()), uz = round_up(b.hi.z());
-    for (std::int64_t x = r.lo[0]; x <= r.hi[0]; ++x)
-      for (std::int64_t y = r.lo[1]; y <= r.hi[1]; ++y)
-        for (std::int64_t z = r.lo[2]; z <= r.hi[2]; ++z) {
-          const Index p = g.next[g.entry_cube[e]]++;
-          g.lox[p] = lx;
-          g.loy[p] = ly;
-          g.loz[p] = lz;
-          g.hix[p] = ux;
-          g.hiy[p] = uy;
-          g.hiz[p] = uz;
-          g.first[p] = (x == r.lo[0] ? 1 : 0) | (y == r.lo[1] ? 2 : 0) | (z == r.lo[2] ? 4 : 0);
-          g.item[p] = static_cast<Index>(i);
-          g.entry[e++] = p;
-        }
-  }
+  // On the threads: each box writes its own entries (their places known from the ranks).
+  parallel::for_each(
+      n,
+      [&](std::size_t i) {
+        const CubeRange& r = g.ranges[i];
+        const Box& b = boxes[i];
+        const float lx = round_down(b.lo.x()), ly = round_down(b.lo.y()), lz = round_down(b.lo.z());
+        const float ux = round_up(b.hi.x()), uy = round_up(b.hi.y()), uz = round_up(b.hi.z());
+        Index k = g.entry_begin[i];
+        for (std::int64_t x = r.lo[0]; x <= r.hi[0]; ++x)
+          for (std::int64_t y = r.lo[1]; y <= r.hi[1]; ++y)
+            for (std::int64_t z = r.lo[2]; z <= r.hi[2]; ++z, ++k) {
+              const Index p = g.start[g.entry_cube[k]] + g.rank[k];
+              g.lox[p] = lx;
+              g.loy[p] = ly;
+              g.loz[p] = lz;
+              g.hix[p] = ux;
+              g.hiy[p] = uy;
+              g.hiz[p] = uz;
+              g.first[p] = (x == r.lo[0] ? 1 : 0) | (y == r.lo[1] ? 2 : 0) | (z == r.lo[2] ? 4 : 0);
+              g.item[p] = static_cast<Index>(i);
+              g.entry[k] = p;
+            }
+      },
+      parallel::k_light_block);
 }
 
 // A query: its float box rounded outward (l, u) and inward (sl, su), and the first-cube bits its

@@ -133,18 +133,36 @@ std::vector<Surface> build_surfaces(const Mesh& mesh, const TetNeighbours& neigh
       s.face_tet.push_back(key.tet);
     }
 
-    // Boundary edges and nodes.
-    for (const Face& f : s.faces) {
-      for (int e = 0; e < 3; ++e) {
-        Index a = f[e], c = f[(e + 1) % 3];
-        s.edges.push_back({std::min(a, c), std::max(a, c)});
+    // Boundary nodes and edges, sorted and each once: nodes marked over the range the faces
+    // span, edges bucketed by their lower node (each bucket a few, sorted in place); no sort
+    // of the whole surface.
+    if (!s.faces.empty()) {
+      Index lo = s.faces[0][0], hi = lo;
+      for (const Face& f : s.faces)
+        for (const Index v : f) lo = std::min(lo, v), hi = std::max(hi, v);
+      const std::size_t span = static_cast<std::size_t>(hi - lo) + 1;
+      std::vector<Index> start(span + 1, 0);
+      for (const Face& f : s.faces)
+        for (int e = 0; e < 3; ++e) ++start[std::min(f[e], f[(e + 1) % 3]) - lo + 1];
+      for (std::size_t i = 0; i < span; ++i) start[i + 1] += start[i];
+      std::vector<Index> upper(start.back());
+      std::vector<Index> fill(start.begin(), start.end() - 1);
+      for (const Face& f : s.faces)
+        for (int e = 0; e < 3; ++e) {
+          const Index a = f[e], c = f[(e + 1) % 3];
+          upper[fill[std::min(a, c) - lo]++] = std::max(a, c);
+        }
+      std::vector<char> on(span, 0);
+      for (const Face& f : s.faces)
+        for (const Index v : f) on[v - lo] = 1;
+      for (std::size_t i = 0; i < span; ++i) {
+        if (on[i]) s.nodes.push_back(lo + static_cast<Index>(i));
+        const auto b = upper.begin() + start[i], e = upper.begin() + start[i + 1];
+        std::sort(b, e);
+        for (auto it = b; it != e; ++it)
+          if (it == b || *it != *(it - 1)) s.edges.push_back({lo + static_cast<Index>(i), *it});
       }
-      s.nodes.insert(s.nodes.end(), f.begin(), f.end());
     }
-    std::sort(s.edges.begin(), s.edges.end());
-    s.edges.erase(std::unique(s.edges.begin(), s.edges.end()), s.edges.end());
-    std::sort(s.nodes.begin(), s.nodes.end());
-    s.nodes.erase(std::unique(s.nodes.begin(), s.nodes.end()), s.nodes.end());
 
     // node→faces in CSR form (each node's slot in s.nodes looked up in `slot_of`, cleared
     // after the body).
