@@ -6,6 +6,8 @@
 #include <map>
 #include <stdexcept>
 
+#include "tetcontact/parallel/parallel.hpp"
+
 namespace tc {
 
 SurfacePrimitives surface_primitives(const std::vector<Surface>& surfaces, bool edges) {
@@ -120,35 +122,60 @@ void ContactCandidates::search(const State& st, bool bodies, bool particles,
         "ContactCandidates: kernel_reach needs a smoothing length per particle (State::sph.h)");
   const double margin = settings_.margin + reach;
   const Index count = particles ? st.particle_count() : 0;
+  // The boxes are set on the threads, each primitive its own.
   BroadphaseInput in;
   if (bodies) {
-    for (const Index n : prims_.nodes) {
-      in.node_box.push_back(swept_box({&x0[n], &x1[n]}, margin));
-      in.node_id.push_back(n);
-    }
+    in.node_id = prims_.nodes;
     in.node_body = prims_.node_body;
-    for (std::size_t e = 0; e < prims_.edges.size(); ++e) {
-      const Edge& k = prims_.edges[e];
-      in.edge_box.push_back(swept_box({&x0[k[0]], &x0[k[1]], &x1[k[0]], &x1[k[1]]}, margin));
-      in.edge_nodes.push_back(k);
-      in.edge_body.push_back(prims_.edge_body[e]);
-    }
+    in.node_box.resize(prims_.nodes.size());
+    parallel::for_each(
+        prims_.nodes.size(),
+        [&](std::size_t i) {
+          const Index n = prims_.nodes[i];
+          in.node_box[i] = swept_box({&x0[n], &x1[n]}, margin);
+        },
+        parallel::k_light_block);
+    in.edge_nodes = prims_.edges;
+    in.edge_body = prims_.edge_body;
+    in.edge_box.resize(prims_.edges.size());
+    parallel::for_each(
+        prims_.edges.size(),
+        [&](std::size_t e) {
+          const Edge& k = prims_.edges[e];
+          in.edge_box[e] = swept_box({&x0[k[0]], &x0[k[1]], &x1[k[0]], &x1[k[1]]}, margin);
+        },
+        parallel::k_light_block);
   }
   const Index node_base = static_cast<Index>(in.node_id.size());
   const Index edge_base = static_cast<Index>(in.edge_nodes.size());
-  for (Index i = 0; i < count; ++i) {
-    const Index p = st.first_particle + i;
-    const double h = kernel > 0.0 ? st.sph.h[static_cast<std::size_t>(i)] : 0.0;
-    const double radius = st.particle_radius[i];
-    in.node_box.push_back(swept_box({&x0[p], &x1[p]}, std::max(radius, kernel * h) + reach));
-    in.node_id.push_back(p);
-    in.node_body.push_back(-2 - i);
-    if (!settings_.particle_pairs) continue;
-    in.edge_box.push_back(
-        swept_box({&x0[p], &x1[p]}, (kernel > 0.0 ? 0.5 * kernel * h : radius) + reach));
-    in.edge_nodes.push_back({p, p});
-    in.edge_body.push_back(-2 - i);
+  const std::size_t n_count = static_cast<std::size_t>(count);
+  const bool pairs = settings_.particle_pairs;
+  in.node_box.resize(node_base + n_count);
+  in.node_id.resize(node_base + n_count);
+  in.node_body.resize(node_base + n_count);
+  if (pairs) {
+    in.edge_box.resize(edge_base + n_count);
+    in.edge_nodes.resize(edge_base + n_count);
+    in.edge_body.resize(edge_base + n_count);
   }
+  parallel::for_each(
+      n_count,
+      [&](std::size_t u) {
+        const Index i = static_cast<Index>(u);
+        const Index p = st.first_particle + i;
+        const double h = kernel > 0.0 ? st.sph.h[u] : 0.0;
+        const double radius = st.particle_radius[i];
+        in.node_box[node_base + u] =
+            swept_box({&x0[p], &x1[p]}, std::max(radius, kernel * h) + reach);
+        in.node_id[node_base + u] = p;
+        in.node_body[node_base + u] = -2 - i;
+        if (!pairs) return;
+        in.edge_box[edge_base + u] =
+            swept_box({&x0[p], &x1[p]}, (kernel > 0.0 ? 0.5 * kernel * h : radius) + reach);
+        in.edge_nodes[edge_base + u] = {p, p};
+        in.edge_body[edge_base + u] = -2 - i;
+      },
+      parallel::k_light_block);
   // A face's box: its layer box for the bodies' node–face contact (which holds the face at
   // both ends of the step), else the face's own path. For the particles alone, a face outside
   // the box of all particles' boxes cannot pair with any: it stays out of the search.
@@ -158,16 +185,19 @@ void ContactCandidates::search(const State& st, bool bodies, bool particles,
     for (std::size_t i = node_base; i < in.node_box.size(); ++i)
       all.lo = all.lo.cwiseMin(in.node_box[i].lo), all.hi = all.hi.cwiseMax(in.node_box[i].hi);
   }
-  std::vector<Index> number;  // the face (into primitives) of each searched face
-  for (std::size_t f = 0; f < prims_.faces.size(); ++f) {
+  std::vector<Box> face_box(prims_.faces.size());
+  parallel::for_each(prims_.faces.size(), [&](std::size_t f) {
     const Face& k = prims_.faces[f];
-    const Box box =
+    face_box[f] =
         bodies
             ? layer_box(k, mesh_.tets[prims_.face_tet[f]], x0, x1, settings_.rim, margin)
             : swept_box({&x0[k[0]], &x0[k[1]], &x0[k[2]], &x1[k[0]], &x1[k[1]], &x1[k[2]]}, reach);
-    if (!bodies && !(count > 0 && boxes_overlap(box, all))) continue;
-    in.face_box.push_back(box);
-    in.face_nodes.push_back(k);
+  });
+  std::vector<Index> number;  // the face (into primitives) of each searched face
+  for (std::size_t f = 0; f < prims_.faces.size(); ++f) {
+    if (!bodies && !(count > 0 && boxes_overlap(face_box[f], all))) continue;
+    in.face_box.push_back(face_box[f]);
+    in.face_nodes.push_back(prims_.faces[f]);
     in.face_body.push_back(prims_.face_body[f]);
     number.push_back(static_cast<Index>(f));
   }

@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "tetcontact/mesh/symmetry.hpp"
+#include "tetcontact/parallel/parallel.hpp"
 
 namespace tc {
 namespace {
@@ -114,20 +115,53 @@ std::vector<Surface> build_surfaces(const Mesh& mesh, const TetNeighbours& neigh
     s.max_edge_length = lengths[b].max;
 
     // A boundary face is a face of a present tet with no present tet across it; faces are
-    // listed in the order of their sorted node triples.
-    std::vector<FaceKey> keys;
-    for (Index t = r.tet_begin; t < r.tet_end; ++t) {
-      if (gone(t)) continue;
-      const Tet& k = mesh.tets[t];
-      for (int i = 0; i < 4; ++i) {
-        const Index other = neighbours[t][i];
-        if (other == k_mirror_tet || (other >= 0 && !gone(other))) continue;
-        const auto& lf = k_tet_faces[i];
-        const Face f{k[lf[0]], k[lf[1]], k[lf[2]]};
-        keys.push_back({sorted_face(f), f, t});
+    // listed in the order of their sorted node triples. The tets are read on the threads (each
+    // block its own keys, joined in block order); the keys are then bucketed by their lowest
+    // node and each bucket (a few faces) sorted.
+    const std::size_t body_tets = static_cast<std::size_t>(r.tet_count());
+    std::vector<std::vector<FaceKey>> found(
+        parallel::block_count(body_tets, parallel::k_light_block));
+    parallel::for_blocks(
+        body_tets,
+        [&](std::size_t blk, std::size_t begin, std::size_t end) {
+          for (std::size_t u = begin; u < end; ++u) {
+            const Index t = r.tet_begin + static_cast<Index>(u);
+            if (gone(t)) continue;
+            const Tet& k = mesh.tets[t];
+            for (int i = 0; i < 4; ++i) {
+              const Index other = neighbours[t][i];
+              if (other == k_mirror_tet || (other >= 0 && !gone(other))) continue;
+              const auto& lf = k_tet_faces[i];
+              const Face f{k[lf[0]], k[lf[1]], k[lf[2]]};
+              found[blk].push_back({sorted_face(f), f, t});
+            }
+          }
+        },
+        parallel::k_light_block);
+    std::size_t count = 0;
+    Index lowest = 0, highest = -1;
+    for (const auto& keys : found)
+      for (const FaceKey& key : keys) {
+        lowest = count == 0 ? key.sorted[0] : std::min(lowest, key.sorted[0]);
+        highest = std::max(highest, key.sorted[0]);
+        ++count;
       }
+    std::vector<FaceKey> keys(count);
+    if (count > 0) {
+      std::vector<std::size_t> at(static_cast<std::size_t>(highest - lowest) + 2, 0);
+      for (const auto& block : found)
+        for (const FaceKey& key : block) ++at[key.sorted[0] - lowest + 1];
+      for (std::size_t i = 1; i < at.size(); ++i) at[i] += at[i - 1];
+      std::vector<std::size_t> next(at.begin(), at.end() - 1);
+      for (const auto& block : found)
+        for (const FaceKey& key : block) keys[next[key.sorted[0] - lowest]++] = key;
+      for (std::size_t i = 0; i + 1 < at.size(); ++i)
+        if (at[i + 1] - at[i] > 1)
+          std::sort(keys.begin() + static_cast<std::ptrdiff_t>(at[i]),
+                    keys.begin() + static_cast<std::ptrdiff_t>(at[i + 1]));
     }
-    std::sort(keys.begin(), keys.end());
+    s.faces.reserve(count);
+    s.face_tet.reserve(count);
     for (const FaceKey& key : keys) {
       s.faces.push_back(key.oriented);
       s.face_tet.push_back(key.tet);
