@@ -1,6 +1,7 @@
 #include "tetcontact/element/element.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -238,6 +239,114 @@ struct CellKinematics {
   c.m.vol_end = c.ge.vol;
 }
 
+// The same kinematics for a block of cells at once, in SIMD lanes: node data gathered into a
+// structure of arrays, every quantity computed lane by lane with exactly the operations, in the
+// order, of cell_kinematics (tet_geometry, the gradient, set_rates), so that each lane's doubles
+// are the scalar path's bit for bit (test `Element.LanesGiveTheScalarPathsState`). Checks are
+// left to check_kinematics, called cell by cell in order as the scalar path would.
+constexpr int kLanes = 8;
+
+struct LaneGeometry {
+  double a[4][3][kLanes];
+  double vol[kLanes], amax2[kLanes];
+};
+
+// tet_geometry in lanes: e[i][d][l] the edge vectors from node 0.
+[[gnu::always_inline]] inline void lane_geometry(const double (&e)[3][3][kLanes], LaneGeometry& g) {
+  for (int l = 0; l < kLanes; ++l) {
+    // cross_half(e[2], e[1]) → a1, cross_half(e[0], e[2]) → a2, cross_half(e[1], e[0]) → a3
+    g.a[1][0][l] = 0.5 * (e[2][1][l] * e[1][2][l] - e[2][2][l] * e[1][1][l]);
+    g.a[1][1][l] = 0.5 * (e[2][2][l] * e[1][0][l] - e[2][0][l] * e[1][2][l]);
+    g.a[1][2][l] = 0.5 * (e[2][0][l] * e[1][1][l] - e[2][1][l] * e[1][0][l]);
+    g.a[2][0][l] = 0.5 * (e[0][1][l] * e[2][2][l] - e[0][2][l] * e[2][1][l]);
+    g.a[2][1][l] = 0.5 * (e[0][2][l] * e[2][0][l] - e[0][0][l] * e[2][2][l]);
+    g.a[2][2][l] = 0.5 * (e[0][0][l] * e[2][1][l] - e[0][1][l] * e[2][0][l]);
+    g.a[3][0][l] = 0.5 * (e[1][1][l] * e[0][2][l] - e[1][2][l] * e[0][1][l]);
+    g.a[3][1][l] = 0.5 * (e[1][2][l] * e[0][0][l] - e[1][0][l] * e[0][2][l]);
+    g.a[3][2][l] = 0.5 * (e[1][0][l] * e[0][1][l] - e[1][1][l] * e[0][0][l]);
+    for (int d = 0; d < 3; ++d) g.a[0][d][l] = -(g.a[1][d][l] + g.a[2][d][l] + g.a[3][d][l]);
+    g.vol[l] =
+        -(e[0][0][l] * g.a[1][0][l] + e[0][1][l] * g.a[1][1][l] + e[0][2][l] * g.a[1][2][l]) *
+        (1.0 / 3.0);
+    double amax2 = 0.0;
+    for (int i = 0; i < 4; ++i) {
+      const double n2 =
+          g.a[i][0][l] * g.a[i][0][l] + g.a[i][1][l] * g.a[i][1][l] + g.a[i][2][l] * g.a[i][2][l];
+      amax2 = amax2 < n2 ? n2 : amax2;  // std::max(amax2, n2)
+    }
+    g.amax2[l] = amax2;
+  }
+}
+
+void copy_geometry(const LaneGeometry& g, int l, TetGeometry& out) {
+  for (int i = 0; i < 4; ++i)
+    for (int d = 0; d < 3; ++d) out.a[i][d] = g.a[i][d][l];
+  out.vol = g.vol[l];
+  out.amax2 = g.amax2[l];
+}
+
+// cell_kinematics for the cells tets[t[l]], l < count (lanes past count repeat the first).
+// Two copies, AVX2 (four doubles a lane group) where the processor has it, SSE2 otherwise:
+// neither contracts a product and a sum, so both give the scalar path's doubles.
+__attribute__((target_clones("avx2", "default"))) void lane_kinematics(const std::size_t* t,
+                                                                       int count,
+                                                                       const std::vector<Tet>& tets,
+                                                                       double tau, const State& st,
+                                                                       CellKinematics* c) {
+  const double h = 0.5 * tau;
+  double ee[3][3][kLanes], em[3][3][kLanes], du[3][3][kLanes];
+  for (int l = 0; l < kLanes; ++l) {
+    const Tet& k = tets[t[l < count ? l : 0]];
+    const Vec3 &x0 = st.x[k[0]], &u0 = st.v[k[0]];
+    for (int i = 0; i < 3; ++i) {
+      const Vec3 &xi = st.x[k[i + 1]], &ui = st.v[k[i + 1]];
+      for (int d = 0; d < 3; ++d) {
+        ee[i][d][l] = xi[d] - x0[d];
+        du[i][d][l] = ui[d] - u0[d];
+      }
+    }
+  }
+  for (int i = 0; i < 3; ++i)
+    for (int d = 0; d < 3; ++d)
+      for (int l = 0; l < kLanes; ++l) em[i][d][l] = ee[i][d][l] - h * du[i][d][l];
+  LaneGeometry gm, ge;
+  lane_geometry(em, gm);
+  lane_geometry(ee, ge);
+  // L = Σ_i (U_i − U_0) ⊗ ∇N_i, ∇N_i = −a_i / (3V) at mid-step; then set_rates.
+  double L[3][3][kLanes];
+  for (int l = 0; l < kLanes; ++l) {
+    const double inv3v = -1.0 / (3.0 * gm.vol[l]);
+    for (int r = 0; r < 3; ++r)
+      for (int col = 0; col < 3; ++col)
+        L[r][col][l] = inv3v * (du[0][r][l] * gm.a[1][col][l] + du[1][r][l] * gm.a[2][col][l] +
+                                du[2][r][l] * gm.a[3][col][l]);
+  }
+  for (int l = 0; l < count; ++l) {
+    CellKinematics& k = c[l];
+    copy_geometry(gm, l, k.gm);
+    copy_geometry(ge, l, k.ge);
+    k.m.d = Sym6{L[0][0][l],
+                 L[1][1][l],
+                 L[2][2][l],
+                 0.5 * (L[0][1][l] + L[1][0][l]),
+                 0.5 * (L[1][2][l] + L[2][1][l]),
+                 0.5 * (L[0][2][l] + L[2][0][l])};
+    k.m.w = {0.5 * (L[2][1][l] - L[1][2][l]), 0.5 * (L[0][2][l] - L[2][0][l]),
+             0.5 * (L[1][0][l] - L[0][1][l])};
+    k.m.trace = k.m.d[0] + k.m.d[1] + k.m.d[2];
+    k.m.vol_mid = gm.vol[l];
+    k.m.vol_end = ge.vol[l];
+  }
+}
+
+// cell_kinematics' checks, for kinematics computed in lanes.
+inline void check_kinematics(Index ti, const State& st, const CellKinematics& c) {
+  const double vol0 = st.vol0[ti];
+  if (!(c.gm.vol > 0.0)) inverted(ti, "during the step", c.gm.vol, vol0);
+  if (!std::isfinite(c.ge.vol)) throw InvertedElement(ti, "non-finite node position");
+  if (!(c.ge.vol > 0.0)) inverted(ti, "at the end of the step", c.ge.vol, vol0);
+}
+
 // Per-tet pressure (point_pressure: the EOS, the energy, failure, the sound speed) and the
 // cell's forces from its end geometry.
 [[gnu::always_inline]] inline void cell_pressure(Index t, const Material& mat,
@@ -253,15 +362,13 @@ struct CellKinematics {
 // left out of the averages: their neighbours' pressure must not depend on a loosened cell's
 // volume — an intact cell beside spalled ones was crushed to V/V0 = 0.29 under an averaged
 // pressure far below its own), the pressure work following in pass 3.
-[[gnu::always_inline]] inline void update_cell(std::size_t t, const Tet& k,
+[[gnu::always_inline]] inline void update_cell(std::size_t t, const CellKinematics& c,
                                                const std::vector<Material>& materials,
                                                const ElementOptions& options, double tau, State& st,
                                                ElementScratch& scratch, ForceResult& block) {
   const Index ti = static_cast<Index>(t);
   const Index mi = st.tet_material[t];
   const Material& mat = materials[mi];
-  CellKinematics c;
-  cell_kinematics(ti, k, tau, st, c);
   const MaterialPoint pt = tet_point(st, ti);
   const double rho_mid = mat.density * st.vol0[t] / c.gm.vol;
   double w_p = 0.0, dvol = 0.0;
@@ -354,6 +461,14 @@ void nodal_pressures(const std::vector<Material>& materials, const ElementOption
 
 }  // namespace
 
+namespace {
+std::atomic<bool> element_lanes{true};
+}  // namespace
+
+bool set_element_lanes(bool on) {
+  return element_lanes.exchange(on);
+}
+
 // The element stage: pass 1 over the cells (update_cell); without the average nodal pressure the
 // forces are then gathered; with it, pass 2 (nodal_pressures) and pass 3
 // (averaged_cell_pressure) follow.
@@ -371,10 +486,31 @@ ForceResult update_material(const std::vector<Tet>& tets, const std::vector<Mate
   std::vector<ForceResult> blocks = block_results(mine.size());
   ForceResult forces = collective_pass(scratch, blocks, [&] {
     parallel::for_blocks(mine.size(), [&](std::size_t blk, std::size_t begin, std::size_t end) {
-      for (std::size_t i = begin; i < end; ++i) {
-        const std::size_t t = mine[i];
-        if (st.damage[t] == Damage::particle) continue;  // now a particle: no longer a cell
-        update_cell(t, tets[t], materials, options, tau, st, scratch, blocks[blk]);
+      if (!element_lanes) {
+        for (std::size_t i = begin; i < end; ++i) {
+          const std::size_t t = mine[i];
+          if (st.damage[t] == Damage::particle) continue;  // now a particle: no longer a cell
+          CellKinematics c;
+          cell_kinematics(static_cast<Index>(t), tets[t], tau, st, c);
+          update_cell(t, c, materials, options, tau, st, scratch, blocks[blk]);
+        }
+        return;
+      }
+      // The cells kLanes at a time: their kinematics in lanes, then each cell's checks and
+      // material update in order.
+      std::size_t lane_tet[kLanes];
+      CellKinematics c[kLanes];
+      for (std::size_t i = begin; i < end;) {
+        int count = 0;
+        for (; i < end && count < kLanes; ++i)
+          if (st.damage[mine[i]] != Damage::particle) lane_tet[count++] = mine[i];
+        if (count == 0) continue;
+        lane_kinematics(lane_tet, count, tets, tau, st, c);
+        for (int l = 0; l < count; ++l) {
+          const std::size_t t = lane_tet[l];
+          check_kinematics(static_cast<Index>(t), st, c[l]);
+          update_cell(t, c[l], materials, options, tau, st, scratch, blocks[blk]);
+        }
       }
     });
   });

@@ -1,14 +1,16 @@
 // Constant-strain tetrahedra: the patch test and the element kernel against exact results.
 #include <gtest/gtest.h>
 
-#include <array>
-
 #include <algorithm>
+#include <array>
+#include <set>
+#include <string>
 
 #include <Eigen/Eigenvalues>
 
 #include "../solver/solver_fixture.hpp"
 #include "tetcontact/element/element.hpp"
+#include "tetcontact/io/case.hpp"
 #include "tetcontact/solver/simulation.hpp"
 
 using namespace tc;
@@ -366,4 +368,70 @@ TEST(Element, DuctileDamageIsThePlasticStrainOverTheFailureStrain) {
   EXPECT_FALSE(within_fit.listed);
   EXPECT_EQ(within_fit.floor, 0.0);
   EXPECT_NEAR(within_fit.damage, al6061.damage - al6061.floor, 1e-12);
+}
+
+// The cells' kinematics in SIMD lanes give the scalar path's state bit for bit: every library
+// material with its default laws (each strength law and equation of state the library uses),
+// per-tet and averaged pressure, fracture on, a cell turned particle among the others, and a
+// mesh whose cell count is no multiple of the lanes.
+TEST(Element, LanesGiveTheScalarPathsState) {
+  std::vector<Material> lib = load_material_library(default_material_library());
+  ASSERT_GE(lib.size(), 3u);
+  for (std::size_t k = 0, n = lib.size(); k < n; ++k)
+    if (lib[k].tillotson.big_a >
+        0.0) {  // its Tillotson block, as a case's `eos: {type: tillotson}`
+      Material m = lib[k];
+      m.eos = EosKind::tillotson;
+      lib.push_back(m);
+    }
+  lib.push_back(test::aluminium());
+  std::set<int> laws, eoses;
+  bool plastic = false;
+  for (const Material& mat : lib) {
+    laws.insert(static_cast<int>(mat.strength));
+    eoses.insert(static_cast<int>(mat.eos));
+    for (const bool anp : {false, true}) {
+      Model model = test::single_body_model(distorted_box(), mat);
+      model.element.average_nodal_pressure = {static_cast<char>(anp)};
+      model.element.fracture = true;
+      Mat3 L;  // compression, shear and spin: yields within the steps
+      L << -3.0, 1.5, 0.4, -0.7, 1.0, 0.8, 0.2, -0.6, 1.2;
+      for (std::size_t i = 0; i < model.mesh.x.size(); ++i)
+        model.initial_velocity[i] = L * model.mesh.x[i];
+      State lanes = initial_state(model);
+      lanes.damage[5] = Damage::particle;
+      State scalar = lanes;
+      ElementScratch scratch_lanes, scratch_scalar;
+      const double tau = 1e-3;
+      for (int step = 0; step < 6; ++step) {
+        for (State* st : {&lanes, &scalar})
+          for (std::size_t i = 0; i < st->x.size(); ++i) st->x[i] += tau * st->v[i];
+        const bool was = set_element_lanes(true);
+        update_material(model.mesh.tets, model.materials, model.element, tau, lanes, scratch_lanes);
+        set_element_lanes(false);
+        update_material(model.mesh.tets, model.materials, model.element, tau, scalar,
+                        scratch_scalar);
+        set_element_lanes(was);
+      }
+      const std::string what = mat.name + (anp ? ", averaged pressure" : ", per-tet pressure");
+      ASSERT_EQ(lanes.s.size(), scalar.s.size());
+      for (std::size_t t = 0; t < lanes.s.size(); ++t) {
+        ASSERT_EQ(lanes.s[t], scalar.s[t]) << what << ", tet " << t;
+        ASSERT_EQ(lanes.p[t], scalar.p[t]) << what << ", tet " << t;
+        ASSERT_EQ(lanes.e_int[t], scalar.e_int[t]) << what << ", tet " << t;
+        ASSERT_EQ(lanes.eps_p[t], scalar.eps_p[t]) << what << ", tet " << t;
+        ASSERT_EQ(lanes.sound2[t], scalar.sound2[t]) << what << ", tet " << t;
+        ASSERT_EQ(lanes.trace_d[t], scalar.trace_d[t]) << what << ", tet " << t;
+        plastic = plastic || lanes.eps_p[t] > 0.0;
+      }
+      for (std::size_t i = 0; i < lanes.f.size(); ++i)
+        ASSERT_TRUE(lanes.f[i] == scalar.f[i]) << what << ", node " << i;
+    }
+  }
+  EXPECT_TRUE(plastic);                             // the strength laws' returns ran
+  EXPECT_EQ(laws.size(), 3u);                       // bilinear, Johnson–Cook, Steinberg–Guinan
+  EXPECT_GE(eoses.size(), 2u);                      // Mie–Grüneisen and Tillotson at least
+  const bool by_default = set_element_lanes(true);  // the setting the other tests ran with
+  set_element_lanes(by_default);
+  EXPECT_TRUE(by_default);
 }
