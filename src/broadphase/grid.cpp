@@ -550,6 +550,11 @@ class Grid : public Broadphase {
     });
     join(ee, c.edge_edge);
     query_seconds = since(t0);
+    if (!keep_memory) {
+      faces_ = Cubes{};
+      edges_ = Cubes{};
+      blocks_ = {};
+    }
     return c;
   }
 
@@ -561,7 +566,7 @@ class Grid : public Broadphase {
     return blocks_;
   }
   double cell_;
-  Cubes faces_, edges_;  // kept between calls: the next call reuses their memory
+  Cubes faces_, edges_;  // with keep_memory, kept between calls: the next call reuses them
   std::vector<std::vector<std::pair<Index, Index>>> blocks_;
 };
 
