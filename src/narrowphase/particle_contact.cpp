@@ -109,23 +109,31 @@ std::vector<ContactPoint> ParticleContact::detect(const Mesh& mesh, const State&
   for (Index i = 0; i < count; ++i)
     if (deepest[i] > 0.0) moves_.emplace_back(first + i, move[i]);
   if (!pairs_) return out;
-  for (const auto& [i, j] : lists.edge_edge) {
-    if (!boxes_overlap(pbox[i], pbox[j])) continue;
-    const Index p = first + i, o = first + j;
-    const Vec3 d = st.x[p] - st.x[o];
-    const double dist = d.norm();
-    if (!(dist > 0.0)) continue;
-    ContactPoint cp;
-    cp.normal = d / dist;
-    cp.gap = dist - st.particle_radius[i] - st.particle_radius[j];
-    cp.a_nodes[0] = p;
-    cp.a_w[0] = 1.0;
-    cp.a_count = 1;
-    cp.b_nodes[0] = o;
-    cp.b_w[0] = 1.0;
-    cp.b_count = 1;
-    out.push_back(cp);
-  }
+  // Particle pairs, likewise on the threads and joined in the lists' order.
+  std::vector<std::vector<ContactPoint>> near(parallel::block_count(lists.edge_edge.size()));
+  parallel::for_blocks(lists.edge_edge.size(),
+                       [&](std::size_t blk, std::size_t begin, std::size_t end) {
+                         for (std::size_t pair = begin; pair < end; ++pair) {
+                           const auto& [i, j] = lists.edge_edge[pair];
+                           if (!boxes_overlap(pbox[i], pbox[j])) continue;
+                           const Index p = first + i, o = first + j;
+                           const Vec3 d = st.x[p] - st.x[o];
+                           const double dist = d.norm();
+                           if (!(dist > 0.0)) continue;
+                           ContactPoint cp;
+                           cp.normal = d / dist;
+                           cp.gap = dist - st.particle_radius[i] - st.particle_radius[j];
+                           cp.a_nodes[0] = p;
+                           cp.a_w[0] = 1.0;
+                           cp.a_count = 1;
+                           cp.b_nodes[0] = o;
+                           cp.b_w[0] = 1.0;
+                           cp.b_count = 1;
+                           near[blk].push_back(cp);
+                         }
+                       });
+  for (const std::vector<ContactPoint>& block : near)
+    out.insert(out.end(), block.begin(), block.end());
   return out;
 }
 
