@@ -96,7 +96,10 @@ struct Cubes {
   std::vector<CubeRange> ranges;
   std::vector<Index> next, rank;
 
-  std::int64_t cube_of(double v) const { return static_cast<std::int64_t>(std::floor(v / h)); }
+  // Clamped far beyond any occupied cube, so that a far node's box converts safely.
+  std::int64_t cube_of(double v) const {
+    return static_cast<std::int64_t>(std::clamp(std::floor(v / h), -4.0e18, 4.0e18));
+  }
   CubeRange range(const Box& b) const {
     CubeRange r;
     for (int a = 0; a < 3; ++a) {
@@ -135,10 +138,6 @@ struct Cubes {
         return next;
       }
     }
-  }
-  bool inside(std::int64_t i, std::int64_t j, std::int64_t k) const {
-    return i >= origin[0] && i < origin[0] + span[0] && j >= origin[1] && j < origin[1] + span[1] &&
-           k >= origin[2] && k < origin[2] + span[2];
   }
 };
 
@@ -504,12 +503,17 @@ class Grid : public Broadphase {
           throw std::invalid_argument("broadphase: node " + std::to_string(n) +
                                       " has a non-finite box");
         const CubeRange r = faces.range(b);
+        // Only the cubes where faces are (a node's box may reach far beyond them).
+        CubeRange in_span = r;
+        for (int a = 0; a < 3; ++a) {
+          in_span.lo[a] = std::max(r.lo[a], faces.origin[a]);
+          in_span.hi[a] = std::min(r.hi[a], faces.origin[a] + faces.span[a] - 1);
+        }
         Query w = query(b, 0);
         run.clear();
-        for (std::int64_t x = r.lo[0]; x <= r.hi[0]; ++x)
-          for (std::int64_t y = r.lo[1]; y <= r.hi[1]; ++y)
-            for (std::int64_t z = r.lo[2]; z <= r.hi[2]; ++z) {
-              if (!faces.inside(x, y, z)) continue;
+        for (std::int64_t x = in_span.lo[0]; x <= in_span.hi[0]; ++x)
+          for (std::int64_t y = in_span.lo[1]; y <= in_span.hi[1]; ++y)
+            for (std::int64_t z = in_span.lo[2]; z <= in_span.hi[2]; ++z) {
               const Index cube = faces.find(faces.key(x, y, z));
               if (cube < 0) continue;
               // The bits the face's entry must bring: the axes on which this is not the node's

@@ -136,7 +136,8 @@ TEST(Broadphase, TouchingBoxesCountAndSharedVerticesAreSkipped) {
 // The grid tests its boxes in single precision, in lanes: every lane width must give the
 // oracle's pairs, also where the float boxes meet and the double boxes do not (the double test
 // must decide those), far from the origin (a float's step there is 0.008 against boxes of 0.08),
-// and with a box a thousand times larger than the rest (the grid coarsens its cubes).
+// with a box a thousand times larger than the rest (the grid coarsens its cubes), and with node
+// boxes far beyond every face or spanning all of them.
 TEST(Broadphase, GridInEveryLaneWidthGivesTheOraclesPairs) {
   std::vector<BroadphaseInput> scenes;
   for (unsigned seed : {4u, 5u}) scenes.push_back(random_scene(seed, 400, seed == 5u));
@@ -168,6 +169,11 @@ TEST(Broadphase, GridInEveryLaneWidthGivesTheOraclesPairs) {
   BroadphaseInput giant = random_scene(8, 400, true);
   giant.edge_box[17].hi = giant.edge_box[17].lo + Vec3(80.0, 80.0, 80.0);
   giant.face_box[23].hi = giant.face_box[23].lo + Vec3(80.0, 80.0, 80.0);
+  // Nodes far from every face, and one whose box spans far beyond them on every side.
+  giant.node_box[3].lo = Vec3::Constant(1.0e25);
+  giant.node_box[3].hi = Vec3::Constant(2.0e25);
+  giant.node_box[4].lo = Vec3::Constant(-1.0e30);
+  giant.node_box[4].hi = Vec3::Constant(1.0e30);
   scenes.push_back(giant);
 
   std::vector<int> widths;
