@@ -90,11 +90,12 @@ struct Cubes {
   std::vector<float> lox, loy, loz, hix, hiy, hiz;
   std::vector<std::int32_t> first;  // bit 0, 1, 2: this cube is the box's first along x, y, z
   std::vector<Index> item;
-  // Each primitive's entries (positions) and their cubes, in the order its cubes were visited.
-  std::vector<Index> entry_begin, entry, entry_cube;
+  // Each primitive's entries, in the order its cubes were visited: entry k lies in cube
+  // entry_cube[k] at start[entry_cube[k]] + rank[k].
+  std::vector<Index> entry_begin, entry_cube, rank;
   // Scratch of the build, kept with the rest between calls (no allocation once warm).
   std::vector<CubeRange> ranges;
-  std::vector<Index> next, rank;
+  std::vector<Index> next;
 
   // Clamped far beyond any occupied cube, so that a far node's box converts safely.
   std::int64_t cube_of(double v) const {
@@ -248,7 +249,6 @@ void enter(Cubes& g, const std::vector<Box>& boxes, double h) {
   g.first.resize(entries + kPad);
   std::fill(g.first.begin() + static_cast<std::ptrdiff_t>(entries), g.first.end(), 0);
   g.item.resize(entries);
-  g.entry.resize(entries);
   // On the threads: each box writes its own entries (their places known from the ranks).
   parallel::for_each(
       n,
@@ -270,7 +270,6 @@ void enter(Cubes& g, const std::vector<Box>& boxes, double h) {
               g.hiz[p] = uz;
               g.first[p] = (x == r.lo[0] ? 1 : 0) | (y == r.lo[1] ? 2 : 0) | (z == r.lo[2] ? 4 : 0);
               g.item[p] = static_cast<Index>(i);
-              g.entry[k] = p;
             }
       },
       parallel::k_light_block);
@@ -541,7 +540,7 @@ class Grid : public Broadphase {
         Query w = query(b, 0);
         run.clear();
         for (Index k = edges.entry_begin[a]; k < edges.entry_begin[a + 1]; ++k) {
-          const Index p = edges.entry[k];
+          const Index p = edges.start[edges.entry_cube[k]] + edges.rank[k];
           const Index e1 = edges.start[edges.entry_cube[k] + 1];
           w.need = 7 & ~edges.first[p];
           partners(

@@ -206,8 +206,17 @@ struct CellKinematics {
   PointMotion m;  // D, the spin and tr D from the velocity gradient; the volumes gm's and ge's
 };
 
-[[gnu::always_inline]] inline void cell_kinematics(Index ti, const Tet& k, double tau,
-                                                   const State& st, CellKinematics& c) {
+// The checks of a cell's kinematics, made before its material is updated: inverted
+// during the step or at its end, or moved to a non-finite position.
+inline void check_kinematics(Index ti, const State& st, const CellKinematics& c) {
+  const double vol0 = st.vol0[ti];
+  if (!(c.gm.vol > 0.0)) inverted(ti, "during the step", c.gm.vol, vol0);
+  if (!std::isfinite(c.ge.vol)) throw InvertedElement(ti, "non-finite node position");
+  if (!(c.ge.vol > 0.0)) inverted(ti, "at the end of the step", c.ge.vol, vol0);
+}
+
+[[gnu::always_inline]] inline void cell_kinematics(const Tet& k, double tau, const State& st,
+                                                   CellKinematics& c) {
   const double h = 0.5 * tau;
   // Edges at the end of the step and at mid-step, and the velocity differences U_i − U_0.
   const Vec3 &x0 = st.x[k[0]], &u0 = st.v[k[0]];
@@ -220,12 +229,8 @@ struct CellKinematics {
       em[i][d] = ee[i][d] - h * du[i][d];
     }
   }
-  const double vol0 = st.vol0[ti];
   tet_geometry(em, c.gm);
-  if (!(c.gm.vol > 0.0)) inverted(ti, "during the step", c.gm.vol, vol0);
   tet_geometry(ee, c.ge);
-  if (!std::isfinite(c.ge.vol)) throw InvertedElement(ti, "non-finite node position");
-  if (!(c.ge.vol > 0.0)) inverted(ti, "at the end of the step", c.ge.vol, vol0);
 
   // L = Σ_i (U_i − U_0) ⊗ ∇N_i, ∇N_i = −a_i / (3V) at mid-step.
   double L[3][3];
@@ -242,8 +247,8 @@ struct CellKinematics {
 // The same kinematics for a block of cells at once, in SIMD lanes: node data gathered into a
 // structure of arrays, every quantity computed lane by lane with exactly the operations, in the
 // order, of cell_kinematics (tet_geometry, the gradient, set_rates), so that each lane's doubles
-// are the scalar path's bit for bit (test `Element.LanesGiveTheScalarPathsState`). Checks are
-// left to check_kinematics, called cell by cell in order as the scalar path would.
+// are the scalar path's bit for bit (test `Element.LanesGiveTheScalarPathsState`). Both paths
+// leave the checks to check_kinematics, called cell by cell in order.
 constexpr int kLanes = 8;
 
 struct LaneGeometry {
@@ -337,14 +342,6 @@ __attribute__((target_clones("avx2", "default"))) void lane_kinematics(const std
     k.m.vol_mid = gm.vol[l];
     k.m.vol_end = ge.vol[l];
   }
-}
-
-// cell_kinematics' checks, for kinematics computed in lanes.
-inline void check_kinematics(Index ti, const State& st, const CellKinematics& c) {
-  const double vol0 = st.vol0[ti];
-  if (!(c.gm.vol > 0.0)) inverted(ti, "during the step", c.gm.vol, vol0);
-  if (!std::isfinite(c.ge.vol)) throw InvertedElement(ti, "non-finite node position");
-  if (!(c.ge.vol > 0.0)) inverted(ti, "at the end of the step", c.ge.vol, vol0);
 }
 
 // Per-tet pressure (point_pressure: the EOS, the energy, failure, the sound speed) and the
@@ -491,7 +488,8 @@ ForceResult update_material(const std::vector<Tet>& tets, const std::vector<Mate
           const std::size_t t = mine[i];
           if (st.damage[t] == Damage::particle) continue;  // now a particle: no longer a cell
           CellKinematics c;
-          cell_kinematics(static_cast<Index>(t), tets[t], tau, st, c);
+          cell_kinematics(tets[t], tau, st, c);
+          check_kinematics(static_cast<Index>(t), st, c);
           update_cell(t, c, materials, options, tau, st, scratch, blocks[blk]);
         }
         return;
