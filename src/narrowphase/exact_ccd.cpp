@@ -7,7 +7,9 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <cstdint>
 #include <functional>
+#include <type_traits>
 #include <vector>
 
 namespace tc {
@@ -227,6 +229,7 @@ struct Point {
   Q t;
   Poly q;
   Q lo, hi;
+  bool narrowed = false;  // narrow() has run on it
 };
 
 // Halves an irrational point's interval, keeping its root; if the root turns out to be
@@ -267,6 +270,7 @@ Q dyadic(double x) {
 // point became rational).
 bool narrow(Point& pt) {
   if (pt.rational) return true;
+  pt.narrowed = true;
   if (pt.lo.get_d() == pt.hi.get_d()) return true;  // narrowed already: the root rounds to it
   const int n = pt.q.degree();
   long top = 0;
@@ -344,24 +348,65 @@ int lipschitz_sign(const Poly& g, const Z& lip, const Q& lo, const Q& hi) {
   return mpz_cmp(left.get_mpz_t(), right.get_mpz_t()) > 0 ? sgn(value) : 0;
 }
 
-// Sign of g at the point, exactly. On [lo, hi] ⊂ [0, 1], |g(x) − g(lo)| ≤ (hi − lo) L with
-// L = Σ k |c_k| ≥ max |g'|, so |g(lo)| > (hi − lo) L gives the sign; the root's interval is
-// halved until it does. That ends unless g vanishes at the root: after a few halvings a gcd
+// Doubles a ≤ b that enclose the point (after narrow(), an irrational root's ends are
+// neighbouring doubles or close to it): get_d rounds toward zero, so it gives a lower end, and
+// the next double above an upper end's rounding is above it.
+std::pair<double, double> enclosing(const Point& pt) {
+  const Q& lo = pt.rational ? pt.t : pt.lo;
+  const Q& hi = pt.rational ? pt.t : pt.hi;
+  return {lo.get_d(), std::nextafter(hi.get_d(), 2.0)};
+}
+
+// Certified sign of a polynomial over [a, b] ⊂ [0, 1] from its coefficients as doubles, c[k]
+// for t^k, each within 2⁻⁵¹ of the true one relatively (0: undecided). With P the polynomial
+// of the rounded coefficients and S = Σ |c_k| a^k, L = Σ k |c_k|:
+//   |p(t) − fl(P(a))| ≤ |p(a) − P(a)| + |P(a) − fl(P(a))| + |p(t) − p(a)|
+//                    ≤ 2⁻⁵¹ S + γ₂ₙ S + (b − a) L,
+// with γ₂ₙ ≤ 2⁻⁴⁹ for the degrees here; we use 2⁻⁴⁵ S (the rounding of S itself included) and
+// (1 + 2⁻⁴⁰)(b − a) L, plus 2⁻⁹⁰⁰ for coefficients scaled below the normal range.
+int float_sign(const std::array<double, 8>& c, int n, double a, double b) {
+  if (n == 0) return 0;
+  double v = c[n - 1], s = std::abs(c[n - 1]), lip = 0.0;
+  for (int k = n - 2; k >= 0; --k) {
+    v = v * a + c[k];
+    s = s * a + std::abs(c[k]);
+  }
+  for (int k = 1; k < n; ++k) lip += k * std::abs(c[k]);
+  const double err = 0x1p-45 * s + (1 + 0x1p-40) * (b - a) * lip + 0x1p-900;
+  return v > err ? 1 : (v < -err ? -1 : 0);
+}
+
+// The coefficients of g as doubles, all scaled by one power of two so that the largest is in
+// [0.5, 1): n = 0 for the zero polynomial or a degree beyond 7.
+int scaled_doubles(const Poly& g, std::array<double, 8>& c) {
+  const int n = static_cast<int>(g.c.size());
+  if (n == 0 || n > 8) return 0;
+  std::array<long, 8> e{};
+  long top = 0;
+  for (int k = 0; k < n; ++k) {
+    c[k] = mpz_get_d_2exp(&e[k], g.c[k].get_mpz_t());  // truncated: within 2⁻⁵² relatively
+    if (c[k] != 0.0) top = std::max(top, e[k]);
+  }
+  for (int k = 0; k < n; ++k)
+    c[k] = c[k] == 0.0 ? 0.0 : std::ldexp(c[k], static_cast<int>(std::max(e[k] - top, -1100L)));
+  return n;
+}
+
+// Sign of g at the point, exactly. A rational point gets g's value; an irrational one is first
+// narrowed to double resolution (once per point: every sign at a root shares it) and the
+// certified sign in doubles is tried. Then on [lo, hi] ⊂ [0, 1], |g(x) − g(lo)| ≤ (hi − lo) L
+// with L = Σ k |c_k| ≥ max |g'|, so |g(lo)| > (hi − lo) L gives the sign; the root's interval
+// is halved until it does. That ends unless g vanishes at the root: after a few halvings a gcd
 // with q tells (q is square-free with one root in (lo, hi), so a common factor with a sign
 // change there vanishes at it), and if not, halving goes on until the test decides.
-int sign_at(const Poly& g, Point& pt) {
+int exact_sign_at(const Poly& g, Point& pt) {
   if (g.zero()) return 0;
   if (pt.rational) return sign_of(g, pt.t);
   const Z lip = slope_bound(g);
-  bool shared_checked = false, narrowed = false;
+  bool shared_checked = false;
   for (int it = 0;; ++it) {
     if (pt.rational) return sign_of(g, pt.t);
     if (const int s = lipschitz_sign(g, lip, pt.lo, pt.hi)) return s;
-    if (!narrowed) {  // once: to double resolution by a guess checked exactly
-      narrowed = true;
-      narrow(pt);
-      continue;
-    }
     if (it >= 24 && !shared_checked) {
       const Poly h = gcd(pt.q, g);
       if (h.degree() >= 1 && sign_of(h, pt.lo) * sign_of(h, pt.hi) < 0) return 0;
@@ -369,6 +414,14 @@ int sign_at(const Poly& g, Point& pt) {
     }
     bisect(pt);
   }
+}
+int sign_at(const Poly& g, Point& pt) {
+  if (g.zero()) return 0;
+  if (!pt.narrowed) narrow(pt);
+  std::array<double, 8> c{};
+  const auto [a, b] = enclosing(pt);
+  if (const int s = float_sign(c, scaled_doubles(g, c), a, b)) return s;
+  return exact_sign_at(g, pt);
 }
 
 // The real roots of p (not identically zero) in [0, 1], as points.
@@ -400,22 +453,210 @@ std::vector<Point> roots_in_unit(const Poly& p) {
   return out;
 }
 
-// Polynomial vectors: a point moving linearly, x(t) = x0 + t (x1 − x0).
-using PVec = std::array<Poly, 3>;
-// The power of two that makes every coordinate of the query an integer: the least exponent of
-// a last mantissa bit, 2^(e − 53) for x = m 2^e, 0.5 ≤ |m| < 1.
-long integer_exponent(const std::array<Vec3, 8>& q) {
-  long least = 0;
+// A signed integer of 64 W bits in two's complement, W 64-bit words, least significant first.
+// Sums, differences and products are taken modulo 2^(64 W), which is the exact result whenever
+// it fits in 64 W − 1 bits and a sign; the queries that use it are bounded so that every value
+// does (fixed_words below). No allocation: the constructions of the exact path (the moving
+// points, their differences, cross and dot products, the static predicates) run on it, and only
+// a sign that doubles cannot certify turns a polynomial into GMP integers.
+__extension__ using Wide = unsigned __int128;
+template <int W>
+struct Fixed {
+  static constexpr int kWords = W;
+  std::array<std::uint64_t, W> w{};
+  bool negative() const { return static_cast<std::int64_t>(w[W - 1]) < 0; }
+  bool zero() const {
+    for (const std::uint64_t x : w)
+      if (x) return false;
+    return true;
+  }
+};
+template <int W>
+Fixed<W> operator+(const Fixed<W>& a, const Fixed<W>& b) {
+  Fixed<W> r;
+  Wide carry = 0;
+  for (int k = 0; k < W; ++k) {
+    carry += static_cast<Wide>(a.w[k]) + b.w[k];
+    r.w[k] = static_cast<std::uint64_t>(carry);
+    carry >>= 64;
+  }
+  return r;
+}
+template <int W>
+Fixed<W> operator-(const Fixed<W>& a, const Fixed<W>& b) {
+  Fixed<W> r;
+  std::uint64_t borrow = 0;
+  for (int k = 0; k < W; ++k) {
+    const std::uint64_t d = a.w[k] - b.w[k];
+    r.w[k] = d - borrow;
+    borrow = (a.w[k] < b.w[k]) | (d < borrow);
+  }
+  return r;
+}
+template <int W>
+Fixed<W> operator-(const Fixed<W>& a) {
+  return Fixed<W>{} - a;
+}
+// On the magnitudes, over their nonzero words only (most values use two to four).
+template <int W>
+Fixed<W> operator*(const Fixed<W>& a, const Fixed<W>& b) {
+  const bool na = a.negative(), nb = b.negative();
+  const Fixed<W> x = na ? -a : a, y = nb ? -b : b;
+  int lx = W, ly = W;
+  while (lx > 0 && x.w[lx - 1] == 0) --lx;
+  while (ly > 0 && y.w[ly - 1] == 0) --ly;
+  Fixed<W> r;
+  for (int i = 0; i < lx; ++i) {
+    Wide carry = 0;
+    for (int j = 0; j < ly && i + j < W; ++j) {
+      carry += static_cast<Wide>(x.w[i]) * y.w[j] + r.w[i + j];
+      r.w[i + j] = static_cast<std::uint64_t>(carry);
+      carry >>= 64;
+    }
+    if (i + ly < W) r.w[i + ly] = static_cast<std::uint64_t>(carry);
+  }
+  return na != nb ? -r : r;
+}
+template <int W>
+int sgn(const Fixed<W>& a) {
+  return a.negative() ? -1 : (a.zero() ? 0 : 1);
+}
+template <int W>
+bool operator==(const Fixed<W>& a, int zero) {  // only a == 0 is asked
+  return zero == 0 && a.zero();
+}
+// As a GMP integer.
+template <int W>
+Z to_z(const Fixed<W>& a) {
+  const Fixed<W> m = a.negative() ? -a : a;
+  Z r;
+  mpz_import(r.get_mpz_t(), W, -1, sizeof(std::uint64_t), 0, 0, m.w.data());
+  if (a.negative()) r = -r;
+  return r;
+}
+// As d · 2^e with a double d carrying the top two words (within 2⁻⁵² relatively).
+template <int W>
+double to_d_2exp(const Fixed<W>& a, long& e) {
+  const Fixed<W> m = a.negative() ? -a : a;
+  int h = W - 1;
+  while (h > 0 && m.w[h] == 0) --h;
+  e = h == 0 ? 0 : 64L * (h - 1);
+  const double d =
+      h == 0 ? static_cast<double>(m.w[0])
+             : std::ldexp(static_cast<double>(m.w[h]), 64) + static_cast<double>(m.w[h - 1]);
+  return a.negative() ? -d : d;
+}
+
+// A polynomial in t of degree ≤ 4 on Fixed coefficients, c[k] for t^k (n of them, not trimmed).
+template <int W>
+struct FPoly {
+  static constexpr int kWords = W;
+  std::array<Fixed<W>, 5> c{};
+  int n = 0;
+};
+template <int W>
+FPoly<W> operator+(const FPoly<W>& a, const FPoly<W>& b) {
+  FPoly<W> r;
+  r.n = std::max(a.n, b.n);
+  for (int k = 0; k < r.n; ++k)
+    r.c[k] = (k < a.n ? a.c[k] : Fixed<W>{}) + (k < b.n ? b.c[k] : Fixed<W>{});
+  return r;
+}
+template <int W>
+FPoly<W> operator-(const FPoly<W>& a, const FPoly<W>& b) {
+  FPoly<W> r;
+  r.n = std::max(a.n, b.n);
+  for (int k = 0; k < r.n; ++k)
+    r.c[k] = (k < a.n ? a.c[k] : Fixed<W>{}) - (k < b.n ? b.c[k] : Fixed<W>{});
+  return r;
+}
+template <int W>
+FPoly<W> operator*(const FPoly<W>& a, const FPoly<W>& b) {  // degrees add up to ≤ 4 here
+  FPoly<W> r;
+  if (a.n == 0 || b.n == 0) return r;
+  r.n = a.n + b.n - 1;
+  for (int i = 0; i < a.n; ++i)
+    for (int j = 0; j < b.n; ++j) r.c[i + j] = r.c[i + j] + a.c[i] * b.c[j];
+  return r;
+}
+Poly to_poly(const Poly& p) {
+  return p;
+}
+template <int W>
+Poly to_poly(const FPoly<W>& p) {
+  std::vector<Z> c(p.n);
+  for (int k = 0; k < p.n; ++k) c[k] = to_z(p.c[k]);
+  return Poly(std::move(c));
+}
+template <int W>
+int scaled_doubles(const FPoly<W>& g, std::array<double, 8>& c) {
+  std::array<long, 8> e{};
+  long top = 0;
+  bool any = false;
+  for (int k = 0; k < g.n; ++k) {
+    c[k] = to_d_2exp(g.c[k], e[k]);
+    if (c[k] != 0.0) {
+      int ek = 0;
+      std::frexp(c[k], &ek);
+      top = any ? std::max(top, e[k] + ek) : e[k] + ek;
+      any = true;
+    }
+  }
+  if (!any) return 0;
+  for (int k = 0; k < g.n; ++k)
+    c[k] = c[k] == 0.0 ? 0.0 : std::ldexp(c[k], static_cast<int>(std::max(e[k] - top, -1100L)));
+  return g.n;
+}
+// The sign at the point: certified in doubles where it can, exactly on GMP integers otherwise.
+template <int W>
+int sign_at(const FPoly<W>& g, Point& pt) {
+  bool all_zero = true;
+  for (int k = 0; k < g.n; ++k) all_zero = all_zero && g.c[k].zero();
+  if (all_zero) return 0;
+  if (!pt.narrowed) narrow(pt);
+  std::array<double, 8> c{};
+  const auto [a, b] = enclosing(pt);
+  if (const int s = float_sign(c, scaled_doubles(g, c), a, b)) return s;
+  return exact_sign_at(to_poly(g), pt);
+}
+
+// Polynomial vectors: a point moving linearly, x(t) = x0 + t (x1 − x0), on Fixed or on GMP
+// coefficients (P = FPoly or Poly).
+template <class P>
+using PV = std::array<P, 3>;
+// The least and largest exponents e of the query's nonzero coordinates x = m 2^e,
+// 0.5 ≤ |m| < 1 (both 0 when every coordinate is 0).
+std::pair<int, int> exponent_range(const std::array<Vec3, 8>& q) {
+  int lo = 0, hi = 0;
   bool any = false;
   for (const Vec3& x : q)
     for (int d = 0; d < 3; ++d) {
       if (x[d] == 0.0) continue;
       int e = 0;
       std::frexp(x[d], &e);
-      least = any ? std::min(least, static_cast<long>(e) - 53) : static_cast<long>(e) - 53;
+      lo = any ? std::min(lo, e) : e;
+      hi = any ? std::max(hi, e) : e;
       any = true;
     }
-  return least;
+  return {lo, hi};
+}
+// The power of two that makes every coordinate of the query an integer: the least exponent of
+// a last mantissa bit, 2^(e − 53).
+long integer_exponent(const std::array<Vec3, 8>& q) {
+  return static_cast<long>(exponent_range(q).first) - 53;
+}
+// The words of the narrowest Fixed that holds the query exactly (4, 6 or 8), or 0 when none
+// does. Its coordinates as integers are below 2^B, B = 53 + (largest − least exponent); a
+// difference of two moving points has Σ|coefficients| < 2^(B+3), a cross product of two
+// < 2^(2B+7), the dot product of two cross products (the largest value formed, degree 4)
+// < 2^(4B+16), and every value on the way is bounded alike: W words hold them when
+// 4B + 16 ≤ 64 W − 1, exponents spread over at most 6, 38 or 70 binary orders.
+int fixed_words(const std::array<Vec3, 8>& q) {
+  const auto [lo, hi] = exponent_range(q);
+  const int B = 53 + (hi - lo);
+  for (const int W : {4, 6, 8})
+    if (4 * B + 16 <= 64 * W - 1) return W;
+  return 0;
 }
 // x · 2^(−E), an integer when E ≤ the exponent of x's last mantissa bit.
 Z integer(double x, long E) {
@@ -426,45 +667,75 @@ Z integer(double x, long E) {
   mpz_mul_2exp(r.get_mpz_t(), r.get_mpz_t(), static_cast<unsigned long>(e - 53 - E));
   return r;
 }
-PVec moving(const Vec3& x0, const Vec3& x1, long E) {
-  PVec v;
-  for (int d = 0; d < 3; ++d) {
-    const Z a = integer(x0[d], E);
-    v[d] = Poly({a, integer(x1[d], E) - a});
-  }
-  return v;
+// The same as a Fixed integer (fixed_words: the shift is at most 64 W − 54 bits).
+template <int W>
+Fixed<W> fixed_integer(double x, long E) {
+  Fixed<W> r;
+  if (x == 0.0) return r;
+  int e = 0;
+  const double m = std::frexp(x, &e);
+  const auto mag = static_cast<std::uint64_t>(std::ldexp(std::abs(m), 53));
+  const long shift = e - 53 - E;
+  const int word = static_cast<int>(shift / 64), bit = static_cast<int>(shift % 64);
+  r.w[word] = mag << bit;
+  if (bit > 11) r.w[word + 1] = mag >> (64 - bit);
+  return m < 0 ? -r : r;
 }
-PVec sub(const PVec& a, const PVec& b) {
+template <class P>
+P linear(const double x0, const double x1, long E) {
+  if constexpr (std::is_same_v<P, Poly>) {
+    const Z a = integer(x0, E);
+    return Poly({a, integer(x1, E) - a});
+  } else {
+    P p;
+    p.n = 2;
+    p.c[0] = fixed_integer<P::kWords>(x0, E);
+    p.c[1] = fixed_integer<P::kWords>(x1, E) - p.c[0];
+    return p;
+  }
+}
+template <class P>
+PV<P> moving(const Vec3& x0, const Vec3& x1, long E) {
+  return {linear<P>(x0[0], x1[0], E), linear<P>(x0[1], x1[1], E), linear<P>(x0[2], x1[2], E)};
+}
+template <class P>
+PV<P> sub(const PV<P>& a, const PV<P>& b) {
   return {a[0] - b[0], a[1] - b[1], a[2] - b[2]};
 }
-PVec cross(const PVec& a, const PVec& b) {
+template <class P>
+PV<P> cross(const PV<P>& a, const PV<P>& b) {
   return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
 }
-Poly dot(const PVec& a, const PVec& b) {
+template <class P>
+P dot(const PV<P>& a, const PV<P>& b) {
   return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
 }
-bool is_zero_at(const PVec& v, Point& pt) {
+template <class P>
+bool is_zero_at(const PV<P>& v, Point& pt) {
   return sign_at(v[0], pt) == 0 && sign_at(v[1], pt) == 0 && sign_at(v[2], pt) == 0;
 }
 
 // p on the closed segment [a, b] at the point (collinearity and betweenness; a = b: p = a).
-bool on_segment(const PVec& p, const PVec& a, const PVec& b, Point& pt) {
-  const PVec ab = sub(b, a), ap = sub(p, a);
+template <class P>
+bool on_segment(const PV<P>& p, const PV<P>& a, const PV<P>& b, Point& pt) {
+  const PV<P> ab = sub(b, a), ap = sub(p, a);
   if (is_zero_at(ab, pt)) return is_zero_at(ap, pt);
   if (!is_zero_at(cross(ab, ap), pt)) return false;
   return sign_at(dot(ap, ab), pt) >= 0 && sign_at(dot(sub(p, b), sub(a, b)), pt) >= 0;
 }
 
 // Coplanar closed segments [a, b] and [c, d] meet at the point.
-bool segments_meet(const PVec& a, const PVec& b, const PVec& c, const PVec& d, Point& pt) {
-  const PVec u = sub(b, a), v = sub(d, c);
-  const PVec m = cross(u, v);
+template <class P>
+bool segments_meet(const PV<P>& a, const PV<P>& b, const PV<P>& c, const PV<P>& d, Point& pt) {
+  const PV<P> u = sub(b, a), v = sub(d, c);
+  const PV<P> m = cross(u, v);
   if (!is_zero_at(m, pt)) {  // not parallel: proper orientation tests in the plane
     const int o1 = sign_at(dot(cross(u, sub(c, a)), m), pt);
     const int o2 = sign_at(dot(cross(u, sub(d, a)), m), pt);
+    if (o1 * o2 > 0) return false;
     const int o3 = sign_at(dot(cross(v, sub(a, c)), m), pt);
     const int o4 = sign_at(dot(cross(v, sub(b, c)), m), pt);
-    return o1 * o2 <= 0 && o3 * o4 <= 0;
+    return o3 * o4 <= 0;
   }
   // Parallel, collinear or degenerate: some endpoint lies on the other segment.
   return on_segment(a, c, d, pt) || on_segment(b, c, d, pt) || on_segment(c, a, b, pt) ||
@@ -472,8 +743,9 @@ bool segments_meet(const PVec& a, const PVec& b, const PVec& c, const PVec& d, P
 }
 
 // Coplanar point p in the closed triangle (a, b, c) at the point.
-bool point_in_triangle(const PVec& p, const PVec& a, const PVec& b, const PVec& c, Point& pt) {
-  const PVec n = cross(sub(b, a), sub(c, a));
+template <class P>
+bool point_in_triangle(const PV<P>& p, const PV<P>& a, const PV<P>& b, const PV<P>& c, Point& pt) {
+  const PV<P> n = cross(sub(b, a), sub(c, a));
   if (is_zero_at(n, pt))  // degenerate triangle: a segment or a point
     return on_segment(p, a, b, pt) || on_segment(p, b, c, pt) || on_segment(p, c, a, pt);
   return sign_at(dot(cross(sub(b, a), sub(p, a)), n), pt) >= 0 &&
@@ -593,23 +865,26 @@ void add(std::vector<Poly>& out, const Poly& p) {
     if (q.c == p.c) return;
   out.push_back(p);
 }
-void add(std::vector<Poly>& out, const PVec& v) {
-  for (const Poly& p : v) add(out, p);
+template <class P>
+void add(std::vector<Poly>& out, const PV<P>& v) {
+  for (const P& p : v) add(out, to_poly(p));
 }
-void on_segment_polys(const PVec& p, const PVec& a, const PVec& b, std::vector<Poly>& out) {
-  const PVec ab = sub(b, a), ap = sub(p, a);
+template <class P>
+void on_segment_polys(const PV<P>& p, const PV<P>& a, const PV<P>& b, std::vector<Poly>& out) {
+  const PV<P> ab = sub(b, a), ap = sub(p, a);
   add(out, ab);
   add(out, ap);
   add(out, cross(ab, ap));
-  add(out, dot(ap, ab));
-  add(out, dot(sub(p, b), sub(a, b)));
+  add(out, to_poly(dot(ap, ab)));
+  add(out, to_poly(dot(sub(p, b), sub(a, b))));
 }
 // p on the segment [a, b] at some time (a vertex passing over an edge): where
 // cross(b − a, p − a) vanishes, at the roots of the gcd of its components, or, when they all
 // vanish identically (always collinear), wherever the betweenness signs allow.
-double vertex_on_edge(const PVec& p, const PVec& a, const PVec& b, bool earliest) {
-  const PVec c = cross(sub(b, a), sub(p, a));
-  const Poly g = gcd(gcd(c[0], c[1]), c[2]);
+template <class P>
+double vertex_on_edge(const PV<P>& p, const PV<P>& a, const PV<P>& b, bool earliest) {
+  const PV<P> c = cross(sub(b, a), sub(p, a));
+  const Poly g = gcd(gcd(to_poly(c[0]), to_poly(c[1])), to_poly(c[2]));
   std::vector<Poly> polys;
   if (g.zero()) on_segment_polys(p, a, b, polys);
   return exists(
@@ -622,8 +897,9 @@ double vertex_on_edge(const PVec& p, const PVec& a, const PVec& b, bool earliest
 // segments and a vertex strictly inside a triangle persist under small motions. So they meet at
 // some time iff they meet at t = 0, at t = 1, or when a vertex passes over an edge, and the
 // earliest time is among those. `passes` lists (vertex, edge end, edge end).
+template <class P>
 double coplanar_motion(const std::function<bool(Point&)>& meet,
-                       const std::vector<std::array<const PVec*, 3>>& passes, bool earliest) {
+                       const std::vector<std::array<const PV<P>*, 3>>& passes, bool earliest) {
   Point start{true, Q(0), {}, {}, {}};
   if (meet(start)) return 0.0;
   double best = -1.0;
@@ -753,60 +1029,100 @@ double filters(const std::array<Vec3, 8>& q, const std::array<int, 4>& det,
 }
 
 // The four moving points of a query, on the integer scale of its coordinates.
-std::array<PVec, 4> moving_points(const std::array<Vec3, 8>& q) {
+template <class P>
+std::array<PV<P>, 4> moving_points(const std::array<Vec3, 8>& q) {
   const long E = integer_exponent(q);
-  return {moving(q[0], q[4], E), moving(q[1], q[5], E), moving(q[2], q[6], E),
-          moving(q[3], q[7], E)};
+  return {moving<P>(q[0], q[4], E), moving<P>(q[1], q[5], E), moving<P>(q[2], q[6], E),
+          moving<P>(q[3], q[7], E)};
 }
 
 // Without motion: the same predicates at the one time, on the integer coordinates directly,
-// with no polynomial.
-using ZVec = std::array<Z, 3>;
-std::array<ZVec, 4> static_points(const std::array<Vec3, 8>& q) {
+// with no polynomial (I = Fixed or Z; sub and cross as above).
+template <class I>
+using IVec = std::array<I, 3>;
+template <class I>
+I integer_as(double x, long E) {
+  if constexpr (std::is_same_v<I, Z>)
+    return integer(x, E);
+  else
+    return fixed_integer<I::kWords>(x, E);
+}
+template <class I>
+std::array<IVec<I>, 4> static_points(const std::array<Vec3, 8>& q) {
   const long E = integer_exponent(q);
-  std::array<ZVec, 4> out;
+  std::array<IVec<I>, 4> out;
   for (int k = 0; k < 4; ++k)
-    for (int d = 0; d < 3; ++d) out[k][d] = integer(q[k][d], E);
+    for (int d = 0; d < 3; ++d) out[k][d] = integer_as<I>(q[k][d], E);
   return out;
 }
-ZVec sub(const ZVec& a, const ZVec& b) {
-  return {a[0] - b[0], a[1] - b[1], a[2] - b[2]};
-}
-ZVec cross(const ZVec& a, const ZVec& b) {
-  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
-int dot_sign(const ZVec& a, const ZVec& b) {
-  const Z r = a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+template <class I>
+int dot_sign(const IVec<I>& a, const IVec<I>& b) {
+  const I r = a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
   return sgn(r);
 }
-bool is_zero(const ZVec& v) {
+template <class I>
+bool is_zero(const IVec<I>& v) {
   return v[0] == 0 && v[1] == 0 && v[2] == 0;
 }
 // As on_segment, segments_meet and point_in_triangle above, at one time.
-bool on_segment(const ZVec& p, const ZVec& a, const ZVec& b) {
-  const ZVec ab = sub(b, a), ap = sub(p, a);
+template <class I>
+bool on_segment(const IVec<I>& p, const IVec<I>& a, const IVec<I>& b) {
+  const IVec<I> ab = sub(b, a), ap = sub(p, a);
   if (is_zero(ab)) return is_zero(ap);
   if (!is_zero(cross(ab, ap))) return false;
   return dot_sign(ap, ab) >= 0 && dot_sign(sub(p, b), sub(a, b)) >= 0;
 }
+template <class I>
 bool static_edges_meet(const std::array<Vec3, 8>& q) {
-  const auto [a, b, c, d] = static_points(q);
-  const ZVec u = sub(b, a), v = sub(d, c);
+  const auto [a, b, c, d] = static_points<I>(q);
+  const IVec<I> u = sub(b, a), v = sub(d, c);
   if (dot_sign(cross(u, sub(c, a)), sub(d, a)) != 0) return false;  // not coplanar
-  const ZVec m = cross(u, v);
+  const IVec<I> m = cross(u, v);
   if (!is_zero(m))
     return dot_sign(cross(u, sub(c, a)), m) * dot_sign(cross(u, sub(d, a)), m) <= 0 &&
            dot_sign(cross(v, sub(a, c)), m) * dot_sign(cross(v, sub(b, c)), m) <= 0;
   return on_segment(a, c, d) || on_segment(b, c, d) || on_segment(c, a, b) || on_segment(d, a, b);
 }
+template <class I>
 bool static_vertex_in_face(const std::array<Vec3, 8>& q) {
-  const auto [p, a, b, c] = static_points(q);
-  const ZVec n = cross(sub(b, a), sub(c, a));
+  const auto [p, a, b, c] = static_points<I>(q);
+  const IVec<I> n = cross(sub(b, a), sub(c, a));
   if (dot_sign(n, sub(p, a)) != 0) return false;  // not coplanar
   if (is_zero(n)) return on_segment(p, a, b) || on_segment(p, b, c) || on_segment(p, c, a);
   return dot_sign(cross(sub(b, a), sub(p, a)), n) >= 0 &&
          dot_sign(cross(sub(c, b), sub(p, b)), n) >= 0 &&
          dot_sign(cross(sub(a, c), sub(p, c)), n) >= 0;
+}
+
+// Fixed-width integers where the query's exponents allow (fixed_words), GMP's otherwise.
+std::atomic<bool> fixed_enabled{true};
+int words_for(const std::array<Vec3, 8>& q) {
+  return fixed_enabled.load(std::memory_order_relaxed) ? fixed_words(q) : 0;
+}
+// f called with std::integral_constant<int, W>: the words of the query's Fixed, 0 for GMP.
+template <class Fn>
+auto by_width(const std::array<Vec3, 8>& q, Fn&& f) {
+  switch (words_for(q)) {
+    case 4:
+      return f(std::integral_constant<int, 4>{});
+    case 6:
+      return f(std::integral_constant<int, 6>{});
+    case 8:
+      return f(std::integral_constant<int, 8>{});
+    default:
+      return f(std::integral_constant<int, 0>{});
+  }
+}
+template <int W>
+using IntegerOf = std::conditional_t<W == 0, Z, Fixed<W>>;
+template <int W>
+using PolyOf = std::conditional_t<W == 0, Poly, FPoly<W>>;
+bool static_edges_meet(const std::array<Vec3, 8>& q) {
+  return by_width(q, [&](auto w) { return static_edges_meet<IntegerOf<decltype(w)::value>>(q); });
+}
+bool static_vertex_in_face(const std::array<Vec3, 8>& q) {
+  return by_width(q,
+                  [&](auto w) { return static_vertex_in_face<IntegerOf<decltype(w)::value>>(q); });
 }
 
 // Touching at the start (resting contact) is a collision at t = 0, and touching at the end
@@ -827,6 +1143,27 @@ bool meet_at_an_end(const std::array<Vec3, 8>& q, bool (*meet)(const std::array<
   return meet_at(at);
 }
 
+// The motion's roots and the inside test at them (after the filters and the ends).
+template <class P>
+double moving_vertex_face(const std::array<Vec3, 8>& q, bool earliest) {
+  const auto [p, a, b, c] = moving_points<P>(q);
+  const Poly coplanar = to_poly(dot(cross(sub(b, a), sub(c, a)), sub(p, a)));
+  const auto meet = [&](Point& pt) { return point_in_triangle(p, a, b, c, pt); };
+  if (coplanar.zero())
+    return coplanar_motion<P>(meet, {{&p, &a, &b}, {&p, &b, &c}, {&p, &c, &a}}, earliest);
+  return exists(coplanar, {}, meet, earliest);
+}
+template <class P>
+double moving_edge_edge(const std::array<Vec3, 8>& q, bool earliest) {
+  const auto [a, b, c, d] = moving_points<P>(q);
+  const Poly coplanar = to_poly(dot(cross(sub(b, a), sub(c, a)), sub(d, a)));
+  const auto meet = [&](Point& pt) { return segments_meet(a, b, c, d, pt); };
+  if (coplanar.zero())
+    return coplanar_motion<P>(meet, {{&a, &c, &d}, {&b, &c, &d}, {&c, &a, &b}, {&d, &a, &b}},
+                              earliest);
+  return exists(coplanar, {}, meet, earliest);
+}
+
 double vertex_face_query(const std::array<Vec3, 8>& q, bool earliest, const CcdFilters& use) {
   // det[b − a, c − a, p − a] for q = p, a, b, c.
   const std::array<int, 4> det{1, 2, 3, 0};
@@ -834,12 +1171,8 @@ double vertex_face_query(const std::array<Vec3, 8>& q, bool earliest, const CcdF
   if (!std::isnan(f)) return f;
   if (no_motion(q)) return static_vertex_in_face(q) ? 0.0 : -1.0;
   if (meet_at_an_end(q, static_vertex_in_face, det, earliest, use)) return 0.0;
-  const auto [p, a, b, c] = moving_points(q);
-  const Poly coplanar = dot(cross(sub(b, a), sub(c, a)), sub(p, a));
-  const auto meet = [&](Point& pt) { return point_in_triangle(p, a, b, c, pt); };
-  if (coplanar.zero())
-    return coplanar_motion(meet, {{&p, &a, &b}, {&p, &b, &c}, {&p, &c, &a}}, earliest);
-  return exists(coplanar, {}, meet, earliest);
+  return by_width(
+      q, [&](auto w) { return moving_vertex_face<PolyOf<decltype(w)::value>>(q, earliest); });
 }
 
 double edge_edge_query(const std::array<Vec3, 8>& q, bool earliest, const CcdFilters& use) {
@@ -849,16 +1182,15 @@ double edge_edge_query(const std::array<Vec3, 8>& q, bool earliest, const CcdFil
   if (!std::isnan(f)) return f;
   if (no_motion(q)) return static_edges_meet(q) ? 0.0 : -1.0;
   if (meet_at_an_end(q, static_edges_meet, det, earliest, use)) return 0.0;
-  const auto [a, b, c, d] = moving_points(q);
-  const Poly coplanar = dot(cross(sub(b, a), sub(c, a)), sub(d, a));
-  const auto meet = [&](Point& pt) { return segments_meet(a, b, c, d, pt); };
-  if (coplanar.zero())
-    return coplanar_motion(meet, {{&a, &c, &d}, {&b, &c, &d}, {&c, &a, &b}, {&d, &a, &b}},
-                           earliest);
-  return exists(coplanar, {}, meet, earliest);
+  return by_width(
+      q, [&](auto w) { return moving_edge_edge<PolyOf<decltype(w)::value>>(q, earliest); });
 }
 
 }  // namespace
+
+void set_exact_ccd_fixed_width(bool on) {
+  fixed_enabled.store(on);
+}
 
 bool exact_vertex_face_ccd(const std::array<Vec3, 8>& q, const CcdFilters& filters) {
   return vertex_face_query(q, false, filters) >= 0.0;

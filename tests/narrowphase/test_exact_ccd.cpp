@@ -3,7 +3,9 @@
 
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <random>
+#include <sstream>
 
 #include "../test_util.hpp"
 #include "tetcontact/app/float_ccd.hpp"
@@ -295,4 +297,72 @@ TEST(ExactCcd, QueriesWithoutMotionMatchTwoDimensionalPredicatesAndTranslatedMot
     EXPECT_GT(hits[ee], total[ee] / 10);
     EXPECT_LT(hits[ee], total[ee] * 9 / 10);
   }
+}
+
+// The fixed-width integers (4, 6 or 8 words, picked by the spread of the query's exponents)
+// against GMP's throughout: the same answer, the same answer with every filter off (the exact
+// path alone) and the same time of impact, on the shared degenerate set and on variants of it
+// scaled by powers of two and with its zero coordinates moved to 2^-30, 2^-60 and 2^-90 (spreads
+// that pick each width and, the last, GMP's).
+TEST(ExactCcd, FixedWidthPathGivesTheGmpPathsAnswersAndTimes) {
+  const std::string file = test::source_path("data/ccd/handcrafted.txt");
+  std::ifstream in(file);
+  ASSERT_TRUE(in) << "missing data file " << file;
+  struct Query {
+    bool ee;
+    std::array<Vec3, 8> q;
+  };
+  std::vector<Query> queries;
+  std::string line;
+  for (int n = 0; std::getline(in, line); ++n) {
+    std::istringstream ss(line);
+    std::string type;
+    ss >> type;
+    std::vector<double> v;
+    for (std::string tok; ss >> tok;) v.push_back(std::strtod(tok.c_str(), nullptr));
+    ASSERT_EQ(v.size(), 25u) << file << ":" << n + 1;
+    Query base{type == "ee", {}};
+    for (int k = 0; k < 8; ++k) base.q[k] = Vec3(v[1 + 3 * k], v[2 + 3 * k], v[3 + 3 * k]);
+    queries.push_back(base);
+    if (n % 5 != 0) continue;
+    for (const int s : {-40, 3, 60}) {
+      Query scaled = base;
+      for (Vec3& p : scaled.q) p *= std::ldexp(1.0, s);
+      queries.push_back(scaled);
+    }
+    for (const int s : {-30, -60, -90}) {
+      Query moved = base;
+      for (Vec3& p : moved.q)
+        for (int d = 0; d < 3; ++d)
+          if (p[d] == 0.0) p[d] = std::ldexp(1.0, s);
+      queries.push_back(moved);
+    }
+  }
+  ASSERT_GT(queries.size(), 15000u);
+  const CcdFilters off{false, false, false};
+  const auto answers = [&](bool fixed) {
+    set_exact_ccd_fixed_width(fixed);
+    std::vector<double> out;
+    for (const Query& x : queries) {
+      const bool yes = x.ee ? exact_edge_edge_ccd(x.q) : exact_vertex_face_ccd(x.q);
+      const bool alone = x.ee ? exact_edge_edge_ccd(x.q, off) : exact_vertex_face_ccd(x.q, off);
+      const std::optional<double> t = x.ee ? exact_edge_edge_toi(x.q) : exact_vertex_face_toi(x.q);
+      EXPECT_EQ(yes, alone);
+      EXPECT_EQ(yes, t.has_value());
+      out.push_back(yes ? 2.0 : 0.0);
+      out.push_back(alone ? 2.0 : 0.0);
+      out.push_back(t.value_or(-1.0));
+    }
+    set_exact_ccd_fixed_width(true);
+    return out;
+  };
+  const std::vector<double> fixed = answers(true), gmp = answers(false);
+  ASSERT_EQ(fixed.size(), gmp.size());
+  long differ = 0, hits = 0;
+  for (std::size_t k = 0; k < fixed.size(); ++k) {
+    differ += fixed[k] != gmp[k];
+    hits += k % 3 == 0 && fixed[k] > 0.0;
+  }
+  EXPECT_EQ(differ, 0);
+  EXPECT_GT(hits, 900);  // the variants keep many of the set's collisions
 }
