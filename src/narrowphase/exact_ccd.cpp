@@ -349,12 +349,14 @@ int lipschitz_sign(const Poly& g, const Z& lip, const Q& lo, const Q& hi) {
 }
 
 // Doubles a ≤ b that enclose the point (after narrow(), an irrational root's ends are
-// neighbouring doubles or close to it): get_d rounds toward zero, so it gives a lower end, and
-// the next double above an upper end's rounding is above it.
+// neighbouring doubles or close to it): get_d truncates, so it gives a lower end, and the next
+// double above an upper end's is above it (within half an ulp in the subnormal range, where
+// get_d's last step rounds to nearest; a lower end there is taken as 0).
 std::pair<double, double> enclosing(const Point& pt) {
   const Q& lo = pt.rational ? pt.t : pt.lo;
   const Q& hi = pt.rational ? pt.t : pt.hi;
-  return {lo.get_d(), std::nextafter(hi.get_d(), 2.0)};
+  const double a = lo.get_d();
+  return {a < 0x1p-1000 ? 0.0 : a, std::nextafter(hi.get_d(), 2.0)};
 }
 
 // Certified sign of a polynomial over [a, b] ⊂ [0, 1] from its coefficients as doubles, c[k]
