@@ -348,6 +348,13 @@ int lipschitz_sign(const Poly& g, const Z& lip, const Q& lo, const Q& hi) {
   return mpz_cmp(left.get_mpz_t(), right.get_mpz_t()) > 0 ? sgn(value) : 0;
 }
 
+// The shortcuts in front of the plain exact arithmetic: fixed-width integers and the signs at a
+// root certified in doubles (set_exact_ccd_shortcuts).
+std::atomic<bool> shortcuts{true};
+bool shortcuts_on() {
+  return shortcuts.load(std::memory_order_relaxed);
+}
+
 // Doubles a ≤ b that enclose the point (after narrow(), an irrational root's ends are
 // neighbouring doubles or close to it): get_d truncates, so it gives a lower end, and the next
 // double above an upper end's is above it (within half an ulp in the subnormal range, where
@@ -359,9 +366,10 @@ std::pair<double, double> enclosing(const Point& pt) {
   return {a < 0x1p-1000 ? 0.0 : a, std::nextafter(hi.get_d(), 2.0)};
 }
 
-// Certified sign of a polynomial over [a, b] ⊂ [0, 1] from its coefficients as doubles, c[k]
-// for t^k, each within 2⁻⁵¹ of the true one relatively (0: undecided). With P the polynomial
-// of the rounded coefficients and S = Σ |c_k| a^k, L = Σ k |c_k|:
+// Certified sign of a polynomial at every t in [a, b], 0 ≤ a, t ≤ 1 (b may pass 1 by an ulp),
+// from its coefficients as doubles, c[k] for t^k, each within 2⁻⁵¹ of the true one relatively
+// (0: undecided). With P the polynomial of the rounded coefficients, S = Σ |c_k| a^k and
+// L = Σ k |c_k|:
 //   |p(t) − fl(P(a))| ≤ |p(a) − P(a)| + |P(a) − fl(P(a))| + |p(t) − p(a)|
 //                    ≤ 2⁻⁵¹ S + γ₂ₙ S + (b − a) L,
 // with γ₂ₙ ≤ 2⁻⁴⁹ for the degrees here; we use 2⁻⁴⁵ S (the rounding of S itself included) and
@@ -409,6 +417,10 @@ int exact_sign_at(const Poly& g, Point& pt) {
   for (int it = 0;; ++it) {
     if (pt.rational) return sign_of(g, pt.t);
     if (const int s = lipschitz_sign(g, lip, pt.lo, pt.hi)) return s;
+    if (!pt.narrowed) {  // once per point: to double resolution by a guess checked exactly
+      narrow(pt);
+      continue;
+    }
     if (it >= 24 && !shared_checked) {
       const Poly h = gcd(pt.q, g);
       if (h.degree() >= 1 && sign_of(h, pt.lo) * sign_of(h, pt.hi) < 0) return 0;
@@ -419,6 +431,7 @@ int exact_sign_at(const Poly& g, Point& pt) {
 }
 int sign_at(const Poly& g, Point& pt) {
   if (g.zero()) return 0;
+  if (!shortcuts_on()) return exact_sign_at(g, pt);
   if (!pt.narrowed) narrow(pt);
   std::array<double, 8> c{};
   const auto [a, b] = enclosing(pt);
@@ -615,6 +628,7 @@ int sign_at(const FPoly<W>& g, Point& pt) {
   bool all_zero = true;
   for (int k = 0; k < g.n; ++k) all_zero = all_zero && g.c[k].zero();
   if (all_zero) return 0;
+  if (!shortcuts_on()) return exact_sign_at(to_poly(g), pt);
   if (!pt.narrowed) narrow(pt);
   std::array<double, 8> c{};
   const auto [a, b] = enclosing(pt);
@@ -1096,10 +1110,10 @@ bool static_vertex_in_face(const std::array<Vec3, 8>& q) {
          dot_sign(cross(sub(a, c), sub(p, c)), n) >= 0;
 }
 
-// Fixed-width integers where the query's exponents allow (fixed_words), GMP's otherwise.
-std::atomic<bool> fixed_enabled{true};
+// Fixed-width integers where the query's exponents allow (fixed_words) and the shortcuts are
+// on, GMP's otherwise.
 int words_for(const std::array<Vec3, 8>& q) {
-  return fixed_enabled.load(std::memory_order_relaxed) ? fixed_words(q) : 0;
+  return shortcuts_on() ? fixed_words(q) : 0;
 }
 // f called with std::integral_constant<int, W>: the words of the query's Fixed, 0 for GMP.
 template <class Fn>
@@ -1190,8 +1204,8 @@ double edge_edge_query(const std::array<Vec3, 8>& q, bool earliest, const CcdFil
 
 }  // namespace
 
-void set_exact_ccd_fixed_width(bool on) {
-  fixed_enabled.store(on);
+void set_exact_ccd_shortcuts(bool on) {
+  shortcuts.store(on);
 }
 
 bool exact_vertex_face_ccd(const std::array<Vec3, 8>& q, const CcdFilters& filters) {

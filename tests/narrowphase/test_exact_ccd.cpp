@@ -299,12 +299,13 @@ TEST(ExactCcd, QueriesWithoutMotionMatchTwoDimensionalPredicatesAndTranslatedMot
   }
 }
 
-// The fixed-width integers (4, 6 or 8 words, picked by the spread of the query's exponents)
-// against GMP's throughout: the same answer, the same answer with every filter off (the exact
+// The shortcuts (fixed-width integers of 4, 6 or 8 words picked by the spread of the query's
+// exponents, signs at the roots certified in doubles) against GMP's integers and the exact sign
+// test throughout: the same answer, the same answer with every filter off (the exact
 // path alone) and the same time of impact, on the shared degenerate set and on variants of it
 // scaled by powers of two and with its zero coordinates moved to 2^-30, 2^-60 and 2^-90 (spreads
 // that pick each width and, the last, GMP's).
-TEST(ExactCcd, FixedWidthPathGivesTheGmpPathsAnswersAndTimes) {
+TEST(ExactCcd, ShortcutsGiveThePlainExactPathsAnswersAndTimes) {
   const std::string file = test::source_path("data/ccd/handcrafted.txt");
   std::ifstream in(file);
   ASSERT_TRUE(in) << "missing data file " << file;
@@ -341,7 +342,7 @@ TEST(ExactCcd, FixedWidthPathGivesTheGmpPathsAnswersAndTimes) {
   ASSERT_GT(queries.size(), 15000u);
   const CcdFilters off{false, false, false};
   const auto answers = [&](bool fixed) {
-    set_exact_ccd_fixed_width(fixed);
+    set_exact_ccd_shortcuts(fixed);
     std::vector<double> out;
     for (const Query& x : queries) {
       const bool yes = x.ee ? exact_edge_edge_ccd(x.q) : exact_vertex_face_ccd(x.q);
@@ -353,7 +354,7 @@ TEST(ExactCcd, FixedWidthPathGivesTheGmpPathsAnswersAndTimes) {
       out.push_back(alone ? 2.0 : 0.0);
       out.push_back(t.value_or(-1.0));
     }
-    set_exact_ccd_fixed_width(true);
+    set_exact_ccd_shortcuts(true);
     return out;
   };
   const std::vector<double> fixed = answers(true), gmp = answers(false);

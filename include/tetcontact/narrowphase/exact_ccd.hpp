@@ -43,12 +43,12 @@ struct CcdFilters {
 bool exact_vertex_face_ccd(const std::array<Vec3, 8>& q, const CcdFilters& filters);
 bool exact_edge_edge_ccd(const std::array<Vec3, 8>& q, const CcdFilters& filters);
 
-/// The exact path's constructions (moving points, cross and dot products, the static
-/// predicates) run on 512-bit fixed-width integers when the query's coordinates span at most 64
-/// binary orders, on GMP integers otherwise; a sign that doubles cannot certify is taken on GMP
-/// integers either way. Off: GMP integers throughout (the reference the tests hold the
-/// fixed-width path to). On by default.
-void set_exact_ccd_fixed_width(bool on);
+/// The exact path's shortcuts: its constructions (moving points, cross and dot products, the
+/// static predicates) on fixed-width integers of 4, 6 or 8 words when the query's exponents
+/// spread over at most 6, 38 or 70 binary orders (GMP integers beyond), and each sign at a root
+/// certified in doubles before the exact test. Off: GMP integers throughout and every sign by
+/// the exact test alone (the reference the tests hold the shortcuts to). On by default.
+void set_exact_ccd_shortcuts(bool on);
 
 /// An observer of the yes/no queries above (the two-argument-free entry points, which contact
 /// detection and the step's verification call), for `profile --ccd-queries`: called with each
