@@ -31,6 +31,9 @@
 #if defined(__x86_64__) && defined(__GNUC__)
 #include <immintrin.h>
 #endif
+#if defined(__linux__)
+#include <sys/mman.h>
+#endif
 
 #include "tetcontact/broadphase/broadphase.hpp"
 #include "tetcontact/parallel/parallel.hpp"
@@ -73,6 +76,43 @@ struct CubeRange {
   }
 };
 
+// Transparent huge pages for a buffer about to be written for the first time: its whole 2 MiB
+// pages (Linux, where the system's policy is "madvise"; elsewhere nothing). The pair lists run to
+// a hundred megabytes at scale, and written in 4 KiB pages their page faults took about 15 % of
+// the broadphase's time.
+void advise_huge_pages(const void* p, std::size_t bytes) {
+#if defined(__linux__) && defined(MADV_HUGEPAGE)
+  constexpr std::uintptr_t kHuge = std::uintptr_t{1} << 21;
+  if (bytes < 4 * kHuge) return;
+  const std::uintptr_t begin = (reinterpret_cast<std::uintptr_t>(p) + kHuge - 1) & ~(kHuge - 1);
+  const std::uintptr_t end = (reinterpret_cast<std::uintptr_t>(p) + bytes) & ~(kHuge - 1);
+  if (end > begin) madvise(reinterpret_cast<void*>(begin), end - begin, MADV_HUGEPAGE);
+#else
+  (void)p;
+  (void)bytes;
+#endif
+}
+
+// The allocator of the grid's arrays and the blocks' pair lists: huge pages for the large ones.
+template <class T>
+struct HugePages {
+  using value_type = T;
+  HugePages() = default;
+  template <class U>
+  HugePages(const HugePages<U>&) {}  // NOLINT: rebinding converts
+  T* allocate(std::size_t n) {
+    T* p = std::allocator<T>{}.allocate(n);
+    advise_huge_pages(p, n * sizeof(T));
+    return p;
+  }
+  void deallocate(T* p, std::size_t n) { std::allocator<T>{}.deallocate(p, n); }
+  friend bool operator==(const HugePages&, const HugePages&) { return true; }
+  friend bool operator!=(const HugePages&, const HugePages&) { return false; }
+};
+template <class T>
+using HugeVector = std::vector<T, HugePages<T>>;
+using PairBlock = HugeVector<std::pair<Index, Index>>;
+
 // Entries of padding after the last, for the lanes.
 constexpr std::size_t kPad = 8;
 
@@ -82,20 +122,20 @@ struct Cubes {
   std::int64_t origin[3] = {0, 0, 0}, span[3] = {1, 1, 1};
   // Occupied cubes: open-addressing table of keys (kEmpty where free) and their numbers.
   static constexpr std::uint64_t kEmpty = ~std::uint64_t{0};
-  std::vector<std::uint64_t> keys;
-  std::vector<Index> ids;
+  HugeVector<std::uint64_t> keys;
+  HugeVector<Index> ids;
   std::uint64_t mask = 0;
   // Entries grouped by cube (cube c: start[c] ≤ e < start[c + 1]), in primitive order within it.
-  std::vector<Index> start;
-  std::vector<float> lox, loy, loz, hix, hiy, hiz;
-  std::vector<std::int32_t> first;  // bit 0, 1, 2: this cube is the box's first along x, y, z
-  std::vector<Index> item;
+  HugeVector<Index> start;
+  HugeVector<float> lox, loy, loz, hix, hiy, hiz;
+  HugeVector<std::int32_t> first;  // bit 0, 1, 2: this cube is the box's first along x, y, z
+  HugeVector<Index> item;
   // Each primitive's entries, in the order its cubes were visited: entry k lies in cube
   // entry_cube[k] at start[entry_cube[k]] + rank[k].
-  std::vector<Index> entry_begin, entry_cube, rank;
+  HugeVector<Index> entry_begin, entry_cube, rank;
   // Scratch of the build, kept with the rest between calls (no allocation once warm).
-  std::vector<CubeRange> ranges;
-  std::vector<Index> next;
+  HugeVector<CubeRange> ranges;
+  HugeVector<Index> next;
 
   // Clamped far beyond any occupied cube, so that a far node's box converts safely.
   std::int64_t cube_of(double v) const {
@@ -467,11 +507,11 @@ void partners(const Cubes& g, Index begin, Index end, const Query& w, const Box&
   if (run.near.size() > run.bounds.back()) run.bounds.push_back(run.near.size());
 }
 
-void join(const std::vector<std::vector<std::pair<Index, Index>>>& blocks,
-          std::vector<std::pair<Index, Index>>& out) {
+void join(const std::vector<PairBlock>& blocks, std::vector<std::pair<Index, Index>>& out) {
   std::size_t n = 0;
   for (const auto& v : blocks) n += v.size();
   out.reserve(n);
+  advise_huge_pages(out.data(), n * sizeof(out[0]));
   for (const auto& v : blocks) out.insert(out.end(), v.begin(), v.end());
 }
 
@@ -563,14 +603,14 @@ class Grid : public Broadphase {
 
  private:
   // n empty lists, one per block, kept between calls with their memory.
-  std::vector<std::vector<std::pair<Index, Index>>>& blocks(std::size_t n) {
+  std::vector<PairBlock>& blocks(std::size_t n) {
     if (blocks_.size() < n) blocks_.resize(n);
     for (auto& b : blocks_) b.clear();
     return blocks_;
   }
   double cell_;
   Cubes faces_, edges_;  // with keep_memory, kept between calls: the next call reuses them
-  std::vector<std::vector<std::pair<Index, Index>>> blocks_;
+  std::vector<PairBlock> blocks_;
 };
 
 }  // namespace
