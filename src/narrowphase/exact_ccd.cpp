@@ -402,13 +402,13 @@ int scaled_doubles(const Poly& g, std::array<double, 8>& c) {
   return n;
 }
 
-// Sign of g at the point, exactly. A rational point gets g's value; an irrational one is first
-// narrowed to double resolution (once per point: every sign at a root shares it) and the
-// certified sign in doubles is tried. Then on [lo, hi] ⊂ [0, 1], |g(x) − g(lo)| ≤ (hi − lo) L
-// with L = Σ k |c_k| ≥ max |g'|, so |g(lo)| > (hi − lo) L gives the sign; the root's interval
-// is halved until it does. That ends unless g vanishes at the root: after a few halvings a gcd
-// with q tells (q is square-free with one root in (lo, hi), so a common factor with a sign
-// change there vanishes at it), and if not, halving goes on until the test decides.
+// Sign of g at the point, exactly, on integers. A rational point gets g's value. On an
+// irrational one's [lo, hi] ⊂ [0, 1], |g(x) − g(lo)| ≤ (hi − lo) L with L = Σ k |c_k| ≥ max |g'|,
+// so |g(lo)| > (hi − lo) L gives the sign; the root is narrowed to double resolution (once per
+// point) and then its interval halved until the test decides. That ends unless g vanishes at
+// the root: after a few halvings a gcd with q tells (q is square-free with one root in
+// (lo, hi), so a common factor with a sign change there vanishes at it), and if not, halving
+// goes on until the test decides.
 int exact_sign_at(const Poly& g, Point& pt) {
   if (g.zero()) return 0;
   if (pt.rational) return sign_of(g, pt.t);
@@ -429,6 +429,8 @@ int exact_sign_at(const Poly& g, Point& pt) {
     bisect(pt);
   }
 }
+// Sign of g at the point: with the shortcuts on, the point narrowed first (once per point: every
+// sign at a root shares it) and the certified sign in doubles tried before the exact one.
 int sign_at(const Poly& g, Point& pt) {
   if (g.zero()) return 0;
   if (!shortcuts_on()) return exact_sign_at(g, pt);
@@ -683,7 +685,8 @@ Z integer(double x, long E) {
   mpz_mul_2exp(r.get_mpz_t(), r.get_mpz_t(), static_cast<unsigned long>(e - 53 - E));
   return r;
 }
-// The same as a Fixed integer (fixed_words: the shift is at most 64 W − 54 bits).
+// The same as a Fixed integer: the mantissa shifted by e − 53 − E, at most the spread of the
+// exponents (≤ 70 by fixed_words), so it spans two words at most.
 template <int W>
 Fixed<W> fixed_integer(double x, long E) {
   Fixed<W> r;
