@@ -78,8 +78,9 @@ struct CubeRange {
 
 // Transparent huge pages for a buffer about to be written for the first time: its whole 2 MiB
 // pages (Linux, where the system's policy is "madvise"; elsewhere nothing). The pair lists run to
-// a hundred megabytes at scale, and written in 4 KiB pages their page faults took about 15 % of
-// the broadphase's time.
+// a hundred megabytes at scale, and written in 4 KiB pages their page faults took from 15 % to
+// over half of the broadphase's time, as the machine's faults were cheap or dear
+// (docs/guide/benchmarks.md).
 void advise_huge_pages(const void* p, std::size_t bytes) {
 #if defined(__linux__) && defined(MADV_HUGEPAGE)
   constexpr std::uintptr_t kHuge = std::uintptr_t{1} << 21;
