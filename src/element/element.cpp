@@ -330,15 +330,10 @@ __attribute__((target_clones("avx2", "default"))) void lane_kinematics(const std
     CellKinematics& k = c[l];
     copy_geometry(gm, l, k.gm);
     copy_geometry(ge, l, k.ge);
-    k.m.d = Sym6{L[0][0][l],
-                 L[1][1][l],
-                 L[2][2][l],
-                 0.5 * (L[0][1][l] + L[1][0][l]),
-                 0.5 * (L[1][2][l] + L[2][1][l]),
-                 0.5 * (L[0][2][l] + L[2][0][l])};
-    k.m.w = {0.5 * (L[2][1][l] - L[1][2][l]), 0.5 * (L[0][2][l] - L[2][0][l]),
-             0.5 * (L[1][0][l] - L[0][1][l])};
-    k.m.trace = k.m.d[0] + k.m.d[1] + k.m.d[2];
+    double Ll[3][3];
+    for (int r = 0; r < 3; ++r)
+      for (int col = 0; col < 3; ++col) Ll[r][col] = L[r][col][l];
+    set_rates(Ll, k.m);
     k.m.vol_mid = gm.vol[l];
     k.m.vol_end = ge.vol[l];
   }

@@ -94,6 +94,7 @@ struct Poly {
     while (!c.empty() && c.back() == 0) c.pop_back();
   }
   int degree() const { return static_cast<int>(c.size()) - 1; }  // −1 for the zero polynomial
+  int terms() const { return static_cast<int>(c.size()); }
   bool zero() const { return c.empty(); }
   Q operator()(const Q& t) const {  // exact, by Horner
     Q r(0);
@@ -386,22 +387,6 @@ int float_sign(const std::array<double, 8>& c, int n, double a, double b) {
   return v > err ? 1 : (v < -err ? -1 : 0);
 }
 
-// The coefficients of g as doubles, all scaled by one power of two so that the largest is in
-// [0.5, 1): n = 0 for the zero polynomial or a degree beyond 7.
-int scaled_doubles(const Poly& g, std::array<double, 8>& c) {
-  const int n = static_cast<int>(g.c.size());
-  if (n == 0 || n > 8) return 0;
-  std::array<long, 8> e{};
-  long top = 0;
-  for (int k = 0; k < n; ++k) {
-    c[k] = mpz_get_d_2exp(&e[k], g.c[k].get_mpz_t());  // truncated: within 2⁻⁵² relatively
-    if (c[k] != 0.0) top = std::max(top, e[k]);
-  }
-  for (int k = 0; k < n; ++k)
-    c[k] = c[k] == 0.0 ? 0.0 : std::ldexp(c[k], static_cast<int>(std::max(e[k] - top, -1100L)));
-  return n;
-}
-
 // Sign of g at the point, exactly, on integers. A rational point gets g's value. On an
 // irrational one's [lo, hi] ⊂ [0, 1], |g(x) − g(lo)| ≤ (hi − lo) L with L = Σ k |c_k| ≥ max |g'|,
 // so |g(lo)| > (hi − lo) L gives the sign; the root is narrowed to double resolution (once per
@@ -428,17 +413,6 @@ int exact_sign_at(const Poly& g, Point& pt) {
     }
     bisect(pt);
   }
-}
-// Sign of g at the point: with the shortcuts on, the point narrowed first (once per point: every
-// sign at a root shares it) and the certified sign in doubles tried before the exact one.
-int sign_at(const Poly& g, Point& pt) {
-  if (g.zero()) return 0;
-  if (!shortcuts_on()) return exact_sign_at(g, pt);
-  if (!pt.narrowed) narrow(pt);
-  std::array<double, 8> c{};
-  const auto [a, b] = enclosing(pt);
-  if (const int s = float_sign(c, scaled_doubles(g, c), a, b)) return s;
-  return exact_sign_at(g, pt);
 }
 
 // The real roots of p (not identically zero) in [0, 1], as points.
@@ -570,6 +544,12 @@ struct FPoly {
   static constexpr int kWords = W;
   std::array<Fixed<W>, 5> c{};
   int n = 0;
+  int terms() const { return n; }
+  bool zero() const {
+    for (int k = 0; k < n; ++k)
+      if (!c[k].zero()) return false;
+    return true;
+  }
 };
 template <int W>
 FPoly<W> operator+(const FPoly<W>& a, const FPoly<W>& b) {
@@ -596,7 +576,7 @@ FPoly<W> operator*(const FPoly<W>& a, const FPoly<W>& b) {  // degrees add up to
     for (int j = 0; j < b.n; ++j) r.c[i + j] = r.c[i + j] + a.c[i] * b.c[j];
   return r;
 }
-Poly to_poly(const Poly& p) {
+const Poly& to_poly(const Poly& p) {
   return p;
 }
 template <int W>
@@ -605,12 +585,19 @@ Poly to_poly(const FPoly<W>& p) {
   for (int k = 0; k < p.n; ++k) c[k] = to_z(p.c[k]);
   return Poly(std::move(c));
 }
-template <int W>
-int scaled_doubles(const FPoly<W>& g, std::array<double, 8>& c) {
+double to_d_2exp(const Z& a, long& e) {  // truncated: within 2⁻⁵² relatively
+  return mpz_get_d_2exp(&e, a.get_mpz_t());
+}
+// The coefficients of g (P = Poly or FPoly) as doubles, all scaled by one power of two so that
+// the largest is below 1 and above 1/4: 0 terms for the zero polynomial or a degree beyond 7.
+template <class P>
+int scaled_doubles(const P& g, std::array<double, 8>& c) {
+  const int n = g.terms();
+  if (n > 8) return 0;
   std::array<long, 8> e{};
   long top = 0;
   bool any = false;
-  for (int k = 0; k < g.n; ++k) {
+  for (int k = 0; k < n; ++k) {
     c[k] = to_d_2exp(g.c[k], e[k]);
     if (c[k] != 0.0) {
       int ek = 0;
@@ -620,16 +607,16 @@ int scaled_doubles(const FPoly<W>& g, std::array<double, 8>& c) {
     }
   }
   if (!any) return 0;
-  for (int k = 0; k < g.n; ++k)
+  for (int k = 0; k < n; ++k)
     c[k] = c[k] == 0.0 ? 0.0 : std::ldexp(c[k], static_cast<int>(std::max(e[k] - top, -1100L)));
-  return g.n;
+  return n;
 }
-// The sign at the point: certified in doubles where it can, exactly on GMP integers otherwise.
-template <int W>
-int sign_at(const FPoly<W>& g, Point& pt) {
-  bool all_zero = true;
-  for (int k = 0; k < g.n; ++k) all_zero = all_zero && g.c[k].zero();
-  if (all_zero) return 0;
+// Sign of g at the point: with the shortcuts on, the point narrowed first (once per point: every
+// sign at a root shares it) and the certified sign in doubles tried before the exact one on GMP
+// integers.
+template <class P>
+int sign_at(const P& g, Point& pt) {
+  if (g.zero()) return 0;
   if (!shortcuts_on()) return exact_sign_at(to_poly(g), pt);
   if (!pt.narrowed) narrow(pt);
   std::array<double, 8> c{};
