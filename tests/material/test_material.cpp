@@ -607,6 +607,58 @@ TEST(Material, SteinbergGuinanShortcutsAgreeWithTheFullComputation) {
   }
 }
 
+// The return's Newton solve ends at round-off, by whichever rule stops it (a step at
+// round-off, the quadratic convergence its steps show, a narrowed bracket): over trial stresses
+// from just above yield to five times it, plastic strains, steps and temperatures up to melt,
+// the returned yield eq − 3G Δε̄p is the law's yield at ε̄p + Δε̄p (its rate Δε̄p/τ and the
+// step's heating T + χ σy Δε̄p / (ρ c_v)), evaluated apart by johnson_cook_yield and
+// steinberg_hardening, to 1e-12 of the trial stress.
+TEST(Material, ReturnsLandOnTheLawsYieldToRoundOff) {
+  Material jc = johnson_cook(324e6, 114e6, 0.42, 0.002, 1.34, 925.0);
+  Material sg = steinberg(125.0, 0.1, 0.68e9, 6.52e-11, 6.16e-4, 1220.0);
+  for (Material* m : {&jc, &sg}) m->specific_heat = 896.0, m->taylor_quinney = 0.9;
+  const double g3 = 3.0 * jc.shear_modulus;
+  int plastic = 0;
+  for (const double eps : {0.0, 1e-4, 0.05, 0.5, 2.0})
+    for (const double tau : {1e-10, 1e-8, 1e-6})
+      for (const double temperature : {293.0, 600.0, 900.0})
+        for (double f = 1.001; f < 5.0; f *= 1.07) {
+          const double rho = jc.density;
+          // Johnson–Cook: σy(Δ) = S(ε̄p + Δ) R(Δ/τ) Θ(T(Δ)).
+          const double yj = johnson_cook_yield(jc.johnson_cook, eps, 0.0, temperature);
+          const double eq = f * yj;
+          const PlasticIncrement a = plastic_increment(jc, eq, eps, tau, temperature, rho);
+          ASSERT_GT(a.dplastic, 0.0);
+          const double heat = 0.9 / (rho * 896.0);
+          const double tj = temperature + heat * a.yield * a.dplastic;
+          EXPECT_NEAR(a.yield,
+                      johnson_cook_yield(jc.johnson_cook, eps + a.dplastic, a.dplastic / tau, tj),
+                      1e-12 * eq)
+              << eps << " " << tau << " " << temperature << " " << f;
+          EXPECT_NEAR(a.yield, eq - g3 * a.dplastic, 1e-15 * eq);
+          // Steinberg–Guinan at 2 GPa: σy(Δ) = Y(ε̄p + Δ) [c_p − B (T(Δ) − T_ref)].
+          const double p = 2e9, eta = 1.02;
+          const StrengthState ss = strength_state(sg, p, temperature, eta);
+          double slope = 0.0;
+          const auto y_sg = [&](double e, double t) {
+            const double factor =
+                ss.pressure_factor -
+                sg.steinberg_guinan.b_temperature * (t - sg.steinberg_guinan.reference_temperature);
+            return steinberg_hardening(sg.steinberg_guinan, e, slope) * factor;
+          };
+          const double eq_sg = f * y_sg(eps, temperature);
+          const PlasticIncrement b =
+              plastic_increment(sg, eq_sg, eps, tau, temperature, eta * sg.density, p);
+          ASSERT_GT(b.dplastic, 0.0);
+          const double ts = temperature + 0.9 / (eta * sg.density * 896.0) * b.yield * b.dplastic;
+          ASSERT_LT(ts, steinberg_melt_temperature(sg.steinberg_guinan, eta));
+          EXPECT_NEAR(b.yield, y_sg(eps + b.dplastic, ts), 1e-12 * eq_sg)
+              << eps << " " << tau << " " << temperature << " " << f;
+          plastic += 2;
+        }
+  EXPECT_EQ(plastic, 2 * 5 * 3 * 3 * 24);
+}
+
 // Adiabatic heating, β = 0: dY/dε̄p = −Y0 B χ Y / (ρ c_v), so Y = Y0 exp(−k ε̄p) with
 // k = Y0 B χ / (ρ c_v) (the heat is solved within each step's return).
 TEST(Material, SteinbergGuinanAdiabaticSofteningFollowsTheExponential) {

@@ -310,14 +310,31 @@ struct PlasticIncrement {
   double yield = 0.0;
 };
 
+/// exp(s) for the small relative steps of Newton's method near its root: for |s| ≤ 2⁻¹⁰ the
+/// series to s⁵ (its remainder below s⁶/720 < 2e-21), else std::exp.
+inline double exp_of_step(double s) {
+  if (!(std::abs(s) <= 0x1p-10)) return std::exp(s);
+  return 1.0 + s * (1.0 + s * (0.5 + s * (1.0 / 6.0 + s * (1.0 / 24.0 + s * (1.0 / 120.0)))));
+}
+
 /// The bracketed Newton solve of f(Δ) = eq − g3 Δ − σy(Δ) = 0 described above; yield(Δ, slope)
-/// returns σy(Δ) and sets dσy/dΔ. y_start = σy(0) < eq.
+/// returns σy(Δ) and sets dσy/dΔ. y_start = σy(0) < eq, dy_start its slope there.
+/// It starts from Newton's step in Δ from 0, Δ₀ = (eq − σy(0)) / (3G + σy'(0)), inside the
+/// bracket and off the root only by the curvature of σy; the slope taken within [0, 3G] (a
+/// softening slope, or Johnson–Cook's (ε̄p)ⁿ⁻¹ near ε̄p = 0, would start it far off).
+/// Then Newton in u = ln Δ: the relative step s = −f / (f'(Δ) Δ), Δ ← Δ eˢ. It stops
+///  - when a step is at round-off (|s| ≤ 1e-13), taking it;
+///  - when the quadratic convergence its steps show puts the next iterate at round-off: the
+///    error after step k is about K s_k² with K ≈ |s_k| / s_{k−1}², so the step is taken and
+///    the solve ends when |s_k|³ / s_{k−1}² ≤ 1e-14 (two Newton steps in a row, contracting);
+///  - on a bracket narrowed to 1e-15 of itself, where bisection leads.
 template <class Yield>
-PlasticIncrement solve_return(double eq, double g3, double y_start, const Yield& yield) {
+PlasticIncrement solve_return(double eq, double g3, double y_start, double dy_start,
+                              const Yield& yield) {
   PlasticIncrement r;
   double lo = 0.0, hi = eq / g3, dy = 0.0;
-  // Start from the perfectly plastic return at the start-of-step yield.
-  double d = (eq - y_start) / g3;
+  double d = (eq - y_start) / (g3 + std::clamp(dy_start, 0.0, g3));
+  double last = 0.0;  // the previous relative Newton step (0: none, or a bisection)
   for (int it = 0; it < 100; ++it) {
     const double f = eq - g3 * d - yield(d, dy);
     if (f == 0.0) break;
@@ -325,11 +342,25 @@ PlasticIncrement solve_return(double eq, double g3, double y_start, const Yield&
     const double slope = -g3 - dy;
     // Newton in ln Δ, where the rate term C ln(Δ/τ ε̇0) is linear (in Δ it bends so sharply
     // near 0 that Newton's steps overshoot the bracket and it crawls by bisection).
-    double next = slope < 0.0 ? d * std::exp(-f / (slope * d)) : 0.5 * (lo + hi);
-    if (!(next > lo && next < hi)) next = lo > 0.0 ? std::sqrt(lo * hi) : 0.5 * (lo + hi);
-    // Newton's step is then at round-off (quadratic convergence: the next one would be far
-    // below it); the bracket, when bisection leads.
-    const bool done = std::abs(next - d) <= 1e-13 * d || hi - lo <= 1e-15 * hi;
+    if (slope < 0.0) {
+      const double s = -f / (slope * d), next = d * exp_of_step(s);
+      // At round-off the step may not move Δ off the bracket's end it just set: done.
+      if (std::abs(s) <= 1e-13) {
+        d = next;
+        break;
+      }
+      if (next > lo && next < hi) {
+        const double a = std::abs(s);
+        const bool converged = a < std::abs(last) && a * a * a <= 1e-14 * last * last;
+        d = next;
+        last = s;
+        if (converged) break;
+        continue;
+      }
+    }
+    const double next = lo > 0.0 ? std::sqrt(lo * hi) : 0.5 * (lo + hi);
+    last = 0.0;
+    const bool done = hi - lo <= 1e-15 * hi;
     d = next;
     if (done) break;
   }
@@ -367,13 +398,22 @@ inline PlasticIncrement plastic_increment(const Material& m, const StrengthState
       if (!(eq > r.yield)) return r;  // r.yield ≥ eq: a bound, not σy (nothing is scaled)
     }
     // σy(Δ) = Y(ε̄p + Δ) G(P, T(Δ)) / G0 with T(Δ) = T + heat (eq − 3G Δ) Δ.
-    const double tm = std::isnan(ss.melt) ? steinberg_melt_temperature(sg, ss.eta) : ss.melt;
+    // The melt point T_m(η) (its exp and pow) only once the heated T reaches its lower bound.
+    double tm = ss.melt;  // NaN: not computed, T below the bound
+    const double tm_low = std::isnan(tm) ? steinberg_melt_lower_bound(sg, ss.eta) : tm;
+    const auto molten = [&](double t) {
+      if (std::isnan(tm)) {
+        if (t < tm_low) return false;
+        tm = steinberg_melt_temperature(sg, ss.eta);
+      }
+      return tm > 0.0 && t >= tm;
+    };
     const auto yield = [&](double d, double& dy) {
       double dh = 0.0;
       const double y = steinberg_hardening(sg, eps_p + d, dh);
       const double t = temperature + heat * (eq - g3 * d) * d;
       double factor = cp - sg.b_temperature * (t - sg.reference_temperature);
-      if ((tm > 0.0 && t >= tm) || factor <= 0.0) {
+      if (molten(t) || factor <= 0.0) {
         dy = 0.0;
         return 0.0;
       }
@@ -383,20 +423,10 @@ inline PlasticIncrement plastic_increment(const Material& m, const StrengthState
     double dy0 = 0.0;
     r.yield = yield(0.0, dy0);
     if (!(eq > r.yield)) return r;
-    return solve_return(eq, g3, r.yield, yield);
+    return solve_return(eq, g3, r.yield, dy0, yield);
   }
   const JohnsonCook& jc = m.johnson_cook;
-  r.yield = johnson_cook_yield(jc, eps_p, 0.0, temperature);
-  if (!(eq > r.yield)) return r;
-  // f(eq/3G) = −σy at the start's temperature (no heating at the full return, σy's root): ≥ 0
-  // only when molten, and then the deviator vanishes. Otherwise f(eq/3G) < 0 and, f(0) > 0,
-  // the bracket holds the root.
   const bool softens = jc.melt_temperature > jc.room_temperature;
-  if (softens && temperature >= jc.melt_temperature) {
-    r.dplastic = eq / g3;
-    r.yield = 0.0;
-    return r;
-  }
   // σy = S(ε̄p + Δ) R(Δ/τ) Θ(T(Δ)).
   const double span = jc.melt_temperature - jc.room_temperature;
   const auto yield = [&](double d, double& dy) {
@@ -422,7 +452,18 @@ inline PlasticIncrement plastic_increment(const Material& m, const StrengthState
     dy = d_strain * rate * thermal + strain * d_rate * thermal + strain * rate * d_thermal;
     return strain * rate * thermal;
   };
-  return solve_return(eq, g3, r.yield, yield);
+  double dy0 = 0.0;
+  r.yield = yield(0.0, dy0);  // johnson_cook_yield(jc, ε̄p, 0, T), to the bit
+  if (!(eq > r.yield)) return r;
+  // f(eq/3G) = −σy at the start's temperature (no heating at the full return, σy's root): ≥ 0
+  // only when molten, and then the deviator vanishes. Otherwise f(eq/3G) < 0 and, f(0) > 0,
+  // the bracket holds the root.
+  if (softens && temperature >= jc.melt_temperature) {
+    r.dplastic = eq / g3;
+    r.yield = 0.0;
+    return r;
+  }
+  return solve_return(eq, g3, r.yield, dy0, yield);
 }
 /// The same from the pressure at the start of the step (Steinberg–Guinan's G(P, T)).
 inline PlasticIncrement plastic_increment(const Material& m, double eq, double eps_p, double tau,
