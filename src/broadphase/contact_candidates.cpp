@@ -71,17 +71,32 @@ Box layer_box(const Face& k, const Tet& tet, const std::vector<Vec3>& x0,
   return box;
 }
 
+namespace {
+
+bool lists_edges(const CandidateSettings& s) {
+  return s.bodies && (s.edges || s.verify);
+}
+
+std::vector<Index> node_slots(const SurfacePrimitives& p, std::size_t nodes) {
+  std::vector<Index> slot(nodes, -1);
+  for (std::size_t i = 0; i < p.nodes.size(); ++i) slot[p.nodes[i]] = static_cast<Index>(i);
+  return slot;
+}
+
+}  // namespace
+
 ContactCandidates::ContactCandidates(const Mesh& mesh, const std::vector<Surface>& surfaces,
                                      const CandidateSettings& settings)
     : mesh_(mesh),
       settings_(settings),
       broadphase_(make_broadphase(settings.broadphase)),
-      prims_(surface_primitives(surfaces, settings.bodies && settings.edges)),
-      body_lists_(settings.binding_lists ? binding_reach(surfaces) : 0.0),
-      particle_lists_(body_lists_.reach()) {}
+      prims_(surface_primitives(surfaces, lists_edges(settings))),
+      body_lists_(settings.binding_lists || settings.verify ? binding_reach(surfaces) : 0.0),
+      particle_lists_(body_lists_.reach()),
+      node_slot_(node_slots(prims_, mesh.x.size())) {}
 
 std::vector<Index> ContactCandidates::surfaces_changed(const std::vector<Surface>& surfaces) {
-  SurfacePrimitives fresh = surface_primitives(surfaces, settings_.bodies && settings_.edges);
+  SurfacePrimitives fresh = surface_primitives(surfaces, lists_edges(settings_));
   std::map<Edge, Index> edge_index;
   for (std::size_t e = 0; e < fresh.edges.size(); ++e)
     edge_index.emplace(fresh.edges[e], static_cast<Index>(e));
@@ -91,8 +106,10 @@ std::vector<Index> ContactCandidates::surfaces_changed(const std::vector<Surface
     if (it != edge_index.end()) renamed[e] = it->second;
   }
   prims_ = std::move(fresh);
+  node_slot_ = node_slots(prims_, mesh_.x.size());
   body_lists_.reset();  // the faces a conversion exposed are in no list yet
   particle_lists_.reset();
+  ++version_;
   return renamed;
 }
 
@@ -224,6 +241,7 @@ void ContactCandidates::search(const State& st, bool bodies, bool particles,
     bodies_.faces = listed_faces(bodies_.node_face);
     body_lists_.anchor(prims_.nodes, x0);
   }
+  ++version_;
   if (particles) {
     particles_.faces = listed_faces(particles_.node_face);
     particle_anchored_.clear();
@@ -251,6 +269,41 @@ CandidateStats ContactCandidates::update(const State& st) {
   }
   stats.seconds = std::chrono::duration<double>(Clock::now() - t0).count();
   return stats;
+}
+
+bool ContactCandidates::hold_at(const State& st, bool bodies, const std::vector<Vec3>& x1,
+                                const std::vector<Index>* moved) const {
+  if (bodies) {
+    if (!settings_.bodies) return true;
+    if (!moved || !body_lists_.have()) return body_lists_.holds(prims_.nodes, x1);
+    for (const Index n : *moved)
+      if (n < st.first_particle && node_slot_[n] >= 0 &&
+          !body_lists_.within(static_cast<std::size_t>(node_slot_[n]), x1[n]))
+        return false;
+    return true;
+  }
+  if (!settings_.particles) return true;
+  if (particles_listed_ != st.particle_count()) return false;
+  if (!moved || !particle_lists_.have()) return particle_lists_.holds(particle_anchored_, x1);
+  // The anchors: the particles, then the surface nodes.
+  const Index count = particles_listed_;
+  for (const Index n : *moved) {
+    const Index i = n >= st.first_particle ? n - st.first_particle
+                                           : (node_slot_[n] >= 0 ? count + node_slot_[n] : -1);
+    if (i >= 0 && !particle_lists_.within(static_cast<std::size_t>(i), x1[n])) return false;
+  }
+  return true;
+}
+
+bool ContactCandidates::lists_for(const State& st, const std::vector<Vec3>& x1,
+                                  const std::vector<Index>* moved) {
+  bool searched = false;
+  for (const bool part_bodies : {true, false}) {
+    if (hold_at(st, part_bodies, x1, moved)) continue;
+    search(st, part_bodies, !part_bodies, x1);
+    searched = true;
+  }
+  return searched;
 }
 
 const CandidateLists& ContactCandidates::particles_at(const State& st, bool* rebuilt) {

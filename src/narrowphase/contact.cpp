@@ -27,6 +27,7 @@ CandidateSettings candidate_settings(const ContactSettings& contact, bool partic
   c.binding_lists = contact.binding_lists;
   c.bodies = true;
   c.edges = contact.edge_edge;
+  c.verify = contact.verify;
   c.particles = particles;
   c.margin = contact.margin;
   c.rim = k_rim_tolerance;
@@ -427,7 +428,7 @@ std::vector<ContactPoint> ContactDetection::detect(const State& st,
   stats.candidates = static_cast<long>(candidates.bodies().node_face.size());
   std::vector<ContactPoint> contacts;
   node_face_contacts(st, candidates, contacts);
-  edge_edge_contacts(st, candidates, stats, contacts);
+  if (settings_.edge_edge) edge_edge_contacts(st, candidates, stats, contacts);
   if (settings_.order == ContactSettings::Order::lighter_first)
     std::stable_sort(contacts.begin(), contacts.end(),
                      [&](const ContactPoint& a, const ContactPoint& b) {

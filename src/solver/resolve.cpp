@@ -20,25 +20,30 @@ void StepResolver::end_positions(const State& st) {
 }
 
 // Again after a round: only the pairs that read a node whose end position changed.
-Verification StepResolver::verify_again(const State& st) {
+Verification StepResolver::verify_again(const State& st, ContactCandidates& candidates,
+                                        ContactLedger& ct) {
   end_positions(st);
   const std::size_t n = st.x.size();
-  changed_.assign(n, 0);
+  changed_.clear();
   for (std::size_t i = 0; i < n; ++i)
-    if (x_end_[i] != x_tested_[i]) changed_[i] = 1, x_tested_[i] = x_end_[i];
-  return verifier_.verify_again(st.surfaces, st.x, x_end_, st.first_particle, changed_);
+    if (x_end_[i] != x_tested_[i])
+      changed_.push_back(static_cast<Index>(i)), x_tested_[i] = x_end_[i];
+  Verification v = verifier_.verify_again(st, x_end_, candidates, changed_);
+  ct.rebuilds += v.searches;
+  return v;
 }
 
-// The step's motion verified (diagnostics/verify.hpp). Where pairs fail, each gets a contact
+// The step's motion verified (verify/verify.hpp). Where pairs fail, each gets a contact
 // point of its own and the islands of contact points that move their nodes get further passes
 // (up to k_extra_rounds rounds, doubling), verified after each; what still fails goes into rigid
 // impact zones (response/impact_zones.hpp), verified again until none fails: a failure across
 // zones merges them, one inside a zone escalates it (rigid → exact translation → frozen).
-void StepResolver::resolve(State& st, StepContacts& points, const ContactDetection& contact,
-                           int passes, ContactLedger& ct) {
+void StepResolver::resolve(State& st, StepContacts& points, ContactCandidates& candidates,
+                           const ContactDetection& contact, int passes, ContactLedger& ct) {
   fixed_x_.clear();
   end_positions(st);
-  Verification v = verifier_.verify(st.surfaces, st.x, x_end_, st.first_particle);
+  Verification v = verifier_.verify(st, x_end_, candidates);
+  ct.rebuilds += v.searches;
   ct.verified_pairs += v.pairs_checked;
   if (v.failed.empty()) return;
   ct.failed_pairs += static_cast<long>(v.failed.size());
@@ -48,11 +53,11 @@ void StepResolver::resolve(State& st, StepContacts& points, const ContactDetecti
   }
   ++ct.steps_failed;
   x_tested_ = x_end_;
-  v = extra_passes(st, points, contact, passes, std::move(v), ct);
+  v = extra_passes(st, points, candidates, contact, passes, std::move(v), ct);
   if (v.failed.empty()) return;
   ct.failed_after_extra += static_cast<long>(v.failed.size());
   ++ct.steps_with_zones;
-  impact_zones(st, points, passes, std::move(v), ct);
+  impact_zones(st, points, candidates, passes, std::move(v), ct);
 }
 
 // Further passes where the failures are: a failing pair becomes a contact point of its own
@@ -61,6 +66,7 @@ void StepResolver::resolve(State& st, StepContacts& points, const ContactDetecti
 // passes: `passes` in the first round, doubling each round (the passes converge slowly on large
 // coupled islands; only the failing islands pay).
 Verification StepResolver::extra_passes(State& st, StepContacts& points,
+                                        ContactCandidates& candidates,
                                         const ContactDetection& contact, int passes, Verification v,
                                         ContactLedger& ct) {
   const std::vector<ContactList>& lists = points.lists;
@@ -86,7 +92,7 @@ Verification StepResolver::extra_passes(State& st, StepContacts& points,
     correct_in_islands(lists, failing, passes << extra, st);
     ++ct.extra_rounds;
     const std::size_t before = v.failed.size();
-    v = verify_again(st);
+    v = verify_again(st, candidates, ct);
     // Three rounds in a row that do not lower the failing pairs: the passes stall, zones take
     // over (after one such round the coarse Taylor rods had zones on 81 steps, after two on 19
     // and the full rods missed their radius by 2.6 %, after three on 6, and the full rods pass).
@@ -97,7 +103,8 @@ Verification StepResolver::extra_passes(State& st, StepContacts& points,
 }
 
 // Rigid impact zones, verified after each round until no pair fails (or k_zone_rounds).
-Verification StepResolver::impact_zones(State& st, StepContacts& points, int passes, Verification v,
+Verification StepResolver::impact_zones(State& st, StepContacts& points,
+                                        ContactCandidates& candidates, int passes, Verification v,
                                         ContactLedger& ct) {
   const std::size_t n = st.x.size();
   zones_.reset(n);
@@ -155,7 +162,7 @@ Verification StepResolver::impact_zones(State& st, StepContacts& points, int pas
       }
       for (const Index node : z.nodes) fixed_x_.push_back({node, Vec3(st.x[node] + d)});
     }
-    v = verify_again(st);
+    v = verify_again(st, candidates, ct);
   }
   ct.zone_rounds += round;
   ct.unresolved_steps += !v.failed.empty();

@@ -351,7 +351,8 @@ void Simulation::note_push() {
 
 // The step's motion verified, and failures resolved (solver/resolve.hpp).
 void Simulation::resolve_stage() {
-  resolver_->resolve(state_, points_, *contact_, model_.contact->passes, contact_totals_);
+  resolver_->resolve(state_, points_, *candidates_, *contact_, model_.contact->passes,
+                     contact_totals_);
 }
 
 void Simulation::predict_stage() {

@@ -30,6 +30,10 @@ class BindingLists {
   /// reach of its anchor); with `only`, for the points i with only[i] set.
   bool holds(const std::vector<Index>& ids, const std::vector<Vec3>& x,
              const std::vector<char>* only = nullptr) const;
+  /// Whether point i (of the ids the lists were set for) at x is within the reach of its anchor.
+  bool within(std::size_t i, const Vec3& x) const {
+    return have_ && i < anchor_.size() && (x - anchor_[i]).squaredNorm() <= reach_ * reach_;
+  }
   /// For the step xⁿ → x*: the lists hold at both ends.
   bool hold(const std::vector<Index>& ids, const std::vector<Vec3>& x0,
             const std::vector<Vec3>& x1) const {

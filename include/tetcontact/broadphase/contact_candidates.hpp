@@ -52,6 +52,10 @@ struct CandidateSettings {
   double kernel_reach = 0.0;   // SPH particles: the reach of their kernel over h
   double margin = 0.0;         // m, added to the bodies' boxes
   double rim = 0.0;            // of the layer box
+  /// The step's verification takes its pairs from these lists (verify/verify.hpp): the edges
+  /// are listed even without edge–edge contact, and the lists are found with boxes enlarged by
+  /// the reach even without binding lists (which then only decide that every update searches).
+  bool verify = false;
 };
 
 /// Pairs of the lists for one narrow phase, with the faces they name (sorted, each once).
@@ -91,6 +95,17 @@ class ContactCandidates {
   /// checks them at both ends of its step). `rebuilt` says whether a search ran.
   const CandidateLists& particles_at(const State& st, bool* rebuilt = nullptr);
 
+  /// The lists for the step's verification, from xⁿ (st.x, as at the last update) to x1: each
+  /// part (bodies, particles) whose points are not all within the reach of where they were at
+  /// its search (with `moved`, of those node ids alone, the others as at the last call) is
+  /// found anew for xⁿ → x1. Then the listed pairs whose boxes of xⁿ → x1 overlap are the
+  /// pairs a fresh search finds. Returns whether a search ran (the lists changed).
+  bool lists_for(const State& st, const std::vector<Vec3>& x1,
+                 const std::vector<Index>* moved = nullptr);
+  /// Counts the searches and primitive changes: a caller keeping data per listed pair rebuilds
+  /// it when this changes.
+  long version() const { return version_; }
+
   const SurfacePrimitives& primitives() const { return prims_; }
   /// (surface node, face) and (edge, edge) between bodies; indices into primitives().
   const CandidateLists& bodies() const { return bodies_; }
@@ -105,6 +120,9 @@ class ContactCandidates {
  private:
   bool bodies_hold(const State& st) const;
   bool particles_hold(const State& st) const;
+  // Each part's lists at x1: every listed point (or each of `moved`) within the reach.
+  bool hold_at(const State& st, bool bodies, const std::vector<Vec3>& x1,
+               const std::vector<Index>* moved) const;
   // The step x0 = st.x → x1.
   void search(const State& st, bool bodies, bool particles, const std::vector<Vec3>& x1);
   const Mesh& mesh_;
@@ -115,7 +133,9 @@ class ContactCandidates {
   // particles_): the surface nodes; the particles, then the surface nodes.
   BindingLists body_lists_, particle_lists_;
   std::vector<Index> particle_anchored_;
+  std::vector<Index> node_slot_;  // each mesh node's index in prims_.nodes (−1: not on a surface)
   Index particles_listed_ = 0;
+  long version_ = 0;
   CandidateLists bodies_, particles_;
 };
 

@@ -61,7 +61,7 @@ struct ContactSettings {
   /// that cross during the step (exact CCD) get the reaction of eqs. (11)–(12). Off by default
   /// until the exact test is fast (it costs ~0.2 ms a pair).
   bool edge_edge = false;
-  /// Verify every step's motion with the exact CCD (diagnostics/verify.hpp); pairs that fail
+  /// Verify every step's motion with the exact CCD (verify/verify.hpp); pairs that fail
   /// get further passes, then rigid impact zones (response/impact_zones.hpp). Off by default
   /// until its cost and the zones' effect on flat contacts are brought down (README).
   bool verify = false;

@@ -1,5 +1,5 @@
 // Rigid impact zones (Provot 1997; Bridson, Fedkiw & Anderson 2002; Harmon et al. 2008): the
-// fail-safe of the step's verification (diagnostics/verify.hpp). The nodes of the pairs that
+// fail-safe of the step's verification (verify/verify.hpp). The nodes of the pairs that
 // still fail after the correction passes are merged into zones (a union–find over nodes); each
 // zone's nodes then move this step with the zone's rigid velocity field
 //   U_i = V + ω × (x_i − c),   M V = Σ m_i u_i,   I ω = L = Σ m_i (x_i − c) × (u_i − V),

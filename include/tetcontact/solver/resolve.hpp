@@ -6,13 +6,13 @@
 #include <vector>
 
 #include "tetcontact/broadphase/contact_candidates.hpp"
-#include "tetcontact/diagnostics/verify.hpp"
 #include "tetcontact/model/contact_point.hpp"
 #include "tetcontact/model/ledger.hpp"
 #include "tetcontact/model/state.hpp"
 #include "tetcontact/narrowphase/contact.hpp"
 #include "tetcontact/response/impact_zones.hpp"
 #include "tetcontact/response/islands.hpp"
+#include "tetcontact/verify/verify.hpp"
 
 namespace tc {
 
@@ -40,27 +40,30 @@ class StepResolver {
 
   explicit StepResolver(const Mesh& mesh) : verifier_(mesh) {}
 
-  /// The surfaces changed (cells turned into particles): the verification's lists are found anew.
+  /// The surfaces changed (cells turned into particles): the verification's maps over the
+  /// primitives are rebuilt.
   void surfaces_changed() { verifier_.surfaces_changed(); }
 
-  /// The step's motion xⁿ → xⁿ⁺¹ = xⁿ + τ U* verified; failing pairs resolved by rescue points
-  /// (from `contact`, added to `points.bodies`), further passes (`passes` in the first round) and
-  /// impact zones, which change U* (st.v_star) and may fix end positions (fixed_positions()).
-  /// The counts go to `ledger`.
-  void resolve(State& st, StepContacts& points, const ContactDetection& contact, int passes,
-               ContactLedger& ledger);
+  /// The step's motion xⁿ → xⁿ⁺¹ = xⁿ + τ U* verified on the detection's lists (`candidates`,
+  /// found anew where the end positions leave their reach); failing pairs resolved by rescue
+  /// points (from `contact`, added to `points.bodies`), further passes (`passes` in the first
+  /// round) and impact zones, which change U* (st.v_star) and may fix end positions
+  /// (fixed_positions()). The counts go to `ledger`.
+  void resolve(State& st, StepContacts& points, ContactCandidates& candidates,
+               const ContactDetection& contact, int passes, ContactLedger& ledger);
 
   /// Nodes of translated and frozen impact zones of the last resolve() with their xⁿ⁺¹: the
   /// commit writes these positions.
   const std::vector<std::pair<Index, Vec3>>& fixed_positions() const { return fixed_x_; }
 
  private:
-  Verification verify_again(const State& st);
+  Verification verify_again(const State& st, ContactCandidates& candidates, ContactLedger& ct);
   void end_positions(const State& st);
-  Verification extra_passes(State& st, StepContacts& points, const ContactDetection& contact,
-                            int passes, Verification v, ContactLedger& ct);
-  Verification impact_zones(State& st, StepContacts& points, int passes, Verification v,
+  Verification extra_passes(State& st, StepContacts& points, ContactCandidates& candidates,
+                            const ContactDetection& contact, int passes, Verification v,
                             ContactLedger& ct);
+  Verification impact_zones(State& st, StepContacts& points, ContactCandidates& candidates,
+                            int passes, Verification v, ContactLedger& ct);
 
   StepVerifier verifier_;
   // Working arrays, kept between steps to save allocations.
@@ -70,7 +73,7 @@ class StepResolver {
   std::vector<char> marked_;          // nodes of failing pairs
   std::vector<char> in_rigid_;        // nodes in rigid zones
   std::vector<ContactPoint> inside_;  // the contact points inside rigid zones, from Λ = 0
-  std::vector<char> changed_;   // nodes whose end position changed since the last verification
+  std::vector<Index> changed_;  // nodes whose end position changed since the last verification
   std::vector<Vec3> x_tested_;  // the end positions last verified
   std::vector<std::pair<Index, Vec3>> fixed_x_;  // nodes of translated and frozen zones, xⁿ⁺¹
 };
