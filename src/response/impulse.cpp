@@ -44,9 +44,13 @@ Vec3 relative_velocity(const ContactPoint& c, const State& st) {
 }  // namespace
 
 double apply_contact(ContactPoint& c, State& st, double tau, std::vector<Vec3>& ledger) {
-  double inv_mass = 0.0;  // Σ w²/m over both sides
-  for (int i = 0; i < c.a_count; ++i) inv_mass += c.a_w[i] * c.a_w[i] / st.m[c.a_nodes[i]];
-  for (int i = 0; i < c.b_count; ++i) inv_mass += c.b_w[i] * c.b_w[i] / st.m[c.b_nodes[i]];
+  if (c.inv_mass < 0.0) {  // Σ w²/m over both sides, once a step
+    double sum = 0.0;
+    for (int i = 0; i < c.a_count; ++i) sum += c.a_w[i] * c.a_w[i] / st.m[c.a_nodes[i]];
+    for (int i = 0; i < c.b_count; ++i) sum += c.b_w[i] * c.b_w[i] / st.m[c.b_nodes[i]];
+    c.inv_mass = sum > 0.0 ? sum : 0.0;  // NaN (a massless node): no exchange
+  }
+  const double inv_mass = c.inv_mass;
   if (!(inv_mass > 0.0)) return 0.0;
   const Vec3& n = c.normal;
   const Vec3 v_rel = relative_velocity(c, st);

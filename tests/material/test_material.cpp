@@ -426,7 +426,9 @@ void expect_bilinear(const Material& perfect, const Material& linear, double har
         update_deviator(linear, s, D, W, tau, eps, temperature, 2703.0, pressure);
     EXPECT_NEAR(c.dplastic, d.dplastic, 1e-12 * c.dplastic + 1e-300) << k;
     EXPECT_NEAR((c.s - d.s).norm(), 0.0, 1e-12 * c.s.norm()) << k;
-    if (d.dplastic > 0.0) EXPECT_NEAR(von_mises(d.s), d.yield, 1e-12 * d.yield) << k;
+    if (d.dplastic > 0.0) {
+      EXPECT_NEAR(von_mises(d.s), d.yield, 1e-12 * d.yield) << k;
+    }
   }
 }
 

@@ -65,7 +65,9 @@ TEST(ImpactZones, RigidFieldKeepsBothMomentaAndLowersKineticEnergy) {
     // The ledger holds m ΔU; nodes outside the zone are untouched.
     for (Index i = 0; i < 12; ++i) {
       EXPECT_LT((ledger[i] - st.m[i] * (st.v_star[i] - u[i])).norm(), 1e-12 * scale);
-      if (i >= 8) EXPECT_EQ(st.v_star[i], u[i]);
+      if (i >= 8) {
+        EXPECT_EQ(st.v_star[i], u[i]);
+      }
     }
   }
 }
@@ -140,7 +142,9 @@ TEST(ImpactZones, ExactTranslationKeepsRelativePositionsBitForBit) {
     const Vec3 d = exact_translation(x, nodes, want);
     for (int k = 0; k < 3; ++k) {
       // Each axis: the wanted shift to within the grain, or 0.
-      if (d[k] != 0.0) EXPECT_LT(std::abs(d[k] - want[k]), 1e-12 * scale + 1e-15);
+      if (d[k] != 0.0) {
+        EXPECT_LT(std::abs(d[k] - want[k]), 1e-12 * scale + 1e-15);
+      }
     }
     for (const Index i : nodes)
       for (const Index j : nodes) {

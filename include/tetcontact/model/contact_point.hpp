@@ -37,6 +37,9 @@ struct ContactPoint {
   double lambda = 0.0;             // normal impulse, N s
   Vec3 tangential = Vec3::Zero();  // tangential impulse on A, N s
   double heat = 0.0;               // kinetic energy the exchange took from the pair, J
+  /// Σ w²/m over both sides (the nodes' masses hold for the step), set at the first pass;
+  /// negative until then.
+  double inv_mass = -1.0;
 };
 
 /// Sixteen units of rounding at the largest coordinate of the points: the separation a contact
