@@ -1,6 +1,7 @@
 #include "tetcontact/verify/verify.hpp"
 
 #include <algorithm>
+#include <stdexcept>
 
 #include "tetcontact/diagnostics/penetration.hpp"
 #include "tetcontact/narrowphase/exact_ccd.hpp"
@@ -136,27 +137,29 @@ bool near(const Box& a, const Box& b, double s) {
 
 }  // namespace
 
-// One pass over the listed pairs: those whose boxes overlap (returned) and the near ones, with
-// the vertices' end positions as their anchors.
-Candidates StepVerifier::near_pairs(const std::vector<Vec3>& x1) {
-  Candidates pairs;
+// One pass over the listed pairs: the near ones, with the vertices' end positions as their
+// anchors and no verdict at the start known yet; those whose boxes overlap are returned.
+StepVerifier::Tests StepVerifier::near_pairs(const std::vector<Vec3>& x1) {
+  Tests tests;
   near_vf_.clear();
   near_ee_.clear();
   for (const Pair& p : vf_) {
     const Box &a = node_box_[p.first], &b = face_box_[p.second];
     if (!near(a, b, slack_)) continue;
+    if (boxes_overlap(a, b)) tests.vf.push_back(static_cast<Index>(near_vf_.size()));
     near_vf_.push_back(p);
-    if (boxes_overlap(a, b)) pairs.node_face.push_back(p);
   }
   for (const Pair& p : ee_) {
     const Box &a = edge_box_[p.first], &b = edge_box_[p.second];
     if (!near(a, b, slack_)) continue;
+    if (boxes_overlap(a, b)) tests.ee.push_back(static_cast<Index>(near_ee_.size()));
     near_ee_.push_back(p);
-    if (boxes_overlap(a, b)) pairs.edge_edge.push_back(p);
   }
+  start_vf_.assign(near_vf_.size(), 0);
+  start_ee_.assign(near_ee_.size(), 0);
   anchor_.resize(static_cast<std::size_t>(vertices_));
   for (Index i = 0; i < vertices_; ++i) anchor_[i] = x1[node_of(i)];
-  return pairs;
+  return tests;
 }
 
 // The primitives whose tests read a changed node, their boxes set anew.
@@ -200,17 +203,21 @@ void StepVerifier::mark_dirty(const State& st, const std::vector<Vec3>& x1,
 }
 
 // The near pairs with a dirty side whose boxes overlap, in the lists' order (sorted).
-Candidates StepVerifier::dirty_pairs() {
-  Candidates pairs;
-  for (const Pair& p : near_vf_)
+StepVerifier::Tests StepVerifier::dirty_pairs() {
+  Tests tests;
+  for (std::size_t k = 0; k < near_vf_.size(); ++k) {
+    const Pair& p = near_vf_[k];
     if ((dirty_vertex_[p.first] || dirty_face_[p.second]) &&
         boxes_overlap(node_box_[p.first], face_box_[p.second]))
-      pairs.node_face.push_back(p);
-  for (const Pair& p : near_ee_)
+      tests.vf.push_back(static_cast<Index>(k));
+  }
+  for (std::size_t k = 0; k < near_ee_.size(); ++k) {
+    const Pair& p = near_ee_[k];
     if ((dirty_edge_[p.first] || dirty_edge_[p.second]) &&
         boxes_overlap(edge_box_[p.first], edge_box_[p.second]))
-      pairs.edge_edge.push_back(p);
-  return pairs;
+      tests.ee.push_back(static_cast<Index>(k));
+  }
+  return tests;
 }
 
 // Again: only pairs with a dirty side can have changed; the clean pairs that failed last time
@@ -229,49 +236,58 @@ Verification StepVerifier::verify_again(const State& st, const std::vector<Vec3>
   for (const Index i : dirty_vertices_)
     hold = hold && ((x1[node_of(i)] - anchor_[i]).cwiseAbs().array() <= slack_).all();
   if (!hold) near_pairs(x1);
-  // Both parts sorted: merged in order.
-  const Candidates dirty = dirty_pairs();
-  Candidates pairs;
-  const auto merge_clean = [](const std::vector<Pair>& found, const std::vector<Pair>& failed,
-                              const auto& clean, std::vector<Pair>& out) {
-    std::vector<Pair> kept;
-    for (const Pair& p : failed)
-      if (clean(p)) kept.push_back(p);
+  // Both parts sorted: merged in order. A clean failing pair's boxes are as when it was tested,
+  // overlapping: it is near.
+  const Tests dirty = dirty_pairs();
+  Tests tests;
+  const auto merge_clean = [](const std::vector<Index>& found, const std::vector<Pair>& failed,
+                              const std::vector<Pair>& near, const auto& clean,
+                              std::vector<Index>& out) {
+    std::vector<Index> kept;
+    for (const Pair& p : failed) {
+      if (!clean(p)) continue;
+      const auto at = std::lower_bound(near.begin(), near.end(), p);
+      if (at == near.end() || *at != p)
+        throw std::logic_error("StepVerifier: a failing pair is not among the near pairs");
+      kept.push_back(static_cast<Index>(at - near.begin()));
+    }
     out.resize(found.size() + kept.size());
     std::merge(found.begin(), found.end(), kept.begin(), kept.end(), out.begin());
   };
   merge_clean(
-      dirty.node_face, failed_vf_,
-      [&](const Pair& p) { return !dirty_vertex_[p.first] && !dirty_face_[p.second]; },
-      pairs.node_face);
+      dirty.vf, failed_vf_, near_vf_,
+      [&](const Pair& p) { return !dirty_vertex_[p.first] && !dirty_face_[p.second]; }, tests.vf);
   merge_clean(
-      dirty.edge_edge, failed_ee_,
-      [&](const Pair& p) { return !dirty_edge_[p.first] && !dirty_edge_[p.second]; },
-      pairs.edge_edge);
+      dirty.ee, failed_ee_, near_ee_,
+      [&](const Pair& p) { return !dirty_edge_[p.first] && !dirty_edge_[p.second]; }, tests.ee);
   for (const Index i : dirty_vertices_) dirty_vertex_[i] = 0;
   for (const Index f : dirty_faces_) dirty_face_[f] = 0;
   for (const Index e : dirty_edges_) dirty_edge_[e] = 0;
-  Verification r = run(st, x1, pairs);
+  Verification r = run(st, x1, tests);
   r.searches = searches;
   return r;
 }
 
-// Each pair's verdict: 0 passes, 1 fails from apart, 2 fails from touching.
-std::vector<char> StepVerifier::verdicts(const Candidates& pairs, const std::vector<Vec3>& x0,
-                                         const std::vector<Vec3>& x1) const {
+// Each pair's verdict: 0 passes, 1 fails from apart, 2 fails from touching. Whether a pair
+// touches at the start depends on xⁿ alone: found once a step per near pair (1 + touching).
+std::vector<char> StepVerifier::verdicts(const Tests& tests, const std::vector<Vec3>& x0,
+                                         const std::vector<Vec3>& x1) {
   const SurfacePrimitives& in = *prims_;
   // Each pair on the threads. In a distributed run each rank tests its slice of the pairs and
   // the verdicts are gathered in order: every rank holds the same positions, so they are one
-  // process's verdicts.
-  const std::size_t nvf = pairs.node_face.size();
-  std::vector<char> verdict(nvf + pairs.edge_edge.size(), 0);
+  // process's verdicts (each rank knows the start of its own slice's pairs only).
+  const std::size_t nvf = tests.vf.size();
+  std::vector<char> verdict(nvf + tests.ee.size(), 0);
   mpi::for_each_sliced(verdict, [&](std::size_t k) {
     if (k < nvf) {
-      const auto& [ni, fi] = pairs.node_face[k];
+      const Index t = tests.vf[k];
+      const auto& [ni, fi] = near_vf_[t];
       const Index v = node_of(ni);
       const auto& f = in.faces[fi];
-      const bool touching = exact_vertex_face_ccd(
-          {x0[v], x0[f[0]], x0[f[1]], x0[f[2]], x0[v], x0[f[0]], x0[f[1]], x0[f[2]]});
+      if (start_vf_[t] == 0)
+        start_vf_[t] = 1 + exact_vertex_face_ccd({x0[v], x0[f[0]], x0[f[1]], x0[f[2]], x0[v],
+                                                  x0[f[0]], x0[f[1]], x0[f[2]]});
+      const bool touching = start_vf_[t] == 2;
       if (!touching) {
         verdict[k] = exact_vertex_face_ccd(
             {x0[v], x0[f[0]], x0[f[1]], x0[f[2]], x1[v], x1[f[0]], x1[f[1]], x1[f[2]]});
@@ -281,10 +297,13 @@ std::vector<char> StepVerifier::verdicts(const Candidates& pairs, const std::vec
       }
       return;
     }
-    const auto& [ea, eb] = pairs.edge_edge[k - nvf];
+    const Index t = tests.ee[k - nvf];
+    const auto& [ea, eb] = near_ee_[t];
     const auto &a = in.edges[ea], &b = in.edges[eb];
-    const bool touching = exact_edge_edge_ccd(
-        {x0[a[0]], x0[a[1]], x0[b[0]], x0[b[1]], x0[a[0]], x0[a[1]], x0[b[0]], x0[b[1]]});
+    if (start_ee_[t] == 0)
+      start_ee_[t] = 1 + exact_edge_edge_ccd({x0[a[0]], x0[a[1]], x0[b[0]], x0[b[1]], x0[a[0]],
+                                              x0[a[1]], x0[b[0]], x0[b[1]]});
+    const bool touching = start_ee_[t] == 2;
     if (!touching) {
       verdict[k] = exact_edge_edge_ccd(
           {x0[a[0]], x0[a[1]], x0[b[0]], x0[b[1]], x1[a[0]], x1[a[1]], x1[b[0]], x1[b[1]]});
@@ -305,24 +324,23 @@ std::vector<char> StepVerifier::verdicts(const Candidates& pairs, const std::vec
   return verdict;
 }
 
-Verification StepVerifier::run(const State& st, const std::vector<Vec3>& x1,
-                               const Candidates& pairs) {
+Verification StepVerifier::run(const State& st, const std::vector<Vec3>& x1, const Tests& tests) {
   const std::vector<Vec3>& x0 = st.x;
   Verification r;
-  r.pairs_checked = static_cast<long>(pairs.node_face.size() + pairs.edge_edge.size());
-  const std::vector<char> verdict = verdicts(pairs, x0, x1);
+  r.pairs_checked = static_cast<long>(tests.vf.size() + tests.ee.size());
+  const std::vector<char> verdict = verdicts(tests, x0, x1);
   // The failing pairs, each with every node its test read (to mark for further passes).
   const SurfacePrimitives& in = *prims_;
   const Index surface = static_cast<Index>(in.nodes.size());
-  const std::size_t nvf = pairs.node_face.size();
+  const std::size_t nvf = tests.vf.size();
   failed_vf_.clear();
   failed_ee_.clear();
   for (std::size_t k = 0; k < verdict.size(); ++k) {
     if (verdict[k] == 0) continue;
     if (k < nvf)
-      failed_vf_.push_back(pairs.node_face[k]);
+      failed_vf_.push_back(near_vf_[tests.vf[k]]);
     else
-      failed_ee_.push_back(pairs.edge_edge[k - nvf]);
+      failed_ee_.push_back(near_ee_[tests.ee[k - nvf]]);
     FailedPair p;
     p.touching_at_start = verdict[k] == 2;
     const auto add = [&p](Index n) {
@@ -330,7 +348,7 @@ Verification StepVerifier::run(const State& st, const std::vector<Vec3>& x1,
         p.nodes[p.count++] = n;
     };
     if (k < nvf) {
-      const auto& [ni, fi] = pairs.node_face[k];
+      const auto& [ni, fi] = near_vf_[tests.vf[k]];
       add(node_of(ni));
       for (const Index n : in.faces[fi]) add(n);
       p.body_a = ni < surface ? in.node_body[ni] : -1;
@@ -338,7 +356,7 @@ Verification StepVerifier::run(const State& st, const std::vector<Vec3>& x1,
       if (p.touching_at_start)
         for (const Index n : mesh_.tets[in.face_tet[fi]]) add(n);
     } else {
-      const auto& [ea, eb] = pairs.edge_edge[k - nvf];
+      const auto& [ea, eb] = near_ee_[tests.ee[k - nvf]];
       p.edge_edge = true;
       p.body_a = in.edge_body[ea];
       p.body_b = in.edge_body[eb];

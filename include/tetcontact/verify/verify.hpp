@@ -71,6 +71,10 @@ class StepVerifier {
 
  private:
   using Pair = std::pair<Index, Index>;
+  // The pairs to test: indices into the near pairs, ascending.
+  struct Tests {
+    std::vector<Index> vf, ee;
+  };
   // Compressed rows: the items of row r are items[begin[r] .. begin[r + 1]).
   struct Rows {
     std::vector<Index> begin, items;
@@ -80,11 +84,11 @@ class StepVerifier {
   void set_boxes(const State& st, const std::vector<Vec3>& x1);
   Index node_of(Index i) const;  // the node id of vertex primitive i
   void mark_dirty(const State& st, const std::vector<Vec3>& x1, const std::vector<Index>& changed);
-  Candidates near_pairs(const std::vector<Vec3>& x1);
-  Candidates dirty_pairs();
-  Verification run(const State& st, const std::vector<Vec3>& x1, const Candidates& pairs);
-  std::vector<char> verdicts(const Candidates& pairs, const std::vector<Vec3>& x0,
-                             const std::vector<Vec3>& x1) const;
+  Tests near_pairs(const std::vector<Vec3>& x1);
+  Tests dirty_pairs();
+  Verification run(const State& st, const std::vector<Vec3>& x1, const Tests& tests);
+  std::vector<char> verdicts(const Tests& tests, const std::vector<Vec3>& x0,
+                             const std::vector<Vec3>& x1);
 
   const Mesh& mesh_;
   const SurfacePrimitives* prims_ = nullptr;
@@ -106,6 +110,8 @@ class StepVerifier {
   // overlap is near.
   std::vector<Pair> near_vf_, near_ee_;
   std::vector<Vec3> anchor_;
+  // Each near pair at xⁿ: 0 not yet tested, 1 apart, 2 touching.
+  std::vector<char> start_vf_, start_ee_;
   double slack_ = 0.0;
   // The primitives a verify_again found dirty (flags, and their indices).
   std::vector<char> dirty_vertex_, dirty_face_, dirty_edge_;
