@@ -317,23 +317,47 @@ inline double exp_of_step(double s) {
   return 1.0 + s * (1.0 + s * (0.5 + s * (1.0 / 6.0 + s * (1.0 / 24.0 + s * (1.0 / 120.0)))));
 }
 
+/// The start of the return: Newton's step in Δ from 0, Δ₀ = (eq − σy(0)) / (3G + σy'(0)),
+/// inside the bracket and off the root only by the curvature of σy; the slope taken within
+/// [0, 3G] (a softening slope, or Johnson–Cook's (ε̄p)ⁿ⁻¹ near ε̄p = 0, would start it far off).
+inline double linearized_return(double eq, double g3, double y0, double dy0) {
+  return (eq - y0) / (g3 + std::clamp(dy0, 0.0, g3));
+}
+
+/// Johnson–Cook's start: the return of the linearized law with its rate term,
+///   eq − y0 − k Δ = a ln(Δ / Δr)   (a = y0 C, Δr = τ ε̇0, k = 3G + the hardening slope),
+/// where the rate term bends the yield most. With x = k Δ / a it reads x + ln x = K,
+/// K = (eq − y0)/a + ln(k Δr / a), solved by Newton's method in u = ln x (convex and
+/// increasing: from the linearized return, to the right of the root, it falls monotonically)
+/// to 1e-6 (the return's own Newton steps take it to round-off). Below Δr the rate factor is 1
+/// and the linearized return stands.
+inline double rate_return(double eq, double k, double y0, double a, double rate_strain) {
+  const double d = (eq - y0) / k;
+  if (!(a > 0.0) || !(d > rate_strain)) return d;
+  const double kk = (eq - y0) / a + std::log(k * rate_strain / a);
+  double u = std::log(k * d / a);
+  for (int it = 0; it < 50; ++it) {
+    const double e = std::exp(u), step = (e + u - kk) / (e + 1.0);
+    u -= step;
+    if (!(std::abs(step) > 1e-6)) break;
+  }
+  const double root = a * std::exp(u) / k;
+  return root > 0.0 && root < d ? root : d;
+}
+
 /// The bracketed Newton solve of f(Δ) = eq − g3 Δ − σy(Δ) = 0 described above; yield(Δ, slope)
-/// returns σy(Δ) and sets dσy/dΔ. y_start = σy(0) < eq, dy_start its slope there.
-/// It starts from Newton's step in Δ from 0, Δ₀ = (eq − σy(0)) / (3G + σy'(0)), inside the
-/// bracket and off the root only by the curvature of σy; the slope taken within [0, 3G] (a
-/// softening slope, or Johnson–Cook's (ε̄p)ⁿ⁻¹ near ε̄p = 0, would start it far off).
-/// Then Newton in u = ln Δ: the relative step s = −f / (f'(Δ) Δ), Δ ← Δ eˢ. It stops
+/// returns σy(Δ) and sets dσy/dΔ; it starts from d_start, in (0, eq/3G).
+/// Newton in u = ln Δ: the relative step s = −f / (f'(Δ) Δ), Δ ← Δ eˢ. It stops
 ///  - when a step is at round-off (|s| ≤ 1e-13), taking it;
 ///  - when the quadratic convergence its steps show puts the next iterate at round-off: the
 ///    error after step k is about K s_k² with K ≈ |s_k| / s_{k−1}², so the step is taken and
 ///    the solve ends when |s_k|³ / s_{k−1}² ≤ 1e-14 (two Newton steps in a row, contracting);
 ///  - on a bracket narrowed to 1e-15 of itself, where bisection leads.
 template <class Yield>
-PlasticIncrement solve_return(double eq, double g3, double y_start, double dy_start,
-                              const Yield& yield) {
+PlasticIncrement solve_return(double eq, double g3, double d_start, const Yield& yield) {
   PlasticIncrement r;
   double lo = 0.0, hi = eq / g3, dy = 0.0;
-  double d = (eq - y_start) / (g3 + std::clamp(dy_start, 0.0, g3));
+  double d = d_start;
   double last = 0.0;  // the previous relative Newton step (0: none, or a bisection)
   for (int it = 0; it < 100; ++it) {
     const double f = eq - g3 * d - yield(d, dy);
@@ -423,7 +447,7 @@ inline PlasticIncrement plastic_increment(const Material& m, const StrengthState
     double dy0 = 0.0;
     r.yield = yield(0.0, dy0);
     if (!(eq > r.yield)) return r;
-    return solve_return(eq, g3, r.yield, dy0, yield);
+    return solve_return(eq, g3, linearized_return(eq, g3, r.yield, dy0), yield);
   }
   const JohnsonCook& jc = m.johnson_cook;
   const bool softens = jc.melt_temperature > jc.room_temperature;
@@ -463,7 +487,10 @@ inline PlasticIncrement plastic_increment(const Material& m, const StrengthState
     r.yield = 0.0;
     return r;
   }
-  return solve_return(eq, g3, r.yield, dy0, yield);
+  return solve_return(eq, g3,
+                      rate_return(eq, g3 + std::clamp(dy0, 0.0, g3), r.yield, r.yield * jc.c,
+                                  tau * jc.reference_rate),
+                      yield);
 }
 /// The same from the pressure at the start of the step (Steinberg–Guinan's G(P, T)).
 inline PlasticIncrement plastic_increment(const Material& m, double eq, double eps_p, double tau,

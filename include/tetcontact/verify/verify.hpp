@@ -51,7 +51,8 @@ struct Verification {
 /// edges and keeps the reach), kept while the end positions stay within its reach, else
 /// found anew for xⁿ → x1; of them, those whose boxes of xⁿ → x1 overlap. The primitives are
 /// the candidates' (the surface nodes, then the particles as vertices of no body; the faces;
-/// the edges).
+/// the edges). Within a step the near pairs (boxes within k_slack of the reach of overlapping)
+/// stand in for the lists while the moved vertices stay within that slack.
 class StepVerifier {
  public:
   /// The slack of the near pairs within a step, over the lists' reach.
@@ -61,9 +62,9 @@ class StepVerifier {
   /// Verifies the motion st.x → x1 of the surfaces' nodes and of the particles.
   Verification verify(const State& st, const std::vector<Vec3>& x1, ContactCandidates& candidates);
   /// The same after a change of x1 at the nodes `changed` (node ids), st.x and the surfaces as
-  /// at the last call: only the pairs whose tests read a changed node are found (through the
-  /// primitives at those nodes and their listed pairs) and tested again, with the last call's
-  /// failing pairs; the others passed and still do.
+  /// at the last call: only the pairs whose tests read a changed node (the near pairs of the
+  /// primitives at those nodes) are tested again, with the last call's failing pairs; the others
+  /// passed and still do.
   Verification verify_again(const State& st, const std::vector<Vec3>& x1,
                             ContactCandidates& candidates, const std::vector<Index>& changed);
   /// The surfaces changed (fracture): the maps over the primitives are rebuilt at the next call.
