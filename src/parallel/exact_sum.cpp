@@ -4,7 +4,11 @@
 #include <cmath>
 
 namespace tc {
+
 namespace {
+
+// 128-bit unsigned integers (a GNU extension: declared as one, so -Wpedantic accepts it).
+__extension__ using U128 = unsigned __int128;
 
 constexpr std::int64_t k_base = std::int64_t{1} << 32;
 
@@ -46,9 +50,9 @@ double ExactSum::value() const {
   // The top 96 bits T (limbs h, h − 1, h − 2; below limb 0: zeros) and whether anything
   // below them is set.
   const auto limb = [&](int i) {
-    return i >= 0 ? static_cast<unsigned __int128>(n.limbs[i]) : static_cast<unsigned __int128>(0);
+    return i >= 0 ? static_cast<U128>(n.limbs[i]) : static_cast<U128>(0);
   };
-  const unsigned __int128 t = (limb(h) << 64) | (limb(h - 1) << 32) | limb(h - 2);
+  const U128 t = (limb(h) << 64) | (limb(h - 1) << 32) | limb(h - 2);
   bool sticky = false;
   for (int i = 0; i < h - 2; ++i) sticky = sticky || n.limbs[i] != 0;
   // Round T to 53 bits: to nearest, ties to even (a tie with sticky bits below is above it).
@@ -58,8 +62,8 @@ double ExactSum::value() const {
   const int r = bits > 53 ? bits - 53 : 0;
   std::uint64_t mantissa = static_cast<std::uint64_t>(t >> r);
   if (r > 0) {
-    const unsigned __int128 rest = t & ((static_cast<unsigned __int128>(1) << r) - 1);
-    const unsigned __int128 half = static_cast<unsigned __int128>(1) << (r - 1);
+    const U128 rest = t & ((static_cast<U128>(1) << r) - 1);
+    const U128 half = static_cast<U128>(1) << (r - 1);
     if (rest > half || (rest == half && (sticky || (mantissa & 1)))) ++mantissa;
   }
   // Exact: the mantissa has at most 54 bits (2^53 after rounding up) and, where the result is
