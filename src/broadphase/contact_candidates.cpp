@@ -77,7 +77,7 @@ bool lists_edges(const CandidateSettings& s) {
   return s.bodies && (s.edges || s.verify);
 }
 
-std::vector<Index> node_slots(const SurfacePrimitives& p, std::size_t nodes) {
+std::vector<Index> slots_of(const SurfacePrimitives& p, std::size_t nodes) {
   std::vector<Index> slot(nodes, -1);
   for (std::size_t i = 0; i < p.nodes.size(); ++i) slot[p.nodes[i]] = static_cast<Index>(i);
   return slot;
@@ -93,7 +93,7 @@ ContactCandidates::ContactCandidates(const Mesh& mesh, const std::vector<Surface
       prims_(surface_primitives(surfaces, lists_edges(settings))),
       body_lists_(settings.binding_lists || settings.verify ? binding_reach(surfaces) : 0.0),
       particle_lists_(body_lists_.reach()),
-      node_slot_(node_slots(prims_, mesh.x.size())) {}
+      node_slot_(slots_of(prims_, mesh.x.size())) {}
 
 std::vector<Index> ContactCandidates::surfaces_changed(const std::vector<Surface>& surfaces) {
   SurfacePrimitives fresh = surface_primitives(surfaces, lists_edges(settings_));
@@ -106,7 +106,7 @@ std::vector<Index> ContactCandidates::surfaces_changed(const std::vector<Surface
     if (it != edge_index.end()) renamed[e] = it->second;
   }
   prims_ = std::move(fresh);
-  node_slot_ = node_slots(prims_, mesh_.x.size());
+  node_slot_ = slots_of(prims_, mesh_.x.size());
   body_lists_.reset();  // the faces a conversion exposed are in no list yet
   particle_lists_.reset();
   ++version_;

@@ -40,8 +40,7 @@ void StepVerifier::build(const ContactCandidates& candidates, const State& st) {
   first_particle_ = st.first_particle;
   vertices_ = surface + st.particle_count();
   const std::size_t mesh_nodes = static_cast<std::size_t>(st.first_particle);
-  vertex_of_.assign(mesh_nodes, -1);
-  for (Index i = 0; i < surface; ++i) vertex_of_[p.nodes[i]] = i;
+  vertex_of_ = &candidates.node_slots();
   fill_rows(
       mesh_nodes,
       [&](auto&& add) {
@@ -181,7 +180,7 @@ void StepVerifier::mark_dirty(const State& st, const std::vector<Vec3>& x1,
       mark(dirty_vertex_, dirty_vertices_, surface + (n - first_particle_));
       continue;
     }
-    if (vertex_of_[n] >= 0) mark(dirty_vertex_, dirty_vertices_, vertex_of_[n]);
+    if ((*vertex_of_)[n] >= 0) mark(dirty_vertex_, dirty_vertices_, (*vertex_of_)[n]);
     for (Index k = faces_at_.begin[n]; k < faces_at_.begin[n + 1]; ++k)
       mark(dirty_face_, dirty_faces_, faces_at_.items[k]);
     for (Index k = edges_at_.begin[n]; k < edges_at_.begin[n + 1]; ++k)

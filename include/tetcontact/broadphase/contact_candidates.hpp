@@ -107,6 +107,8 @@ class ContactCandidates {
   long version() const { return version_; }
 
   const SurfacePrimitives& primitives() const { return prims_; }
+  /// Each mesh node's index in primitives().nodes (−1: not on a surface).
+  const std::vector<Index>& node_slots() const { return node_slot_; }
   /// (surface node, face) and (edge, edge) between bodies; indices into primitives().
   const CandidateLists& bodies() const { return bodies_; }
   /// (particle, face) (node_face) and (particle, particle) (edge_edge); particle i is node

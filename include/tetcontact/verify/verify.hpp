@@ -99,7 +99,7 @@ class StepVerifier {
   std::vector<Box> node_box_, face_box_, edge_box_;
   // From a node id to the primitives whose tests read it: its vertex; the faces of the tets
   // holding it; the edges at it or at a face of theirs that holds it.
-  std::vector<Index> vertex_of_;
+  const std::vector<Index>* vertex_of_ = nullptr;  // the candidates' node_slots()
   Rows faces_at_, edges_at_;
   // The listed pairs in this numbering (vertex, face) and (edge, edge), for the candidates'
   // lists of `listed_version_`.
