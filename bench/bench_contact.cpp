@@ -51,7 +51,7 @@ void BM_Detect(benchmark::State& state) {
   for (int k = 0; k < 5; ++k) sim.step();  // in contact
   State st = sim.state();
   predict(st, {});
-  ContactDetection contact(sim.model().mesh, st.surfaces, *sim.model().contact);
+  ContactDetection contact(sim.model().mesh, st.surfaces, *sim.model().contact, 0.0);
   ContactCandidates candidates(sim.model().mesh, st.surfaces,
                                candidate_settings(*sim.model().contact, false));
   ContactStepStats stats;

@@ -35,12 +35,14 @@ CandidateSettings candidate_settings(const ContactSettings& contact, bool partic
 }
 
 ContactDetection::ContactDetection(const Mesh& mesh, const std::vector<Surface>& surfaces,
-                                   const ContactSettings& settings)
+                                   const ContactSettings& settings, double wave_speed)
     : mesh_(mesh), settings_(settings), reach_(binding_reach(surfaces)) {
-  // The separation aimed at: the case's, or a millionth of the smallest mean tet edge.
+  // The separation aimed at: the case's, or 1e-5 of the smallest mean tet edge; pairs within it
+  // pushed back at most at 1e-4 of the fastest wave speed.
   separation_ = settings.separation >= 0.0
                     ? settings.separation
                     : ContactSettings::k_separation_fraction * smallest_mean_edge(surfaces);
+  push_speed_ = ContactSettings::k_push_fraction * wave_speed;
 }
 
 // The edge pairs in contact are kept under their edges' new indices (an edge that left the
@@ -135,6 +137,11 @@ void ContactDetection::node_face_contacts(const State& st, const ContactCandidat
       c.gap = (x0[node] - x0[f[0]]).dot(face_n);
       c.separation = rounding_margin({&x1[node], &x1[f[0]], &x1[f[1]], &x1[f[2]]});
       c.standoff = separation_;
+      // push_speed 0: a node within the stand-off is held where it is, not pushed back. The
+      // layer test accepts nodes of one body deep in the prism under another's face (a box's
+      // node under a single tet's face, 5 mm "inside"); pushed back, a node hovered at the
+      // stand-off without a contact while such a neighbour pressed its body down, and ended
+      // 0.3 µm inside (the point-touch micro-scene).
       set_friction(c, p.node_body[ni], p.face_body[fi]);
       found[blk].push_back(c);
     }
@@ -223,6 +230,7 @@ std::optional<ContactPoint> ContactDetection::edge_contact(const State& st,
   // of 5e-18 m in the cubes case).
   c.separation = rounding_margin({&x1[e1[0]], &x1[e1[1]], &x1[e2[0]], &x1[e2[1]]});
   c.standoff = separation_;
+  c.push_speed = push_speed_;
   c.restore = true;
   c.mode = settings_.mode;
   c.friction = settings_.coefficient;
@@ -360,6 +368,7 @@ std::optional<ContactPoint> ContactDetection::vertex_face_point(const State& st,
   const std::vector<Vec3>& xs = st.x_star;
   c.separation = rounding_margin({&xs[node], &xs[f[0]], &xs[f[1]], &xs[f[2]]});
   c.standoff = separation_;
+  c.push_speed = push_speed_;
   c.restore = true;
   set_friction(c, node_body, face_body);
   return c;
@@ -416,6 +425,7 @@ std::optional<ContactPoint> ContactDetection::edge_edge_point(
   const std::vector<Vec3>& xs = st.x_star;
   c.separation = rounding_margin({&xs[a[0]], &xs[a[1]], &xs[b[0]], &xs[b[1]]});
   c.standoff = separation_;
+  c.push_speed = push_speed_;
   c.restore = true;
   set_friction(c, body_a, body_b);
   return c;

@@ -28,11 +28,14 @@ void push(ContactPoint& c, const Vec3& impulse_on_a, State& st, std::vector<Vec3
   }
 }
 
-// The normal velocity v* a contact aims at (apply_contact).
+// The normal velocity v* a contact aims at (apply_contact): the gap s + δ at the end of the
+// step, v* = (s + δ − g)/τ; a push apart (v* > 0) is limited to the push speed beyond what
+// reaches the rounding margin s, v* ≤ max(v_push, (s − g)/τ).
 double target_velocity(const ContactPoint& c, double tau) {
   if (c.gap < -c.separation && !c.restore) return 0.0;
-  const double aim = c.separation + std::clamp(c.gap - c.separation, 0.0, c.standoff);
-  return (aim - c.gap) / tau;
+  const double target = (c.separation + c.standoff - c.gap) / tau;
+  if (target <= c.push_speed) return target;
+  return std::max(c.push_speed, (c.separation - c.gap) / tau);
 }
 
 // A's point velocity less B's: Σ w_A U_A − Σ w_B U_B.

@@ -152,7 +152,10 @@ Simulation::Simulation(Model model, SolverSettings settings)
     candidates_ = std::make_unique<ContactCandidates>(model_.mesh, state_.surfaces, cs);
   }
   if (model_.contact) {
-    contact_ = std::make_unique<ContactDetection>(model_.mesh, state_.surfaces, *model_.contact);
+    double wave_speed = 0.0;  // the bodies' fastest, for the push speed of contacts
+    for (const Material& m : model_.materials) wave_speed = std::max(wave_speed, m.wave_speed());
+    contact_ = std::make_unique<ContactDetection>(model_.mesh, state_.surfaces, *model_.contact,
+                                                  wave_speed);
     modules_.push_back("broadphase:" + model_.contact->broadphase);
     modules_.push_back("narrowphase:node_face");
     modules_.push_back("response:node_face");

@@ -57,7 +57,7 @@ TEST(ContactDetection, NodeEnteringAFaceIsAContactWithTheFacesNormal) {
     s.st.x_star[i] = s.st.x[i] - Vec3(0, 0, 0.07);
   ContactSettings settings;
   settings.order = ContactSettings::Order::input;
-  ContactDetection contact(s.mesh, s.surfaces, settings);
+  ContactDetection contact(s.mesh, s.surfaces, settings, 0.0);
   ContactCandidates candidates(s.mesh, s.surfaces, candidate_settings(settings, false));
   EXPECT_TRUE(candidates.update(s.st).rebuilt);
   ContactStepStats stats;
@@ -97,7 +97,7 @@ TEST(ContactDetection, BindingListsFindWhatAFreshSearchFinds) {
   Boxes s(0.01);
   ContactSettings on, off;
   off.binding_lists = false;
-  ContactDetection lists(s.mesh, s.surfaces, on), fresh(s.mesh, s.surfaces, off);
+  ContactDetection lists(s.mesh, s.surfaces, on, 0.0), fresh(s.mesh, s.surfaces, off, 0.0);
   ContactCandidates lists_pairs(s.mesh, s.surfaces, candidate_settings(on, false)),
       fresh_pairs(s.mesh, s.surfaces, candidate_settings(off, false));
   const double dt = 1e-3;

@@ -39,7 +39,7 @@ TEST(RescuePoint, EdgePairIsPlacedWhereTheEdgesFirstMeet) {
   s.st.x_star = s.st.x;
   std::vector<Vec3> x1 = s.st.x;
   x1[0] += Vec3(3, 0, -2), x1[1] += Vec3(3, 0, -2);
-  const ContactDetection contact(s.mesh, s.surfaces, ContactSettings{});
+  const ContactDetection contact(s.mesh, s.surfaces, ContactSettings{}, 0.0);
   const auto c =
       contact.edge_edge_point(s.st, x1, {0, 1}, {4, 5}, 0, 1, Vec3::Zero(), Vec3::Zero());
   ASSERT_TRUE(c.has_value());
@@ -61,7 +61,7 @@ TEST(RescuePoint, VertexFacePairIsPlacedWhereTheVertexCrossesTheFace) {
   s.st.x_star = s.st.x;
   std::vector<Vec3> x1 = s.st.x;
   x1[0] = Vec3(-1.6, 0.2, -1);
-  const ContactDetection contact(s.mesh, s.surfaces, ContactSettings{});
+  const ContactDetection contact(s.mesh, s.surfaces, ContactSettings{}, 0.0);
   const auto c = contact.vertex_face_point(s.st, x1, 0, {4, 5, 6}, 0, 1);
   ASSERT_TRUE(c.has_value());
   EXPECT_NEAR(c->b_w[0], 0.6, 1e-12);

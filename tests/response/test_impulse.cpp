@@ -57,6 +57,43 @@ TEST(Impulse, ConservesMomentumAndEnforcesTheNormalVelocity) {
   }
 }
 
+// The normal velocity a contact ends with, against its target worked by hand: gap g, rounding
+// separation s = 1e-9, stand-off δ = 1e-6, τ = 1e-6: closing from farther it stops δ beyond s,
+// v = (s + δ − g)/τ; within the stand-off a pair with push speed 0 is held (v = 0) and one with
+// push speed v_p separates at v_p (0.25 m/s) when (s + δ − g)/τ exceeds it, at (s + δ − g)/τ
+// when not; through by more than s, a node–face pair is held and a restoring one pushed at v_p,
+// or faster where that would not put it s apart within the step.
+TEST(Impulse, TheStandOffStopsClosingPairsAndPushesBackOnlyAtThePushSpeed) {
+  const double tau = 1e-6, s = 1e-9, delta = 1e-6, vp = 0.25;
+  struct Case {
+    double gap, push, expected;
+    bool restore;
+  };
+  const Case cases[] = {
+      {3e-6, 0.0, (s + delta - 3e-6) / tau, false},    // closing from farther: stops at s + δ
+      {3e-6, vp, (s + delta - 3e-6) / tau, true},      // the same, restoring
+      {0.5e-6, 0.0, 0.0, false},                       // within the stand-off, held
+      {0.5e-6, vp, vp, true},                          // pushed back at v_p (0.5 m/s asked)
+      {0.9e-6, vp, (s + delta - 0.9e-6) / tau, true},  // 0.101 m/s asked: below v_p
+      {0.0, 0.0, s / tau, false},                      // touching: put s apart
+      {-1e-7, 0.0, 0.0, false},                        // a node in deeper than s: held
+      {-1e-7, vp, vp, true},                           // restoring: at v_p (s asks 0.101)
+      {-1e-6, vp, (s + 1e-6) / tau, true},             // s asks 1.001 m/s: s apart
+  };
+  for (const Case& k : cases) {
+    State st;
+    st.m = {1.0, 1.0};
+    st.v_star = {Vec3(0, 0, -3), Vec3::Zero()};  // closing at 3 m/s
+    std::vector<Vec3> ledger(2, Vec3::Zero());
+    ContactPoint c = test::node_against_node(0, 1);
+    c.gap = k.gap, c.separation = s, c.standoff = delta, c.push_speed = k.push;
+    c.restore = k.restore;
+    apply_contact(c, st, tau, ledger);
+    EXPECT_NEAR((st.v_star[0] - st.v_star[1]).z(), k.expected, 1e-12)
+        << "gap " << k.gap << " push " << k.push;
+  }
+}
+
 // Dobritsa et al. eq. (11)–(12), edge [a, b] of body 1 against edge [e, f] of body 2 at parameters
 // α, β: N_c = [(1−α)U*_na + αU*_nb − (1−β)U*_ne − βU*_nf] / (τ Σ w²/m), and the corrected
 // normal velocities of the two contact points are equal. The kernel with weights

@@ -64,11 +64,12 @@ TEST(Validation, QuarterTaylorRodGivesTheWholeRodsLengthAndFootprint) {
 }
 
 // The coarse Whipple shield that perforates, whole and as a quarter: the same verdict, and the
-// measures within twice what was measured (hole 0.4 %, leading-edge speed 2 %, cone angle 4 %,
-// debris mass 1 %, momentum through the wall 2 % and, on a build whose strength-law return
-// differs from that one's at round-off, 5.2 %, mass through it 12 %: the debris is a few
-// hundred particles whose sequential contacts do not keep the mirror symmetry particle by
-// particle, and whose order a last bit changes).
+// measures within 1.5 times the largest difference of five pairs of runs whose contact
+// stand-off was 6.3e-10, 1.5e-9, 3e-9, 6.3e-9 (the default) and 1.2e-8 m (hole 5.0 %,
+// leading-edge speed 6.6 %, cone angle 4.0 %, debris mass 5.6 %, momentum through the wall
+// 19.5 %, mass through it 28 %): the debris is a few hundred particles whose sequential
+// contacts do not keep the mirror symmetry particle by particle, and whose order a last bit
+// changes.
 TEST(Validation, QuarterWhippleShieldGivesTheWholeShieldsVerdictAndDebris) {
   const std::vector<std::string> shot = coarse_shot("30e-3", "30e-3");
   const CaseRun full = run_case("data/cases/whipple.yaml", with(shot, {"symmetry=[]"}));
@@ -80,12 +81,12 @@ TEST(Validation, QuarterWhippleShieldGivesTheWholeShieldsVerdictAndDebris) {
     const double whole = full.measured(name), part = quarter.measured(name);
     EXPECT_NEAR(part / whole, 1.0, tolerance) << name << ": " << part << " against " << whole;
   };
-  near("bumper hole diameter", 0.01);
-  near("debris leading-edge speed", 0.04);
-  near("debris cone half-angle", 0.08);
-  near("debris mass", 0.02);
-  near("momentum through the wall", 0.1);
-  near("mass through the wall", 0.25);
+  near("bumper hole diameter", 0.075);
+  near("debris leading-edge speed", 0.1);
+  near("debris cone half-angle", 0.06);
+  near("debris mass", 0.085);
+  near("momentum through the wall", 0.3);
+  near("mass through the wall", 0.42);
   for (const CaseRun* r : {&full, &quarter}) EXPECT_LT(r->momentum_error, 1e-12);
   record("whipple", full, quarter);
 }

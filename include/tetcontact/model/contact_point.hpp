@@ -24,9 +24,13 @@ struct ContactPoint {
   /// walls.
   double separation = 0.0;
   /// The stand-off (m, ContactSettings::separation): a pair closing from farther stops this far
-  /// beyond `separation`; a pair already closer is held where it is, never pushed apart (a
-  /// push of s/τ grows without bound as the step shrinks).
+  /// beyond `separation`; a pair already closer is pushed back to it at most at `push_speed`.
   double standoff = 0.0;
+  /// The fastest a pair within the stand-off is pushed back to it (m/s): for restoring contacts
+  /// (edge–edge, rescue points) a fixed fraction of the bodies' fastest wave speed
+  /// (ContactSettings::k_push_fraction), so that the push does not grow as the step shrinks;
+  /// 0 for detected node–face contacts, which hold such a pair where it is.
+  double push_speed = 0.0;
   FrictionMode mode = FrictionMode::slip;
   double friction = 0.0;  // Coulomb coefficient k
   /// Close a negative gap within the step too (target −g/τ for g < 0): for edge–edge pairs,

@@ -36,9 +36,10 @@ CandidateSettings candidate_settings(const ContactSettings& contact, bool partic
 class ContactDetection {
  public:
   /// `surfaces`: the run's at the start (the separation and the reach of edge pairs that stay
-  /// in contact are set from their mean tet edges).
+  /// in contact are set from their mean tet edges). `wave_speed`: the bodies' fastest
+  /// reference wave speed (m/s), of which the push speed is a fraction (ContactPoint::push_speed).
   ContactDetection(const Mesh& mesh, const std::vector<Surface>& surfaces,
-                   const ContactSettings& settings);
+                   const ContactSettings& settings, double wave_speed);
 
   /// The surfaces changed (cells turned into particles exposed new faces): the edge pairs in
   /// contact are kept under their edges' new indices (ContactCandidates::surfaces_changed).
@@ -96,6 +97,7 @@ class ContactDetection {
   std::vector<std::pair<std::pair<Index, Index>, Vec3>> active_edges_;
   double reach_ = 0.0;       // binding_reach of the start's surfaces: edge pairs stay in contact
   double separation_ = 0.0;  // aimed at beyond the rounding margin (ContactSettings::separation)
+  double push_speed_ = 0.0;  // ContactPoint::push_speed
   std::vector<Box> step_face_box_;  // this step's layer boxes of the faces the lists name
 };
 

@@ -16,9 +16,10 @@ namespace tc {
 
 /// One correction of a contact (the contact-boundary notes §4, Dobritsa et al. eqs. 11–12). With
 /// v_n the relative normal velocity of the two points, v_n = (Σ w_A U_A − Σ w_B U_B)·n, and the
-/// target v* = (a − g)/τ with a = s + clamp(g − s, 0, δ) (close the gap within the step: to the
-/// stand-off δ beyond the rounding separation s from farther, hold a pair already within it,
-/// put a touching one s apart; 0 when penetrated deeper than s and not restoring),
+/// target v* = (s + δ − g)/τ (end the step the stand-off δ beyond the rounding separation s:
+/// a pair closing from farther stops there, one already closer is pushed back, at most at the
+/// push speed v_p beyond what reaches s, v* ≤ max(v_p, (s − g)/τ), v_p = 0 holding it; 0 when
+/// penetrated deeper than s and not restoring),
 ///   Λ ← max(0, Λ + (v* − v_n) / (Σ w_A²/m_A + Σ w_B²/m_B)),   λ = change of Λ,
 /// with Λ the contact's accumulated normal impulse of the step: contacts push, never pull
 /// (Λ ≥ 0), while a later pass may take back what earlier ones over-pushed;
