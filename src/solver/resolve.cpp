@@ -68,8 +68,8 @@ void StepResolver::resolve(State& st, StepContacts& points, ContactCandidates& c
 // coupled islands; only the failing islands pay). A pair that fails again has its point placed
 // anew where it now first meets, its accumulated impulses kept: each round linearizes the
 // constraint about the motion the last one left, as Newton's method would (placed once a step,
-// a face that turns during the step left pairs failing round after round, and the zones that
-// then took over removed 30 J of the cylinders' 1,054 J at a single step).
+// a pair whose face turned during the step failed round after round until a zone took it: in a
+// trial on the cylinders, one zone of 161 nodes took 32 J of their 1,054 J at a single step).
 Verification StepResolver::extra_passes(State& st, StepContacts& points,
                                         ContactCandidates& candidates,
                                         const ContactDetection& contact, int passes, Verification v,
