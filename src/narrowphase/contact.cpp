@@ -322,7 +322,10 @@ Vec3 at(const std::vector<Vec3>& x0, const std::vector<Vec3>& x1, Index node, do
 // s = n·(p_A − p_B) with these weights is ≥ 0 at xⁿ, and the gap s(xⁿ). Keeping s ≥ 0 at the
 // step's end is then, to first order in the motion, the pair not crossing: the closest points
 // at xⁿ (often an end of an edge, or a corner of a face) say nothing about where the pair
-// crosses. Touching at xⁿ, or no time found: at the closest points at xⁿ, as below.
+// crosses. Touching at xⁿ, or no time found: at the closest points at xⁿ, as below. A rescued
+// pair within the stand-off is held, not pushed back (push_speed 0): pushed back, the rescue
+// points of the Hertz spheres, which meet at 1 m/s, left an energy balance of 5.9e-3 (held,
+// 9.2e-5).
 std::optional<ContactPoint> ContactDetection::vertex_face_point(const State& st,
                                                                 const std::vector<Vec3>& x1,
                                                                 Index node, const Face& f,
@@ -368,7 +371,6 @@ std::optional<ContactPoint> ContactDetection::vertex_face_point(const State& st,
   const std::vector<Vec3>& xs = st.x_star;
   c.separation = rounding_margin({&xs[node], &xs[f[0]], &xs[f[1]], &xs[f[2]]});
   c.standoff = separation_;
-  c.push_speed = push_speed_;
   c.restore = true;
   set_friction(c, node_body, face_body);
   return c;
@@ -425,7 +427,6 @@ std::optional<ContactPoint> ContactDetection::edge_edge_point(
   const std::vector<Vec3>& xs = st.x_star;
   c.separation = rounding_margin({&xs[a[0]], &xs[a[1]], &xs[b[0]], &xs[b[1]]});
   c.standoff = separation_;
-  c.push_speed = push_speed_;
   c.restore = true;
   set_friction(c, body_a, body_b);
   return c;

@@ -26,10 +26,10 @@ struct ContactPoint {
   /// The stand-off (m, ContactSettings::separation): a pair closing from farther stops this far
   /// beyond `separation`; a pair already closer is pushed back to it at most at `push_speed`.
   double standoff = 0.0;
-  /// The fastest a pair within the stand-off is pushed back to it (m/s): for restoring contacts
-  /// (edge–edge, rescue points) a fixed fraction of the bodies' fastest wave speed
+  /// The fastest a pair within the stand-off is pushed back to it (m/s): for detected edge–edge
+  /// contacts a fixed fraction of the bodies' fastest wave speed
   /// (ContactSettings::k_push_fraction), so that the push does not grow as the step shrinks;
-  /// 0 for detected node–face contacts, which hold such a pair where it is.
+  /// 0 for node–face contacts and the verification's rescue points, which hold such a pair.
   double push_speed = 0.0;
   FrictionMode mode = FrictionMode::slip;
   double friction = 0.0;  // Coulomb coefficient k

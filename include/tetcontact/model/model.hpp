@@ -66,17 +66,17 @@ struct ContactSettings {
   /// until its cost and the zones' effect on flat contacts are brought down (README).
   bool verify = false;
   /// The stand-off contacts aim at (m), beyond the rounding margin: a pair closing within a
-  /// step stops this far apart; an edge pair or a rescued pair already closer is pushed back to
-  /// it (ContactPoint::push_speed), a node–face pair held. Below 0: 1e-5 of the smallest mean
-  /// tet edge of the bodies (k_separation_fraction). The stand-off takes up the second-order
-  /// error of the step's linearized contacts (faces that turn, edges that slide onto the next
-  /// face): aimed at exactly touching, with `verify`, the bars' conforming faces failed on 380
-  /// of 581 steps. With a stand-off of 1e-6 of an edge and every pair held, the cylinders'
+  /// step stops this far apart; an edge pair already closer is pushed back to it
+  /// (ContactPoint::push_speed), a node–face pair or a rescued pair held. Below 0: 1e-5 of the
+  /// smallest mean tet edge of the bodies (k_separation_fraction). The stand-off takes up the
+  /// second-order error of the step's linearized contacts (faces that turn, edges that slide onto
+  /// the next face): aimed at exactly touching, with `verify`, the bars' conforming faces failed on
+  /// 380 of 581 steps. With a stand-off of 1e-6 of an edge and every pair held, the cylinders'
   /// interface drifted to touching and needed impact zones on 485 of 584 steps
   /// (docs/design/verification.md).
   double separation = -1.0;
   static constexpr double k_separation_fraction = 1e-5;
-  /// Restoring pairs within the stand-off are pushed back to it at most at this fraction of
+  /// Edge pairs within the stand-off are pushed back to it at most at this fraction of
   /// the bodies' fastest wave speed (ContactPoint::push_speed): 0.63 m/s in aluminium, a
   /// stand-off of 1e-5 of an edge restored within a step. At a tenth of it the cylinders needed
   /// an impact zone at their first step that took 28 J of their 1,054; pushed at the stand-off
