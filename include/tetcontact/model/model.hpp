@@ -76,12 +76,12 @@ struct ContactSettings {
   /// (docs/design/verification.md).
   double separation = -1.0;
   static constexpr double k_separation_fraction = 1e-5;
-  /// Edge pairs within the stand-off are pushed back to it at most at this fraction of
-  /// the bodies' fastest wave speed (ContactPoint::push_speed): 0.63 m/s in aluminium, a
-  /// stand-off of 1e-5 of an edge restored within a step. At a tenth of it the cylinders needed
-  /// an impact zone at their first step that took 28 J of their 1,054; pushed at the stand-off
-  /// over the run's first step instead, two blocks pressed at 10 m/s with the step forced down
-  /// to 1e-12 s (stability/tiny-step) ended at 1,567 m/s.
+  /// Edge pairs within the stand-off are pushed back to it at most at this fraction of the
+  /// bodies' fastest wave speed (ContactPoint::push_speed): 0.63 m/s in aluminium, a stand-off
+  /// of 1e-5 of an edge restored within a step. In trials at a tenth of it, the cylinders needed
+  /// a zone that took 22 to 28 J of their 1,054; pushed at the stand-off over the run's first
+  /// step instead, two blocks pressed at 10 m/s with the step forced down to 1e-12 s
+  /// (stability/tiny-step) ended at 1,567 m/s.
   static constexpr double k_push_fraction = 1e-4;
   /// The kinetic energy each exchange between bodies or particles dissipates becomes internal
   /// energy of the cells and particles at its nodes (response/heat.hpp); off (the default until
