@@ -165,6 +165,12 @@ Verification StepResolver::impact_zones(State& st, StepContacts& points,
       const std::vector<ContactList> inner{{&inside_, &st.contact_impulse}};
       correct_in_islands(inner, contact_islands(inner, n, points.island_slot), passes, st);
     }
+    // A translated zone moves, and so goes on, at its mean velocity U: positions that stand
+    // still or only translate under velocities that still spin would put the kinetic and the
+    // internal energy out of step. On an axis where no translation near τ U is exact for every
+    // node (a node crossing into a coarser binade), the zone moves by τ U rounded as any node is.
+    // (The cubes with the verification and no edge–edge contact, whose zones kept the spin and
+    // stood still on such axes, ended with an energy balance of 4.9e-2.)
     fixed_x_.clear();
     for (const ImpactZones::Zone& z : zones_.zones()) {
       if (z.motion == ImpactZones::Motion::rigid) continue;
@@ -173,7 +179,16 @@ Verification StepResolver::impact_zones(State& st, StepContacts& points,
         double mass = 0.0;
         Vec3 p = Vec3::Zero();
         for (const Index node : z.nodes) mass += st.m[node], p += st.m[node] * st.v_star[node];
-        if (mass > 0.0) d = exact_translation(st.x, z.nodes, st.dt * p / mass);
+        if (mass > 0.0) {
+          const Vec3 u = p / mass;
+          d = st.dt * u;
+          const Vec3 e = exact_translation(st.x, z.nodes, d);  // 0 on an axis not exact
+          for (int k = 0; k < 3; ++k) d[k] = e[k] != 0.0 ? e[k] : d[k];
+          for (const Index node : z.nodes) {
+            st.contact_impulse[node] += st.m[node] * (u - st.v_star[node]);
+            st.v_star[node] = u;
+          }
+        }
       }
       for (const Index node : z.nodes) fixed_x_.push_back({node, Vec3(st.x[node] + d)});
     }

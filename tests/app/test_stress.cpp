@@ -111,7 +111,8 @@ TEST(Stress, MicroScenesRunWithoutNanInversionOrLostMomentum) {
   ASSERT_NE(yaml.find(slow), std::string::npos);
   yaml.replace(yaml.find(slow), slow.size(), "velocity: [0, 0, -2.0e5]");  // crushes the tets
   test::write_text(dir / "crash.yaml", yaml);
-  const std::vector<SceneResult> crash = run_micro_scenes(dir.str());
+  // Without the verification, whose impact zones would carry the crushed faces rigidly.
+  const std::vector<SceneResult> crash = run_micro_scenes(dir.str(), {"contact.verify=false"});
   ASSERT_EQ(crash.size(), 1u);
   EXPECT_FALSE(crash[0].pass);
   EXPECT_NE(crash[0].status.find("failed"), std::string::npos) << crash[0].status;
@@ -140,7 +141,7 @@ TEST(Stress, MicroScenesFailWithContactOff) {
 // passes leave edges through faces in some.
 TEST(Stress, MicroScenesAreIntersectionFreeWithTheVerification) {
   long crossings_without = 0;
-  for (const SceneResult& r : run_micro_scenes(default_scenes_dir()))
+  for (const SceneResult& r : run_micro_scenes(default_scenes_dir(), {"contact.verify=false"}))
     crossings_without += r.penetration.crossings + r.penetration.nodes_inside;
   EXPECT_GT(crossings_without, 0);
   const std::vector<SceneResult> scenes =

@@ -55,8 +55,9 @@ TEST(ContactDetection, NodeEnteringAFaceIsAContactWithTheFacesNormal) {
   Boxes s(0.02);
   for (Index i = s.b_first; i < static_cast<Index>(s.st.x.size()); ++i)
     s.st.x_star[i] = s.st.x[i] - Vec3(0, 0, 0.07);
-  ContactSettings settings;
+  ContactSettings settings;  // node–face contact alone
   settings.order = ContactSettings::Order::input;
+  settings.edge_edge = false;
   ContactDetection contact(s.mesh, s.surfaces, settings, 0.0);
   ContactCandidates candidates(s.mesh, s.surfaces, candidate_settings(settings, false));
   EXPECT_TRUE(candidates.update(s.st).rebuilt);
@@ -95,7 +96,8 @@ TEST(ContactDetection, NodeEnteringAFaceIsAContactWithTheFacesNormal) {
 // in the same order, with the same weights, normals and gaps, bit for bit.
 TEST(ContactDetection, BindingListsFindWhatAFreshSearchFinds) {
   Boxes s(0.01);
-  ContactSettings on, off;
+  ContactSettings on, off;  // node–face contact alone
+  on.edge_edge = off.edge_edge = false;
   off.binding_lists = false;
   ContactDetection lists(s.mesh, s.surfaces, on, 0.0), fresh(s.mesh, s.surfaces, off, 0.0);
   ContactCandidates lists_pairs(s.mesh, s.surfaces, candidate_settings(on, false)),

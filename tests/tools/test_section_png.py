@@ -20,7 +20,8 @@ def cubes(binary, module_out):
     for mode in ("on", "off"):
         runs[mode] = os.path.join(module_out, mode)
         run_case(binary, case("cubes-edge"), runs[mode],
-                 "contact.edge_edge=" + ("true" if mode == "on" else "false"))
+                 "contact.edge_edge=" + ("true" if mode == "on" else "false"),
+                 "contact.verify=" + ("true" if mode == "on" else "false"))
     return runs
 
 

@@ -58,13 +58,14 @@ struct ContactSettings {
   /// moved r from where the lists were built. Off: the exact swept boxes of every step.
   bool binding_lists = true;
   /// Dobritsa et al.'s edge–edge contact on top of node–face: surface edges of different bodies
-  /// that cross during the step (exact CCD) get the reaction of eqs. (11)–(12). Off by default
-  /// until the exact test is fast (it costs ~0.2 ms a pair).
-  bool edge_edge = false;
+  /// that cross during the step (exact CCD) get the reaction of eqs. (11)–(12). On by default;
+  /// off (`contact.edge_edge: false`) for studies of node–face contact alone.
+  bool edge_edge = true;
   /// Verify every step's motion with the exact CCD (verify/verify.hpp); pairs that fail
-  /// get further passes, then rigid impact zones (response/impact_zones.hpp). Off by default
-  /// until its cost and the zones' effect on flat contacts are brought down (README).
-  bool verify = false;
+  /// get further passes, then rigid impact zones (response/impact_zones.hpp). On by default:
+  /// with it no edge crosses a face and no node ends inside a cell at any step's end
+  /// (docs/design/verification.md); off (`contact.verify: false`) for studies.
+  bool verify = true;
   /// The stand-off contacts aim at (m), beyond the rounding margin: a pair closing within a
   /// step stops this far apart; an edge pair already closer is pushed back to it
   /// (ContactPoint::push_speed), a node–face pair or a rescued pair held. Below 0: 1e-5 of the
