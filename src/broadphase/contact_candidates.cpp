@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <map>
 #include <stdexcept>
 
 #include "tetcontact/parallel/parallel.hpp"
@@ -27,20 +26,22 @@ SurfacePrimitives surface_primitives(const std::vector<Surface>& surfaces, bool 
       p.face_tet.push_back(surf.face_tet[f]);
     }
     if (edges) {
-      // The two faces at each edge (the surface is closed: every edge has two).
-      std::map<Edge, std::array<Index, 2>> at_edge;
+      // The two faces at each edge (the surface is closed: every edge has two), the lower face
+      // first; the surface's edges are sorted, so each face finds its edges by bisection.
+      const std::size_t first = p.edges.size();
+      p.edges.insert(p.edges.end(), surf.edges.begin(), surf.edges.end());
+      p.edge_body.resize(p.edges.size(), surf.body);
+      p.edge_faces.resize(p.edges.size(), std::array<Index, 2>{-1, -1});
       for (std::size_t f = 0; f < surf.faces.size(); ++f)
         for (int k = 0; k < 3; ++k) {
           Edge e{surf.faces[f][k], surf.faces[f][(k + 1) % 3]};
           if (e[0] > e[1]) std::swap(e[0], e[1]);
-          auto [it, fresh] = at_edge.try_emplace(e, std::array<Index, 2>{-1, -1});
-          it->second[fresh ? 0 : 1] = face_base + static_cast<Index>(f);
+          const auto it = std::lower_bound(surf.edges.begin(), surf.edges.end(), e);
+          if (it == surf.edges.end() || *it != e)
+            throw std::logic_error("surface_primitives: a face's edge is not a surface edge");
+          std::array<Index, 2>& at = p.edge_faces[first + (it - surf.edges.begin())];
+          at[at[0] < 0 ? 0 : 1] = face_base + static_cast<Index>(f);
         }
-      for (const Edge& e : surf.edges) {
-        p.edges.push_back(e);
-        p.edge_body.push_back(surf.body);
-        p.edge_faces.push_back(at_edge.at(e));
-      }
     }
     face_base += static_cast<Index>(surf.faces.size());
   }
@@ -97,13 +98,17 @@ ContactCandidates::ContactCandidates(const Mesh& mesh, const std::vector<Surface
 
 std::vector<Index> ContactCandidates::surfaces_changed(const std::vector<Surface>& surfaces) {
   SurfacePrimitives fresh = surface_primitives(surfaces, lists_edges(settings_));
-  std::map<Edge, Index> edge_index;
+  // Each old edge's index among the new ones (−1: gone), by bisection over the new edges
+  // sorted with their indices.
+  std::vector<std::pair<Edge, Index>> edge_index(fresh.edges.size());
   for (std::size_t e = 0; e < fresh.edges.size(); ++e)
-    edge_index.emplace(fresh.edges[e], static_cast<Index>(e));
+    edge_index[e] = {fresh.edges[e], static_cast<Index>(e)};
+  std::sort(edge_index.begin(), edge_index.end());
   std::vector<Index> renamed(prims_.edges.size(), -1);
   for (std::size_t e = 0; e < prims_.edges.size(); ++e) {
-    const auto it = edge_index.find(prims_.edges[e]);
-    if (it != edge_index.end()) renamed[e] = it->second;
+    const auto it = std::lower_bound(edge_index.begin(), edge_index.end(),
+                                     std::pair<Edge, Index>{prims_.edges[e], -1});
+    if (it != edge_index.end() && it->first == prims_.edges[e]) renamed[e] = it->second;
   }
   prims_ = std::move(fresh);
   node_slot_ = slots_of(prims_, mesh_.x.size());
