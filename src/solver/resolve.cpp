@@ -6,8 +6,22 @@
 #include <optional>
 
 #include "tetcontact/parallel/parallel.hpp"
+#include "tetcontact/solver/integrator.hpp"
 
 namespace tc {
+
+StepResolver::StepResolver(const Mesh& mesh, const std::vector<VelocityConstraint>& constraints)
+    : verifier_(mesh),
+      constraints_(constraints),
+      held_(mesh.x.size(), 0),
+      held_velocity_(mesh.x.size(), Vec3::Zero()) {
+  for (const VelocityConstraint& c : constraints)
+    for (const Index node : c.nodes)
+      for (int d = 0; d < 3; ++d)
+        if (c.components[d]) held_[node] |= 1u << d, held_velocity_[node][d] = c.velocity[d];
+  for (std::size_t n = 0; n < held_.size(); ++n)
+    if (held_[n]) held_nodes_.push_back(static_cast<Index>(n));
+}
 
 // xⁿ⁺¹ = xⁿ + τ U*, the same doubles the commit will write (x += τ U with U = U*), less the
 // positions impact zones fixed.
@@ -105,6 +119,7 @@ Verification StepResolver::extra_passes(State& st, StepContacts& points,
         islands_with(lists, contact_islands(lists, n, points.island_slot), marked_);
     if (failing.count() == 0) break;  // no contact point moves them: only zones can
     correct_in_islands(lists, failing, passes << extra, st);
+    hold_constraints(st, constraints_);  // a symmetry plane's nodes stay on it
     ++ct.extra_rounds;
     const std::size_t before = v.failed.size();
     v = verify_again(st, candidates, ct);
@@ -124,6 +139,7 @@ Verification StepResolver::impact_zones(State& st, StepContacts& points,
   const std::size_t n = st.x.size();
   zones_.reset(n);
   u_passes_ = st.v_star;
+  zone_hold_.assign(held_nodes_.size(), Vec3::Zero());
   int round = 0;
   for (; round < k_zone_rounds && !v.failed.empty(); ++round) {
     // A failure inside one zone: rounding; the zone moves by an exact translation, or, if
@@ -140,6 +156,12 @@ Verification StepResolver::impact_zones(State& st, StepContacts& points,
         seen = seen || zones_.same_zone(pair.data(), 2);
       }
       if (!seen) escalated.push_back(node), zones_.escalate(node);
+    }
+    // Each round sets the zones' motion anew from U* as the passes left it: the constraints'
+    // impulses of the round before move from the boundary's ledger back to the contact's.
+    for (std::size_t i = 0; i < held_nodes_.size(); ++i) {
+      st.bc_impulse[held_nodes_[i]] -= zone_hold_[i];
+      st.contact_impulse[held_nodes_[i]] += zone_hold_[i];
     }
     zones_.apply(u_passes_, st, st.contact_impulse);
     // Rounding a rigid motion to doubles can leave a pair that touches inside a zone an ulp
@@ -165,6 +187,17 @@ Verification StepResolver::impact_zones(State& st, StepContacts& points,
       const std::vector<ContactList> inner{{&inside_, &st.contact_impulse}};
       correct_in_islands(inner, contact_islands(inner, n, points.island_slot), passes, st);
     }
+    for (std::size_t i = 0; i < held_nodes_.size(); ++i) {  // the constraints held
+      const Index node = held_nodes_[i];
+      Vec3 j = Vec3::Zero();
+      for (int k = 0; k < 3; ++k)
+        if (held_[node] & (1u << k)) {
+          j[k] = st.m[node] * (held_velocity_[node][k] - st.v_star[node][k]);
+          st.v_star[node][k] = held_velocity_[node][k];
+        }
+      st.bc_impulse[node] += j;
+      zone_hold_[i] = j;
+    }
     // A translated zone moves, and so goes on, at its mean velocity U: positions that stand
     // still or only translate under velocities that still spin would put the kinetic and the
     // internal energy out of step. On an axis where no translation near τ U is exact for every
@@ -180,13 +213,34 @@ Verification StepResolver::impact_zones(State& st, StepContacts& points,
         Vec3 p = Vec3::Zero();
         for (const Index node : z.nodes) mass += st.m[node], p += st.m[node] * st.v_star[node];
         if (mass > 0.0) {
-          const Vec3 u = p / mass;
+          // A component a constraint prescribes on a node of the zone is the zone's (a zone
+          // on a symmetry plane slides along it). The constraints' impulse on the zone,
+          // M (U − V̄), is booked at its lowest held node, and undone as the hold's is.
+          const Vec3 mean = p / mass;
+          Vec3 u = mean;
+          std::size_t first_held = held_nodes_.size();
+          for (const Index node : z.nodes)  // ascending
+            if (static_cast<std::size_t>(node) < held_.size() && held_[node]) {
+              if (first_held == held_nodes_.size())
+                first_held = static_cast<std::size_t>(
+                    std::lower_bound(held_nodes_.begin(), held_nodes_.end(), node) -
+                    held_nodes_.begin());
+              for (int k = 0; k < 3; ++k)
+                if (held_[node] & (1u << k)) u[k] = held_velocity_[node][k];
+            }
           d = st.dt * u;
           const Vec3 e = exact_translation(st.x, z.nodes, d);  // 0 on an axis not exact
           for (int k = 0; k < 3; ++k) d[k] = e[k] != 0.0 ? e[k] : d[k];
           for (const Index node : z.nodes) {
             st.contact_impulse[node] += st.m[node] * (u - st.v_star[node]);
             st.v_star[node] = u;
+          }
+          if (first_held < held_nodes_.size()) {
+            const Vec3 j = mass * (u - mean);
+            const Index node = held_nodes_[first_held];
+            st.contact_impulse[node] -= j;
+            st.bc_impulse[node] += j;
+            zone_hold_[first_held] += j;
           }
         }
       }

@@ -161,7 +161,7 @@ Simulation::Simulation(Model model, SolverSettings settings)
     modules_.push_back("response:node_face");
     if (model_.contact->edge_edge) modules_.push_back("narrowphase:edge_edge");
     if (model_.contact->verify) {
-      resolver_ = std::make_unique<StepResolver>(model_.mesh);
+      resolver_ = std::make_unique<StepResolver>(model_.mesh, model_.constraints);
       modules_.push_back("contact:verify");
     }
   }

@@ -3,7 +3,14 @@
 // edges through; momentum and energy hold; the zones' work is reported.
 #include <gtest/gtest.h>
 
+#include <utility>
+#include <vector>
+
 #include "../test_util.hpp"
+#include "tetcontact/app/setup.hpp"
+#include "tetcontact/diagnostics/balance.hpp"
+#include "tetcontact/io/case.hpp"
+#include "tetcontact/solver/simulation.hpp"
 
 using namespace tc;
 
@@ -139,4 +146,37 @@ TEST(Verification, SphDebrisCentresStayOutsideTheFacesEveryStep) {
   const test::Json& v = s.at("contact").at("verification");
   EXPECT_GT(test::number(v, "/pairs_checked"), 0);
   EXPECT_EQ(test::number(v, "/unresolved_steps"), 0);
+}
+
+// Symmetry planes under the verified step: the rescue points' passes and the impact zones change
+// velocities after the planes' hold, which holds again after each of them (a translated zone
+// slides along the plane), so the nodes on a plane stay on it, exactly, at every step, and
+// momentum holds with the planes' impulses booked. The coarse Whipple quarter with edge–edge
+// contact and the verification. Measured: 0 nodes off; without the hold after the resolver's
+// corrections, nodes were off their plane on 19,223 node-steps, and no zone formed.
+TEST(Verification, NodesOnSymmetryPlanesStayOnThemUnderRescuesAndZones) {
+  const Case c = load_case(
+      test::source_path("data/cases/whipple.yaml"),
+      {"parameters.hb=1.0e-3", "parameters.hw=2.0e-3", "parameters.np=6", "parameters.tear=5.0e-6",
+       "parameters.S=15e-3", "parameters.cb=24e-3", "parameters.ww=30e-3", "parameters.cw=30e-3",
+       "contact.edge_edge=true", "contact.verify=true"});
+  Simulation sim(build_model(c), solver_settings(c));
+  const Mesh& mesh = sim.model().mesh;
+  ASSERT_EQ(mesh.symmetry.size(), 2u);
+  std::vector<std::pair<Index, SymmetryPlane>> on_plane;
+  for (const SymmetryPlane& p : mesh.symmetry)
+    for (Index n = 0; n < mesh.node_count(); ++n)
+      if (mesh.x[n][p.axis] == p.at) on_plane.push_back({n, p});
+  ASSERT_GT(on_plane.size(), 100u);
+  long off = 0;
+  while (!sim.done()) {
+    sim.step();
+    for (const auto& [n, p] : on_plane) off += sim.state().x[n][p.axis] != p.at;
+  }
+  sim.finish();
+  EXPECT_EQ(off, 0);
+  const ContactLedger& ct = sim.contact_totals();
+  EXPECT_GT(ct.rescue_points, 0);  // the resolver corrected
+  EXPECT_GT(ct.impact_zones, 0);
+  EXPECT_LT(momentum_error(sim.first_sample(), sim.last_sample()), 1e-12);
 }

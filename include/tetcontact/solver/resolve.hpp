@@ -38,7 +38,9 @@ class StepResolver {
   /// islands where a step's verification failed, before impact zones.
   static constexpr int k_extra_rounds = 8;
 
-  explicit StepResolver(const Mesh& mesh) : verifier_(mesh) {}
+  /// `constraints`: the model's prescribed velocities and symmetry planes, held after every
+  /// correction the resolver makes, as after the passes.
+  StepResolver(const Mesh& mesh, const std::vector<VelocityConstraint>& constraints);
 
   /// The surfaces changed (cells turned into particles): the verification's maps over the
   /// primitives are rebuilt.
@@ -66,6 +68,12 @@ class StepResolver {
                             int passes, Verification v, ContactLedger& ct);
 
   StepVerifier verifier_;
+  std::vector<VelocityConstraint> constraints_;
+  // Per node, the components a constraint prescribes (bit d) and their velocity.
+  std::vector<unsigned char> held_;
+  std::vector<Vec3> held_velocity_;
+  std::vector<Index> held_nodes_;  // the nodes with a prescribed component, ascending
+  std::vector<Vec3> zone_hold_;    // per held node, the constraints' impulse of the zone round
   // Working arrays, kept between steps to save allocations.
   std::vector<Vec3> x_end_;  // xⁿ⁺¹ as the commit will write it
   ImpactZones zones_;
