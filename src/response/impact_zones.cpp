@@ -114,8 +114,10 @@ void ImpactZones::apply(const std::vector<Vec3>& u, State& st, std::vector<Vec3>
   }
 }
 
-Vec3 exact_translation(const std::vector<Vec3>& x, const std::vector<Index>& nodes, const Vec3& d) {
+Vec3 exact_translation(const std::vector<Vec3>& x, const std::vector<Index>& nodes, const Vec3& d,
+                       std::array<bool, 3>* exact_axes) {
   Vec3 out = Vec3::Zero();
+  if (exact_axes) *exact_axes = {false, false, false};
   for (int k = 0; k < 3; ++k) {
     double grain = 0.0;  // the coarsest ulp of the coordinates on this axis
     for (const Index n : nodes) {
@@ -131,6 +133,7 @@ Vec3 exact_translation(const std::vector<Vec3>& x, const std::vector<Index>& nod
       exact = (a - (s - bb)) + (dk - bb) == 0.0;
     }
     if (exact) out[k] = dk;
+    if (exact_axes) (*exact_axes)[k] = exact;
   }
   return out;
 }

@@ -1,5 +1,6 @@
 #include "tetcontact/solver/resolve.hpp"
 
+#include <algorithm>
 #include <array>
 #include <limits>
 #include <map>
@@ -213,35 +214,39 @@ Verification StepResolver::impact_zones(State& st, StepContacts& points,
         Vec3 p = Vec3::Zero();
         for (const Index node : z.nodes) mass += st.m[node], p += st.m[node] * st.v_star[node];
         if (mass > 0.0) {
-          // A component a constraint prescribes on a node of the zone is the zone's (a zone
-          // on a symmetry plane slides along it). The constraints' impulse on the zone,
-          // M (U − V̄), is booked at its lowest held node, and undone as the hold's is.
+          // A component a constraint prescribes on a node of the zone is the zone's, from its
+          // lowest node held on that axis (a zone on a symmetry plane slides along it). The
+          // constraints' impulse on the zone, M (U − V̄), is booked per axis at that node, and
+          // undone as the hold's is.
           const Vec3 mean = p / mass;
           Vec3 u = mean;
-          std::size_t first_held = held_nodes_.size();
+          std::array<std::size_t, 3> first_held;  // per axis, the lowest node held on it
+          first_held.fill(held_nodes_.size());
           for (const Index node : z.nodes)  // ascending
-            if (static_cast<std::size_t>(node) < held_.size() && held_[node]) {
-              if (first_held == held_nodes_.size())
-                first_held = static_cast<std::size_t>(
-                    std::lower_bound(held_nodes_.begin(), held_nodes_.end(), node) -
-                    held_nodes_.begin());
+            if (static_cast<std::size_t>(node) < held_.size() && held_[node])
               for (int k = 0; k < 3; ++k)
-                if (held_[node] & (1u << k)) u[k] = held_velocity_[node][k];
-            }
+                if ((held_[node] & (1u << k)) && first_held[k] == held_nodes_.size()) {
+                  u[k] = held_velocity_[node][k];
+                  first_held[k] = static_cast<std::size_t>(
+                      std::lower_bound(held_nodes_.begin(), held_nodes_.end(), node) -
+                      held_nodes_.begin());
+                }
           d = st.dt * u;
-          const Vec3 e = exact_translation(st.x, z.nodes, d);  // 0 on an axis not exact
-          for (int k = 0; k < 3; ++k) d[k] = e[k] != 0.0 ? e[k] : d[k];
+          std::array<bool, 3> exact{};
+          const Vec3 e = exact_translation(st.x, z.nodes, d, &exact);
+          for (int k = 0; k < 3; ++k) d[k] = exact[k] ? e[k] : d[k];
           for (const Index node : z.nodes) {
             st.contact_impulse[node] += st.m[node] * (u - st.v_star[node]);
             st.v_star[node] = u;
           }
-          if (first_held < held_nodes_.size()) {
-            const Vec3 j = mass * (u - mean);
-            const Index node = held_nodes_[first_held];
-            st.contact_impulse[node] -= j;
-            st.bc_impulse[node] += j;
-            zone_hold_[first_held] += j;
-          }
+          for (int k = 0; k < 3; ++k)
+            if (first_held[k] < held_nodes_.size()) {
+              const double j = mass * (u[k] - mean[k]);
+              const Index node = held_nodes_[first_held[k]];
+              st.contact_impulse[node][k] -= j;
+              st.bc_impulse[node][k] += j;
+              zone_hold_[first_held[k]][k] += j;
+            }
         }
       }
       for (const Index node : z.nodes) fixed_x_.push_back({node, Vec3(st.x[node] + d)});

@@ -2,6 +2,7 @@
 // energy, books its impulses, and the zones are the connected sets of the merged nodes.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <random>
 
@@ -139,13 +140,21 @@ TEST(ImpactZones, ExactTranslationKeepsRelativePositionsBitForBit) {
       nodes.push_back(i);
     }
     const Vec3 want = Vec3(u(rng), u(rng), u(rng)) * scale * 1e-3;
-    const Vec3 d = exact_translation(x, nodes, want);
+    std::array<bool, 3> exact{};
+    const Vec3 d = exact_translation(x, nodes, want, &exact);
     for (int k = 0; k < 3; ++k) {
-      // Each axis: the wanted shift to within the grain, or 0.
-      if (d[k] != 0.0) {
+      // Each axis: the wanted shift to within the grain where exact, else 0.
+      if (exact[k]) {
         EXPECT_LT(std::abs(d[k] - want[k]), 1e-12 * scale + 1e-15);
+      } else {
+        EXPECT_EQ(d[k], 0.0);
       }
     }
+    // A shift below half the grain is exact and 0; one that carries a node's coordinate into
+    // a coarser binade, with its low bits set, is not exact.
+    std::array<bool, 3> tiny{};
+    EXPECT_EQ(exact_translation(x, nodes, Vec3::Constant(1e-30), &tiny), Vec3::Zero());
+    EXPECT_TRUE(tiny[0] && tiny[1] && tiny[2]);
     for (const Index i : nodes)
       for (const Index j : nodes) {
         const Vec3 before = x[i] - x[j], after = (x[i] + d) - (x[j] + d);

@@ -25,6 +25,7 @@
 // escalates one (rigid → translated → frozen), so the loop ends.
 #pragma once
 
+#include <array>
 #include <vector>
 
 #include "tetcontact/model/state.hpp"
@@ -66,7 +67,9 @@ class ImpactZones {
 
 /// The translation nearest d that moves every one of `nodes` exactly: per axis, d rounded to a
 /// multiple of the coarsest ulp of the nodes' coordinates, or 0 on an axis where x + d would
-/// still round for some node (checked exactly: the sum's rounding error is 0).
-Vec3 exact_translation(const std::vector<Vec3>& x, const std::vector<Index>& nodes, const Vec3& d);
+/// still round for some node (checked exactly: the sum's rounding error is 0). `exact`, when
+/// given, says per axis whether the shift returned is exact (false: no exact shift was found).
+Vec3 exact_translation(const std::vector<Vec3>& x, const std::vector<Index>& nodes, const Vec3& d,
+                       std::array<bool, 3>* exact = nullptr);
 
 }  // namespace tc
