@@ -7,21 +7,31 @@
 #include <optional>
 
 #include "tetcontact/parallel/parallel.hpp"
-#include "tetcontact/solver/integrator.hpp"
 
 namespace tc {
 
 StepResolver::StepResolver(const Mesh& mesh, const std::vector<VelocityConstraint>& constraints)
-    : verifier_(mesh),
-      constraints_(constraints),
-      held_(mesh.x.size(), 0),
-      held_velocity_(mesh.x.size(), Vec3::Zero()) {
+    : verifier_(mesh), held_(mesh.x.size(), 0), held_velocity_(mesh.x.size(), Vec3::Zero()) {
   for (const VelocityConstraint& c : constraints)
     for (const Index node : c.nodes)
       for (int d = 0; d < 3; ++d)
         if (c.components[d]) held_[node] |= 1u << d, held_velocity_[node][d] = c.velocity[d];
   for (std::size_t n = 0; n < held_.size(); ++n)
     if (held_[n]) held_nodes_.push_back(static_cast<Index>(n));
+}
+
+void StepResolver::hold(State& st, std::vector<Vec3>* impulses) {
+  for (std::size_t i = 0; i < held_nodes_.size(); ++i) {
+    const Index node = held_nodes_[i];
+    Vec3 j = Vec3::Zero();
+    for (int k = 0; k < 3; ++k)
+      if (held_[node] & (1u << k)) {
+        j[k] = st.m[node] * (held_velocity_[node][k] - st.v_star[node][k]);
+        st.v_star[node][k] = held_velocity_[node][k];
+      }
+    st.bc_impulse[node] += j;
+    if (impulses) (*impulses)[i] = j;
+  }
 }
 
 // xⁿ⁺¹ = xⁿ + τ U*, the same doubles the commit will write (x += τ U with U = U*), less the
@@ -120,7 +130,7 @@ Verification StepResolver::extra_passes(State& st, StepContacts& points,
         islands_with(lists, contact_islands(lists, n, points.island_slot), marked_);
     if (failing.count() == 0) break;  // no contact point moves them: only zones can
     correct_in_islands(lists, failing, passes << extra, st);
-    hold_constraints(st, constraints_);  // a symmetry plane's nodes stay on it
+    hold(st, nullptr);  // a symmetry plane's nodes stay on it
     ++ct.extra_rounds;
     const std::size_t before = v.failed.size();
     v = verify_again(st, candidates, ct);
@@ -188,17 +198,7 @@ Verification StepResolver::impact_zones(State& st, StepContacts& points,
       const std::vector<ContactList> inner{{&inside_, &st.contact_impulse}};
       correct_in_islands(inner, contact_islands(inner, n, points.island_slot), passes, st);
     }
-    for (std::size_t i = 0; i < held_nodes_.size(); ++i) {  // the constraints held
-      const Index node = held_nodes_[i];
-      Vec3 j = Vec3::Zero();
-      for (int k = 0; k < 3; ++k)
-        if (held_[node] & (1u << k)) {
-          j[k] = st.m[node] * (held_velocity_[node][k] - st.v_star[node][k]);
-          st.v_star[node][k] = held_velocity_[node][k];
-        }
-      st.bc_impulse[node] += j;
-      zone_hold_[i] = j;
-    }
+    hold(st, &zone_hold_);
     // A translated zone moves, and so goes on, at its mean velocity U: positions that stand
     // still or only translate under velocities that still spin would put the kinetic and the
     // internal energy out of step. On an axis where no translation near τ U is exact for every

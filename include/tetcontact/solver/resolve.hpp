@@ -66,9 +66,11 @@ class StepResolver {
                             ContactLedger& ct);
   Verification impact_zones(State& st, StepContacts& points, ContactCandidates& candidates,
                             int passes, Verification v, ContactLedger& ct);
+  // The constraints held, as hold_constraints() does after the passes (their impulse booked as
+  // the boundary's); `impulses`, when given, receives each held node's impulse.
+  void hold(State& st, std::vector<Vec3>* impulses);
 
   StepVerifier verifier_;
-  std::vector<VelocityConstraint> constraints_;
   // Per node, the components a constraint prescribes (bit d) and their velocity.
   std::vector<unsigned char> held_;
   std::vector<Vec3> held_velocity_;
