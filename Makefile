@@ -1,8 +1,10 @@
 # tetcontact: the user's entry point.
 #
-#   make run     install missing Debian packages (as root), configure, build, run the default case
-#   make test    the same, then the whole test suite (ctest)
-#   make build   configure and build only; the program is build/tetcontact
+#   make run     install missing Debian packages (as root), configure, build the program (not the
+#                tests), run the default case
+#   make test    the same, building the tests too, then the whole test suite (ctest)
+#   make build   configure and build the program and the tests; the program is build/tetcontact
+#   make program configure and build the program alone
 #   make bench   build and run the benchmark programs (not tests: they print figures)
 #   make format  reformat the sources with clang-format
 #
@@ -20,7 +22,7 @@ DEB_PACKAGES := cmake make g++ pkg-config libeigen3-dev libyaml-cpp-dev libfcl-d
                 libmetis-dev libopenmpi-dev openmpi-bin \
                 clang-format python3 python3-numpy python3-vtk9 python3-matplotlib python3-pytest procps
 
-.PHONY: all deps configure build run test bench format clean
+.PHONY: all deps configure build program run test bench format clean
 
 all: build
 
@@ -48,7 +50,10 @@ configure: deps
 build: deps configure
 	cmake --build $(BUILD_DIR) -j $(JOBS)
 
-run: build
+program: deps configure
+	cmake --build $(BUILD_DIR) -j $(JOBS) --target tetcontact
+
+run: program
 	$(BUILD_DIR)/tetcontact run $(CASE) --out $(OUT) --force
 
 test: build

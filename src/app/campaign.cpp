@@ -220,6 +220,9 @@ struct RowRun {
   double wall = NAN;
   std::vector<double> predicted;                // per comparison (NaN: not measured)
   std::vector<std::optional<double>> measured;  // per comparison: a number, or a category's index
+  // The case's shield equation on the row's shot (summary.shield_equation; none without it).
+  std::optional<double> equation_critical_diameter;
+  std::optional<bool> equation_perforated;
 };
 
 // The row's overrides and inputs, every field it reads checked (a message naming the row and
@@ -321,11 +324,33 @@ void read_summary(const CampaignSpec& k, RowRun& r) {
         if (ref.value("name", std::string()) == k.compare[i].predicted &&
             ref["measured"].is_number())
           r.predicted[i] = prediction(k.compare[i], ref["measured"].get<double>());
+  if (const auto e = s.find("shield_equation"); e != s.end() && e->is_object()) {
+    r.equation_critical_diameter = e->value("critical_diameter", NAN);
+    r.equation_perforated = e->value("perforated", false);
+  }
+}
+
+// The comparison the shield equation's verdict stands beside: the one whose prediction is the
+// engine's verdict the case sets against it (none: the case declares no equation).
+std::optional<std::size_t> equation_comparison(const Case& c) {
+  if (!c.shield_equation.declared) return std::nullopt;
+  for (std::size_t i = 0; i < c.campaign.compare.size(); ++i)
+    if (c.campaign.compare[i].predicted == c.shield_equation.verdict &&
+        !c.campaign.compare[i].categories.empty())
+      return i;
+  return std::nullopt;
+}
+
+// The equation's verdict as the comparison's category: the one whose value is nearest 1 (P) or
+// 0 (NP).
+std::optional<double> equation_category(const CampaignSpec::Comparison& cmp, const RowRun& r) {
+  if (!r.equation_perforated) return std::nullopt;
+  return prediction(cmp, *r.equation_perforated ? 1.0 : 0.0);
 }
 
 // The statistics of one comparison over some rows.
 Json statistics(const CampaignSpec::Comparison& cmp, const std::vector<const RowRun*>& rows,
-                std::size_t i) {
+                std::size_t i, bool equation) {
   Json j = Json::object();
   if (cmp.categories.empty()) {
     std::vector<double> e, abs_e;
@@ -377,6 +402,16 @@ Json statistics(const CampaignSpec::Comparison& cmp, const std::vector<const Row
       confusion[cmp.categories[a].first] = line;
     }
     j["confusion"] = confusion;
+    if (equation) {  // the shield equation on the same rows
+      long eq_right = 0, eq_n = 0;
+      for (const RowRun* r : rows)
+        if (const auto e = equation_category(cmp, *r); e && r->measured[i]) {
+          ++eq_n;
+          eq_right += *e == *r->measured[i];
+        }
+      j["equation_compared"] = eq_n;
+      j["equation_accuracy"] = eq_n == 0 ? NAN : static_cast<double>(eq_right) / eq_n;
+    }
   }
   return j;
 }
@@ -399,6 +434,10 @@ std::string predictions_csv(const Case& c, const Table& t, const std::vector<Row
     csv << ',' << csv_field("predicted:" + cmp.predicted) << ','
         << csv_field("measured:" + cmp.predicted) << ','
         << csv_field((cmp.categories.empty() ? "error:" : "right:") + cmp.predicted);
+  const std::optional<std::size_t> eq = equation_comparison(c);
+  if (eq)  // the shield equation beside the engine: its critical diameter (m) and verdict
+    csv << ",equation:critical_diameter," << csv_field("equation:" + k.compare[*eq].predicted)
+        << ',' << csv_field("right:equation");
   csv << ",status,wall_seconds,folder\n";
   for (const RowRun& r : runs) {
     csv << r.row->number << ',' << r.row->line;
@@ -418,6 +457,16 @@ std::string predictions_csv(const Case& c, const Table& t, const std::vector<Row
         csv << ',' << (std::isnan(p) ? "" : name(p)) << ',' << (m ? name(*m) : "") << ','
             << (m && !std::isnan(p) ? (static_cast<double>(*m) == p ? "1" : "0") : "");
       }
+    }
+    if (eq) {
+      const auto& cmp = k.compare[*eq];
+      const std::optional<double> e = equation_category(cmp, r);
+      const std::optional<double>& m = r.measured[*eq];
+      csv << ','
+          << (r.equation_critical_diameter ? fmt(*r.equation_critical_diameter) : std::string())
+          << ','
+          << (e ? csv_field(cmp.categories[static_cast<std::size_t>(*e)].first) : std::string())
+          << ',' << (e && m ? (*e == *m ? "1" : "0") : "");
     }
     csv << ',' << csv_field(r.status) << ',' << fmt(r.wall, "%.4g") << ','
         << csv_field(fs::path(r.child.dir).filename().string()) << '\n';
@@ -444,10 +493,11 @@ Json statistics_json(const Case& c, const Table& t, const std::vector<RowRun>& r
       all.push_back(&r);
       if (!k.group_by.empty()) groups[group_of(k, t, *r.row)].push_back(&r);
     }
-    one["all"] = statistics(k.compare[i], all, i);
+    const bool equation = equation_comparison(c) == i;
+    one["all"] = statistics(k.compare[i], all, i, equation);
     if (!k.group_by.empty()) {
       Json g = Json::object();
-      for (const auto& [name, rows] : groups) g[name] = statistics(k.compare[i], rows, i);
+      for (const auto& [name, rows] : groups) g[name] = statistics(k.compare[i], rows, i, equation);
       one["groups"] = g;
     }
     comparisons.push_back(one);
@@ -469,6 +519,9 @@ std::string statistics_table(const Case& c, const Json& stats) {
       for (const auto& [a, row] : s["confusion"].items())
         for (const auto& [b, n] : row.items()) os << " " << a << "→" << b << " " << n.get<long>();
       os << ")";
+      if (s.contains("equation_accuracy"))
+        os << "; Christiansen's equation on the same rows: accuracy "
+           << pct(s["equation_accuracy"]);
     } else {
       os << ", |error| median " << pct(s["median_abs_error"]) << ", 90 % within "
          << pct(s["p90_abs_error"]) << ", max " << pct(s["max_abs_error"]) << ", mean error "

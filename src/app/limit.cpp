@@ -83,7 +83,17 @@ struct Bracket {
   double wall = 0.0;     // the search's elapsed time, s
   double run_sum = 0.0;  // the runs' own wall times added up (runs go side by side), s
   std::string status = "ok";
+  // The case's shield equation (Christiansen's) at the bracket's two ends: its critical
+  // diameter (m), NaN when the case declares none.
+  double equation_a = NAN, equation_b = NAN;
 };
+
+// The shield equation's critical diameter of the case at the overrides `sets` (NaN without one).
+double equation_critical_diameter(const std::string& case_path,
+                                  const std::vector<std::string>& sets) {
+  const Case c = load_case(case_path, sets);
+  return c.shield_equation.declared ? christiansen_critical_diameter(c.shield_equation.shot) : NAN;
+}
 
 // One bracket: the value of `o.find` where the criterion flips, at the second key's value `w`
 // ("" without --vary), by rounds of `jobs` runs at once between the ends, each run kept under
@@ -257,14 +267,40 @@ int limit_command(const LimitOptions& o) {
     return 2;
   }
 
+  // The shield equation beside the engine: its critical diameter for the shots at the
+  // bracket's ends (the same at both when the search varies the diameter).
+  bool equation = false;
+  try {
+    for (Bracket& br : brackets) {
+      std::vector<std::string> sets = o.overrides;
+      if (!o.vary.empty()) sets.push_back(o.vary.front().first + "=" + br.vary_value);
+      sets.push_back(o.find + "=" + fmt(br.a));
+      br.equation_a = equation_critical_diameter(o.case_path, sets);
+      sets.back() = o.find + "=" + fmt(br.b);
+      br.equation_b = equation_critical_diameter(o.case_path, sets);
+      equation = !std::isnan(br.equation_a);
+      if (equation && !o.quiet)
+        std::cout << "limit: "
+                  << (o.vary.empty() ? "" : o.vary.front().first + "=" + br.vary_value + ": ")
+                  << o.find << " in [" << fmt(br.a) << ", " << fmt(br.b)
+                  << "]; Christiansen's equation: critical diameter " << fmt(br.equation_a)
+                  << (br.equation_b == br.equation_a ? "" : " to " + fmt(br.equation_b)) << " m\n";
+    }
+  } catch (const CaseError& e) {
+    std::cerr << "tetcontact: error: " << e.what() << "\n";
+    return 2;
+  }
   std::ostringstream csv;
   csv << (o.vary.empty() ? "" : csv_field(o.vary.front().first) + ",")
-      << "key,lo,hi,criterion_lo,criterion_hi,runs,reused,wall_seconds,run_seconds,status\n";
+      << "key,lo,hi,criterion_lo,criterion_hi,runs,reused,wall_seconds,run_seconds,status"
+      << (equation ? ",equation_critical_diameter_lo,equation_critical_diameter_hi" : "") << "\n";
   for (const Bracket& br : brackets) {
     if (!o.vary.empty()) csv << csv_field(br.vary_value) << ',';
     csv << csv_field(o.find) << ',' << fmt(br.a) << ',' << fmt(br.b) << ',' << br.value_a << ','
         << br.value_b << ',' << br.runs << ',' << br.reused << ',' << fmt(br.wall) << ','
-        << fmt(br.run_sum) << ',' << csv_field(br.status) << '\n';
+        << fmt(br.run_sum) << ',' << csv_field(br.status);
+    if (equation) csv << ',' << fmt(br.equation_a) << ',' << fmt(br.equation_b);
+    csv << '\n';
   }
   write_file_atomic(dir + "/limit.csv", csv.str());
   std::cout << "written: " << dir << "/limit.csv\n";

@@ -81,6 +81,8 @@ int with_bad_input_guard(F&& body) {
     std::cerr << "tetcontact: error: " << e.what() << "\n";
   } catch (const OutputError& e) {
     std::cerr << "tetcontact: error: " << e.what() << "\n";
+  } catch (const GaugeError& e) {
+    std::cerr << "tetcontact: error: " << e.what() << "\n";
   }
   return 2;
 }
@@ -93,7 +95,24 @@ struct RunRecord {
   double wall = 0.0, communication = 0.0;
   std::vector<std::string> warnings;
   ReferenceRecorder* references = nullptr;
+  GaugeWriter* gauges = nullptr;
 };
+
+// The case's gauges placed on the model (GaugeError naming a gauge no cell holds, with the case
+// file), before anything is written.
+void check_gauges(const Case& c, const Model& model) {
+  if (c.output.gauges.empty()) return;
+  try {
+    Gauges placed(model.mesh, c.output.gauges);
+  } catch (const GaugeError& e) {
+    throw GaugeError(c.file + ": gauges: " + e.what());
+  }
+}
+
+// A distributed run records no gauges: the cells' fields are each rank's.
+const char* k_no_distributed_gauges =
+    "gauges: a distributed run does not record them (each rank holds its own cells' fields): "
+    "no gauges.csv; run on threads (--threads N) for it";
 
 int report_run(const RunOptions& o, const Case& c, const Simulation& sim, OutputWriter& writer,
                RunRecord run);
@@ -112,6 +131,8 @@ int check_case(const RunOptions& o) {
     try {
       for (const std::string& w : mach_warnings(c, model))
         std::cerr << "tetcontact: warning: " << w << "\n";
+      for (const std::string& n : shield_notes(c)) std::cerr << "tetcontact: note: " << n << "\n";
+      check_gauges(c, model);
       Simulation sim(std::move(model), solver_settings(c));
       std::cout << c.file << ": ok — case '" << c.name << "', " << names.size() << " bodies, "
                 << nodes << " nodes, " << tets << " tets; first time step " << fmt(sim.state().dt)
@@ -144,11 +165,14 @@ int run_case(const RunOptions& o) {
     } catch (const RunFailure& e) {  // an element inverted in the initial geometry
       throw SetupError(c.file + ": " + e.what());
     }
+    check_gauges(c, sim->model());
     warnings = mach_warnings(c, sim->model());
+    if (!c.output.gauges.empty() && mpi::ranks() > 1) warnings.push_back(k_no_distributed_gauges);
     if (root) {
       for (const std::string& w : warnings) std::cerr << "tetcontact: warning: " << w << "\n";
       for (const std::string& n : regime_notes(c, sim->model()))
         std::cerr << "tetcontact: regime: " << n << "\n";
+      for (const std::string& n : shield_notes(c)) std::cerr << "tetcontact: note: " << n << "\n";
     }
     dir = o.out_dir.empty() ? "results/" + c.name : o.out_dir;
     // Only now, when the input is known to be good; in a distributed run rank 0 alone writes.
@@ -165,6 +189,11 @@ int run_case(const RunOptions& o) {
   OutputWriter writer(sim->model(), c.output, dir, c.end_time, &sim->profile(),
                       {mpi::rank(), mpi::ranks(), sim->rank_tets()});
   sim->add_observer(&writer, mpi::ranks() > 1 ? "output:pvtu+history" : "output:vtu+history");
+  std::unique_ptr<GaugeWriter> gauges;  // one process only
+  if (!c.output.gauges.empty() && mpi::ranks() == 1) {
+    gauges = std::make_unique<GaugeWriter>(sim->model().mesh, c.output, dir, c.end_time);
+    sim->add_observer(gauges.get(), "output:gauges");
+  }
   // Interpenetration at every frame, independent of the contact code (bodies ≥ 2, or
   // particles: a particle may not be inside any body). Distributed: measured by every rank
   // alike, for its piece's nodes.
@@ -195,8 +224,9 @@ int run_case(const RunOptions& o) {
   // The other ranks end with rank 0's code (a missed check is known to rank 0 alone).
   if (!root) return std::stoi(mpi::broadcast("", 0));
   try {
-    code = report_run(o, c, *sim, writer,
-                      {dir, status, code, seconds_since(t0), communication, warnings, &references});
+    code = report_run(
+        o, c, *sim, writer,
+        {dir, status, code, seconds_since(t0), communication, warnings, &references, gauges.get()});
   } catch (...) {
     mpi::broadcast("1", 0);
     throw;
@@ -212,6 +242,7 @@ int report_run(const RunOptions& o, const Case& c, const Simulation& sim, Output
                RunRecord run) {
   int code = run.code;
   writer.close();
+  if (run.gauges) run.gauges->close();
   RunSummary summary = summarize(c, sim, writer, run.status, run.wall);
   summary.out_dir = run.dir;
   summary.warnings = run.warnings;
@@ -235,6 +266,12 @@ int report_run(const RunOptions& o, const Case& c, const Simulation& sim, Output
     summary.references = run.references->finish(sim.model(), sim.state(), sim.run_figures());
     if (o.check && !references_pass(summary)) code = 1;
   }
+  if (c.shield_equation.declared) {
+    summary.shield_equation = judge_shield_equation(c, summary.references);
+    if (!summary.shield_equation->note.empty())
+      std::cerr << "tetcontact: note: " << summary.shield_equation->note << "\n";
+  }
+  if (!c.mesh_study.cells_across.empty()) summary.mesh_study = c.mesh_study;
   write_file_atomic(run.dir + "/summary.json", summary_json(summary).dump(2) + "\n");
   if (!o.quiet || code != 0) print_table(summary);
   if (o.check && code != 0 && run.status == "ok")

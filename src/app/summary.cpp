@@ -457,7 +457,76 @@ Json expect_json(const std::vector<ExpectResult>& expect) {
   return list;
 }
 
+std::vector<std::string> shield_notes(const Case& c) {
+  std::vector<std::string> out;
+  if (c.shield_equation.declared) {
+    const WhippleShot& shot = c.shield_equation.shot;
+    out.push_back(describe(shot, christiansen_verdict(shot)));
+  }
+  if (c.mesh_study.coarser()) {
+    std::string cells;
+    for (const MeshStudySpec::Resolution& r : c.mesh_study.cells_across)
+      if (r.run < r.file * (1.0 - 1e-9))
+        cells += (cells.empty() ? "" : ", ") + r.name + " " + fmt(r.run, "%.3g") + " (the file's " +
+                 fmt(r.file, "%.3g") + ")";
+    out.push_back("cells coarser than the case file's own (cells across: " + cells +
+                  "): " + c.mesh_study.note);
+  }
+  return out;
+}
+
+RunSummary::ShieldEquation judge_shield_equation(const Case& c,
+                                                 const std::vector<ReferenceResult>& refs) {
+  RunSummary::ShieldEquation e;
+  e.shot = c.shield_equation.shot;
+  e.equation = christiansen_verdict(e.shot);
+  e.verdict = c.shield_equation.verdict;
+  for (const ReferenceResult& r : refs)
+    if (r.spec->name == e.verdict && r.error.empty()) e.engine_perforated = r.measured >= 0.5;
+  if (e.engine_perforated && *e.engine_perforated != e.equation.perforated) {
+    const std::string d = fmt(e.shot.diameter * 1e3, "%.2f") + " mm",
+                      dc = fmt(e.equation.critical_diameter * 1e3, "%.2f") + " mm";
+    e.note = *e.engine_perforated
+                 ? "the engine and Christiansen's equation disagree: the engine perforates the "
+                   "wall, the equation has it stop the " +
+                       d + " sphere (critical diameter " + dc + ")"
+                 : "the engine and Christiansen's equation disagree: the engine's wall holds, "
+                   "the equation has the " +
+                       d + " sphere perforate it (critical diameter " + dc +
+                       "); the engine's debris of point masses is known to call perforated "
+                       "shields safe (docs/validation/whipple.md measures how often)";
+  }
+  return e;
+}
+
 namespace {
+
+Json shield_equation_json(const RunSummary::ShieldEquation& e) {
+  Json j = Json::object();
+  j["equation"] = "Christiansen (1993), Whipple shield";
+  j["regime"] = shield_regime_name(e.equation.regime);
+  j["critical_diameter"] = e.equation.critical_diameter;
+  j["diameter"] = e.shot.diameter;
+  j["speed"] = e.shot.speed;
+  j["obliquity"] = e.shot.obliquity_deg;
+  j["perforated"] = e.equation.perforated;
+  j["engine_verdict"] = e.verdict;
+  j["engine_perforated"] = e.engine_perforated ? Json(*e.engine_perforated) : Json();
+  j["agree"] = e.engine_perforated ? Json(*e.engine_perforated == e.equation.perforated) : Json();
+  j["note"] = e.note.empty() ? Json() : Json(e.note);
+  return j;
+}
+
+Json mesh_study_json(const MeshStudySpec& m) {
+  Json j = Json::object();
+  j["coarser"] = m.coarser();
+  Json cells = Json::object();
+  for (const MeshStudySpec::Resolution& r : m.cells_across)
+    cells[r.name] = Json{{"run", r.run}, {"case_file", r.file}};
+  j["cells_across"] = cells;
+  j["note"] = m.coarser() ? Json(m.note) : Json();
+  return j;
+}
 
 Json references_json(const RunSummary& s) {
   Json list = Json::array();
@@ -539,6 +608,8 @@ Json summary_json(const RunSummary& s) {
     j["references"] = references_json(s);
     j["references_pass"] = references_pass(s);
   }
+  if (s.shield_equation) j["shield_equation"] = shield_equation_json(*s.shield_equation);
+  if (s.mesh_study) j["mesh_study"] = mesh_study_json(*s.mesh_study);
   return j;
 }
 
@@ -621,6 +692,15 @@ void print_table(const RunSummary& s) {
   os << "\n  output     " << s.out_dir << "/ (case.pvd with " << s.frames
      << " frames, history.csv, summary.json)\n";
   print_references(s.references, os);
+  if (const auto& e = s.shield_equation) {
+    os << format("  equation   %-28s critical diameter %.3g mm (%s): %s", "Christiansen",
+                 e->equation.critical_diameter * 1e3, shield_regime_name(e->equation.regime),
+                 e->equation.perforated ? "perforated" : "not perforated");
+    if (e->engine_perforated)
+      os << (*e->engine_perforated == e->equation.perforated ? ", as the engine"
+                                                             : ", the engine DISAGREES");
+    os << "\n";
+  }
   print_expect(s.expect, os);
   std::cout << os.str();
 }

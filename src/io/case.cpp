@@ -13,24 +13,26 @@
 namespace tc {
 namespace case_file {
 
-// The case's `parameters:`, each a number or an expression over the ones before it,
-// and every scalar of the case that starts with '=' replaced by its expression's value (printed
-// to round-trip), before anything else reads the case.
-std::vector<std::pair<std::string, double>> substitute_parameters(const Reader& r,
-                                                                  YAML::Node root) {
+// A scalar of the case that starts with '=': its expression's value over `names`.
+double expression_value(const Reader& r, const YAML::Node& n, const std::string& path,
+                        const std::map<std::string, double>& names) {
+  const std::string s = n.Scalar();
+  try {
+    return evaluate_expression(s.substr(1), names);
+  } catch (const ExpressionError& e) {
+    r.fail(n, path, "expression '" + s + "': " + e.what());
+  }
+}
+
+bool is_expression(const YAML::Node& n) {
+  return n.IsScalar() && !n.Scalar().empty() && n.Scalar()[0] == '=';
+}
+
+// The case's `parameters:`, each a number or an expression over the ones before it.
+std::vector<std::pair<std::string, double>> parameter_values(const Reader& r,
+                                                             const YAML::Node& root) {
   std::vector<std::pair<std::string, double>> out;
   std::map<std::string, double> names;
-  const auto value = [&](const YAML::Node& n, const std::string& path) {
-    const std::string s = n.Scalar();
-    try {
-      return evaluate_expression(s.substr(1), names);
-    } catch (const ExpressionError& e) {
-      r.fail(n, path, "expression '" + s + "': " + e.what());
-    }
-  };
-  const auto is_expression = [](const YAML::Node& n) {
-    return n.IsScalar() && !n.Scalar().empty() && n.Scalar()[0] == '=';
-  };
   if (const YAML::Node p = root["parameters"]) {
     r.map(p, "parameters");
     for (auto it = p.begin(); it != p.end(); ++it) {
@@ -42,12 +44,24 @@ std::vector<std::pair<std::string, double>> substitute_parameters(const Reader& 
           });
       if (!identifier || name == "pi" || name == "deg")
         r.fail(it->first, path, "a parameter's name must be an identifier other than pi and deg");
-      const double v =
-          is_expression(it->second) ? value(it->second, path) : r.number(it->second, path);
+      const double v = is_expression(it->second) ? expression_value(r, it->second, path, names)
+                                                 : r.number(it->second, path);
       names[name] = v;
       out.emplace_back(name, v);
     }
   }
+  return out;
+}
+
+// The case's parameters, and every scalar of the case that starts with '=' replaced by its
+// expression's value (printed to round-trip), before anything else reads the case.
+std::vector<std::pair<std::string, double>> substitute_parameters(const Reader& r,
+                                                                  YAML::Node root) {
+  const std::vector<std::pair<std::string, double>> out = parameter_values(r, root);
+  const std::map<std::string, double> names(out.begin(), out.end());
+  const auto value = [&](const YAML::Node& n, const std::string& path) {
+    return expression_value(r, n, path, names);
+  };
   const std::function<void(YAML::Node, const std::string&)> walk = [&](YAML::Node n,
                                                                        const std::string& path) {
     if (n.IsMap()) {
@@ -137,6 +151,7 @@ Case load_case(const std::string& path, const std::vector<std::string>& override
   YAML::Node root = load_yaml(path, "case file");
   if (!root || root.IsNull()) throw CaseError(path + ": empty case file");
   check_parameter_overrides(root, path, overrides);
+  const YAML::Node as_written = YAML::Clone(root);  // the file's own values (mesh_study)
   std::set<std::string> overridden;
   for (const std::string& o : overrides) overridden.insert(apply_override(root, path, o));
 
@@ -145,9 +160,28 @@ Case load_case(const std::string& path, const std::vector<std::string>& override
   Case c;
   c.file = path;
   r.keys(root, "",
-         {"name", "description", "parameters", "end_time", "end_when_released", "solver",
-          "material_library", "materials", "bodies", "boundary_conditions", "walls", "symmetry",
-          "output", "reference", "contact", "fracture", "expect", "diagnostics", "campaign"});
+         {"name",
+          "description",
+          "parameters",
+          "end_time",
+          "end_when_released",
+          "solver",
+          "material_library",
+          "materials",
+          "bodies",
+          "boundary_conditions",
+          "walls",
+          "symmetry",
+          "output",
+          "reference",
+          "contact",
+          "fracture",
+          "expect",
+          "diagnostics",
+          "campaign",
+          "shield_equation",
+          "mesh_study",
+          "gauges"});
   c.parameters = substitute_parameters(r, root);
   c.name = root["name"] ? r.string(root["name"], "name") : fs::path(path).stem().string();
   if (root["description"]) c.description = r.string(root["description"], "description");
@@ -161,6 +195,7 @@ Case load_case(const std::string& path, const std::vector<std::string>& override
   read_symmetry(r, root, c);
   read_references(r, root, c);
   read_output(r, root, c);
+  read_gauges(r, root, c);
   read_contact(r, root, c);
   if (const YAML::Node d = root["diagnostics"]) {
     r.keys(d, "diagnostics", {"every_step"});
@@ -183,6 +218,8 @@ Case load_case(const std::string& path, const std::vector<std::string>& override
   }
   read_expect(r, root, c);
   read_campaign(r, root, c);
+  read_shield_equation(r, root, c);
+  read_mesh_study(r, root, as_written, c);
   if (c.fracture &&
       std::find(c.output.fields.begin(), c.output.fields.end(), "damage") == c.output.fields.end())
     c.output.fields.push_back("damage");  // what fracture adds is always shown

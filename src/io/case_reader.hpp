@@ -8,6 +8,7 @@
 #include <charconv>
 #include <cmath>
 #include <filesystem>
+#include <map>
 #include <optional>
 #include <set>
 #include <sstream>
@@ -184,6 +185,14 @@ Region parse_region(const Reader& r, const YAML::Node& n, const std::string& pat
 Material parse_material(const Reader& r, const YAML::Node& m, const std::string& p,
                         const YAML::Node* at = nullptr);
 
+// Parameters and expressions (case.cpp): a '='-scalar's value over `names`; the parameters'
+// values in file order.
+bool is_expression(const YAML::Node& n);
+double expression_value(const Reader& r, const YAML::Node& n, const std::string& path,
+                        const std::map<std::string, double>& names);
+std::vector<std::pair<std::string, double>> parameter_values(const Reader& r,
+                                                             const YAML::Node& root);
+
 // The sections, in the order load_case reads them (case.cpp).
 std::vector<std::pair<std::string, double>> substitute_parameters(const Reader& r, YAML::Node root);
 void read_solver(const Reader& r, const YAML::Node& root, Case& c);  // case_solver
@@ -196,9 +205,14 @@ void read_walls(const Reader& r, const YAML::Node& root, Case& c);              
 void read_symmetry(const Reader& r, const YAML::Node& root, Case& c);             // case_bodies
 void read_references(const Reader& r, const YAML::Node& root, Case& c);           // case_references
 void read_output(const Reader& r, const YAML::Node& root, Case& c);               // case_solver
+void read_gauges(const Reader& r, const YAML::Node& root, Case& c);               // case_solver
 void read_contact(const Reader& r, const YAML::Node& root, Case& c);              // case_contact
 void read_fracture(const Reader& r, const YAML::Node& root, Case& c);             // case_contact
 void read_expect(const Reader& r, const YAML::Node& root, Case& c);               // case_references
 void read_campaign(const Reader& r, const YAML::Node& root, Case& c);             // case_campaign
+void read_shield_equation(const Reader& r, const YAML::Node& root, Case& c);      // case_shield
+// `as_written`: the file before its overrides, for the cells the file itself gives.
+void read_mesh_study(const Reader& r, const YAML::Node& root, const YAML::Node& as_written,
+                     Case& c);  // case_shield
 
 }  // namespace tc::case_file

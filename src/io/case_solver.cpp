@@ -81,6 +81,36 @@ void read_output(const Reader& r, const YAML::Node& root, Case& c) {
   }
 }
 
+// `gauges:`: {interval, points: [{name, at, follows}]}.
+void read_gauges(const Reader& r, const YAML::Node& root, Case& c) {
+  const YAML::Node g = root["gauges"];
+  if (!g) return;
+  r.map(g, "gauges");
+  r.keys(g, "gauges", {"interval", "points"});
+  if (g["interval"]) c.output.gauge_interval = r.positive(g["interval"], "gauges.interval", "s");
+  r.each(r.require(g, "gauges", "points"), "gauges.points", "gauges",
+         [&](const YAML::Node& n, const std::string& p) {
+           r.keys(n, p, {"name", "at", "follows"});
+           GaugeSpec s;
+           s.name = r.string(r.require(n, p, "name"), join(p, "name"));
+           if (s.name.empty() || s.name.find_first_of(",\"\n") != std::string::npos)
+             r.fail(n["name"], join(p, "name"),
+                    "a gauge's name names its columns in gauges.csv: not empty, no comma, "
+                    "quote or line break");
+           for (const GaugeSpec& other : c.output.gauges)
+             if (other.name == s.name)
+               r.fail(n["name"], join(p, "name"), "two gauges named '" + s.name + "'");
+           s.position = r.vec3(r.require(n, p, "at"), join(p, "at"));
+           if (const YAML::Node f = n["follows"]) {
+             const std::string v = r.string(f, join(p, "follows"));
+             if (v != "material" && v != "space")
+               r.fail(f, join(p, "follows"), "follows must be material or space, got '" + v + "'");
+             s.follows_material = v == "material";
+           }
+           c.output.gauges.push_back(s);
+         });
+}
+
 }  // namespace case_file
 
 using namespace case_file;

@@ -131,4 +131,43 @@ void OutputWriter::close() {
   if (history_) history_->commit();
 }
 
+GaugeWriter::GaugeWriter(const Mesh& mesh, const OutputSpec& spec, const std::string& dir,
+                         double end_time)
+    : gauges_(mesh, spec.gauges),
+      interval_(spec.gauge_interval),
+      end_time_(end_time),
+      file_(dir + "/gauges.csv") {
+  auto& h = file_.stream();
+  h << "step,t";
+  for (const GaugeSpec& g : gauges_.specs())
+    for (const char* q : {"x", "y", "z", "vx", "vy", "vz", "pressure", "sxx", "syy", "szz", "sxy",
+                          "syz", "sxz", "plastic_strain", "temperature", "damage"})
+      h << ',' << g.name << ':' << q;
+  h << '\n';
+}
+
+void GaugeWriter::observe(const State& st, const Sample& s) {
+  const bool final = s.final || s.t >= end_time_;
+  if (!(interval_ == 0.0 || s.t >= next_ - 1e-9 * interval_ || final)) return;
+  if (interval_ > 0.0)
+    while (next_ <= s.t + 1e-9 * interval_) next_ += interval_;
+  auto& h = file_.stream();
+  h << s.step << ',' << format_double(s.t);
+  for (const GaugeReading& r : gauges_.read(st)) {
+    if (r.cell < 0) {  // no cell holds the point: not measured
+      h << std::string(16, ',');
+      continue;
+    }
+    for (int i = 0; i < 3; ++i) h << ',' << format_double(r.x[i]);
+    for (int i = 0; i < 3; ++i) h << ',' << format_double(r.v[i]);
+    h << ',' << format_double(r.pressure);
+    for (const auto& [i, j] : {std::pair{0, 0}, {1, 1}, {2, 2}, {0, 1}, {1, 2}, {0, 2}})
+      h << ',' << format_double(r.stress(i, j));
+    h << ',' << format_double(r.plastic_strain) << ',' << format_double(r.temperature) << ','
+      << static_cast<int>(r.damage);
+  }
+  h << '\n';
+  ++rows_;
+}
+
 }  // namespace tc

@@ -5,7 +5,8 @@ namespace tc::test {
 
 // An aluminium ball (4 mm) onto an aluminium plate of thickness tb, coarse: it perforates a
 // 1 mm plate from between 1,000 and 1,400 m/s (single runs: not at 1,000, perforated at 1,400;
-// a 2 mm plate not at 1,400), each run under a second.
+// a 2 mm plate not at 1,400), each run under a second. Christiansen's equation stands beside it
+// as if the plate were the bumper of a Whipple shield with a 2 mm wall 30 mm behind.
 inline constexpr const char* k_plate = R"yaml(name: limit-plate
 parameters:
   v: 1000
@@ -32,6 +33,16 @@ reference:
     body: plate
     plane: {point: [0, 0, "= -tb"], normal: [0, 0, -1]}
     within: 6.0e-3
+shield_equation:
+  projectile: ball
+  bumper: plate
+  diameter: 4.0e-3
+  speed: "= v"
+  bumper_thickness: "= tb"
+  standoff: 30.0e-3
+  wall_thickness: 2.0e-3
+  wall_yield: 276.0e6
+  verdict: plate perforated
 )yaml";
 
 }  // namespace tc::test

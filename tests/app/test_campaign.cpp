@@ -11,6 +11,7 @@
 #include "../test_util.hpp"
 #include "plate_case.hpp"
 #include "tetcontact/app/runs.hpp"
+#include "tetcontact/io/case.hpp"
 
 using namespace tc;
 
@@ -358,6 +359,29 @@ campaign:
   EXPECT_EQ(all["confusion"]["NP"]["P"].get<int>(), 1);
   EXPECT_EQ(all["confusion"]["P"]["P"].get<int>(), 1);
   EXPECT_EQ(all["confusion"]["P"]["NP"].get<int>(), 0);
+  // Christiansen's equation beside the engine, on each row's shot: its critical diameter, its
+  // verdict and whether it is right; its accuracy over the rows.
+  int equation_right = 0;
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    const tc::Case c =
+        tc::load_case(dir / "plate.yaml", {"parameters.v=" + rows[i].at("parameters.v")});
+    const tc::ShieldEquationVerdict e = tc::christiansen_verdict(c.shield_equation.shot);
+    EXPECT_NEAR(std::stod(rows[i].at("equation:critical_diameter")), e.critical_diameter,
+                1e-6 * e.critical_diameter);
+    EXPECT_EQ(rows[i].at("equation:plate perforated"), e.perforated ? "P" : "NP");
+    const bool right = (e.perforated ? "P" : "NP") == rows[i].at("measured:plate perforated");
+    EXPECT_EQ(rows[i].at("right:equation"), right ? "1" : "0");
+    equation_right += right;
+    // The run's summary: both verdicts, and a note exactly when they disagree.
+    const test::Json s = test::read_json(
+        dir / ("out/runs/" + rows[i].at("folder") + "/summary.json"))["shield_equation"];
+    const bool engine = rows[i].at("predicted:plate perforated") == "P";
+    EXPECT_EQ(s["engine_perforated"].get<bool>(), engine);
+    EXPECT_EQ(s["perforated"].get<bool>(), e.perforated);
+    EXPECT_EQ(s["agree"].get<bool>(), engine == e.perforated);
+    EXPECT_EQ(s["note"].is_string(), engine != e.perforated) << s.dump();
+  }
+  EXPECT_NEAR(all["equation_accuracy"].get<double>(), equation_right / 3.0, 1e-12);
   // A verdict that is no category: the row and the column.
   test::write_text(dir / "odd.csv", "velocity,result\nkm/s,-\n1.0,maybe\n");
   const auto odd = test::run_cli(

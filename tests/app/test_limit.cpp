@@ -11,6 +11,7 @@
 
 #include "../test_util.hpp"
 #include "plate_case.hpp"
+#include "tetcontact/io/case.hpp"
 
 using namespace tc;
 
@@ -19,7 +20,7 @@ namespace {
 namespace fs = std::filesystem;
 
 struct Line {
-  std::string vary, lo, hi, at_lo, at_hi, status;
+  std::string vary, lo, hi, at_lo, at_hi, status, equation_lo, equation_hi;
   int runs = 0, reused = 0;
   double wall_seconds = 0.0, run_seconds = 0.0;
 };
@@ -55,6 +56,8 @@ std::vector<Line> read_limit(const std::string& path, bool vary) {
     l.wall_seconds = std::stod(at("wall_seconds"));
     l.run_seconds = std::stod(at("run_seconds"));
     l.status = at("status");
+    l.equation_lo = at("equation_critical_diameter_lo");
+    l.equation_hi = at("equation_critical_diameter_hi");
     out.push_back(l);
   }
   return out;
@@ -103,6 +106,15 @@ TEST(Limit, BracketsThePerforationSpeed) {
     // takes less than their sum (each run is seconds; starting one costs milliseconds).
     EXPECT_GT(l.wall_seconds, 0.0);
     EXPECT_LT(l.wall_seconds, l.run_seconds);
+    // Christiansen's critical diameter beside the bracket, for the shots at its two ends.
+    for (const auto& [v, written] : {std::pair{l.lo, l.equation_lo}, {l.hi, l.equation_hi}}) {
+      const Case c =
+          load_case(dir / "plate.yaml", {"parameters.tb=" + l.vary, "parameters.v=" + v});
+      EXPECT_NEAR(std::stod(written), christiansen_critical_diameter(c.shield_equation.shot),
+                  1e-8 * std::stod(written))
+          << v;
+    }
+    EXPECT_GT(std::stod(l.equation_lo), std::stod(l.equation_hi));  // faster: a smaller sphere
   }
   EXPECT_GE(std::stod(lines[0].lo), 1000.0);  // 1 mm: from between 1,000 and 1,400 m/s
   EXPECT_LE(std::stod(lines[0].hi), 1400.0);

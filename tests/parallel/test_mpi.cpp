@@ -124,6 +124,10 @@ TEST(Mpi, PiecesAndPvtuOpenInVtksReader) {
   for (const char* piece : {"frame_0001_r0.vtu", "frame_0001_r1.vtu", "frame_0001_r2.vtu"})
     EXPECT_TRUE(fs::exists(out + "/" + piece)) << piece;
   EXPECT_FALSE(fs::exists(out + "/frame_0001.vtu"));
+  // The case's gauge is not recorded by several ranks, and the run says so.
+  EXPECT_FALSE(fs::exists(out + "/gauges.csv"));
+  EXPECT_NE(test::read_text(out + "/summary.json").find("a distributed run does not record"),
+            std::string::npos);
   EXPECT_EQ(check_vtu("'" + out + "'"), 0);
   // The checks can fail: a piece missing.
   fs::remove(out + "/frame_0001_r1.vtu");

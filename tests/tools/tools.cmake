@@ -36,6 +36,7 @@ tetcontact_tool_test(tools_make_sample_msh test_make_sample_msh.py)
 # tools/common/
 tetcontact_tool_test(tools_christiansen test_christiansen.py)   # the published equations
 tetcontact_tool_test(tools_summary_keys test_summary_keys.py)   # the keys in real summaries
+tetcontact_tool_test(tools_missing_modules test_missing_modules.py)   # a package named, no traceback
 # All of tools/ and tests/tools/: no tracker numbers or shorthand.
 tetcontact_tool_test(tools_wording test_wording.py)
 

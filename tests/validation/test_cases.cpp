@@ -406,6 +406,25 @@ TEST(Validation, CubesEdgeOnAndOff) {
   EXPECT_EQ(test::number(on, "/penetration/max_nodes_inside"), 0) << on;
 }
 
+// What the cubes do after the paper's 20 µs: at 20 µs they are still pressed together and
+// closing (measured: the left cube at −167.9 m/s, the right at −232.1 m/s along x); the contact
+// ends before 30 µs and they part, the left ahead of the right (at 60 µs −218.4 and −181.6
+// m/s). Without contact the right cube flies on through the left at 400 m/s and never parts.
+TEST(Validation, CubesStillCloseAt20MicrosecondsAndPartBefore60) {
+  const std::string refs =
+      "reference=[{name: left, measure: velocity, body: left, axis: x},"
+      " {name: right, measure: velocity, body: right, axis: x}]";
+  const test::CaseRun at20 = test::run_case("data/cases/cubes-edge.yaml", {refs}),
+                      at60 =
+                          test::run_case("data/cases/cubes-edge.yaml", {"end_time=60.0e-6", refs});
+  EXPECT_LT(at20.measured("right"), at20.measured("left") - 10.0);  // still closing
+  EXPECT_GT(at60.measured("right"), at60.measured("left") + 10.0);  // parted
+  EXPECT_GT(at60.last_push, 20.0e-6);
+  EXPECT_LT(at60.last_push, 40.0e-6);
+  // Equal masses: the mean velocity is the initial −200 m/s throughout.
+  EXPECT_NEAR(at60.measured("left") + at60.measured("right"), -400.0, 1e-6);
+}
+
 // The paper's cylinders (Fig. 4) on a coarse mesh (8 × 8 cells for the target, 4 × 4 for the
 // impactor, 2.5 mm cells): without edge–edge contact the impactor's spreading rim crosses the
 // target's face by a tenth of a cell; with it, crossings are held below 1 % of a cell (0.24 µm

@@ -16,8 +16,13 @@ import struct
 import subprocess
 import sys
 
-import vtk
-from vtk.util.numpy_support import vtk_to_numpy
+if not __package__:  # run by path: the repository root on sys.path, for `tools.*`
+    sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))))
+
+import tools.common  # noqa: E402,F401 (first: a missing module is said plainly)
+
+import vtk  # noqa: E402
+from vtk.util.numpy_support import vtk_to_numpy  # noqa: E402
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 

@@ -22,12 +22,12 @@ import re
 import sys
 import xml.etree.ElementTree as ET
 
-import numpy as np
-
 if not __package__:  # run by path: the repository root on sys.path, for `tools.*`
     sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))))
 
 from tools.common import summary_keys as K  # noqa: E402
+
+import numpy as np  # noqa: E402 (after tools.common: a missing module is said plainly)
 
 PAPER_TIMES = [0.0, 0.25e-6, 0.4e-6, 0.6e-6, 0.95e-6, 4.0e-6]  # s, the paper's Fig. 5 frames
 

@@ -31,15 +31,14 @@ import subprocess
 import sys
 import xml.etree.ElementTree as ET
 
-import numpy as np
-
 if not __package__:  # run by path: the repository root on sys.path, for `tools.*`
     sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))))
 
+from tools.common import summary_keys as K  # noqa: E402
+
+import numpy as np  # noqa: E402 (after tools.common: a missing module is said plainly)
 import vtk  # noqa: E402
 from vtk.util.numpy_support import vtk_to_numpy  # noqa: E402
-
-from tools.common import summary_keys as K  # noqa: E402
 
 checks = {"passed": 0, "failed": 0}
 

@@ -30,12 +30,12 @@ import sys
 import xml.etree.ElementTree as ET
 import zlib
 
-import numpy as np
-
 if not __package__:  # run by path: the repository root on sys.path, for `tools.*`
     sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))))
 
 from tools.common import summary_keys as K  # noqa: E402
+
+import numpy as np  # noqa: E402 (after tools.common: a missing module is said plainly)
 
 PALETTE = [(70, 110, 190), (120, 180, 90), (220, 170, 60), (150, 100, 180), (80, 170, 170)]
 OVERLAP = (220, 30, 30)

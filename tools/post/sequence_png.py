@@ -25,12 +25,12 @@ import os
 import re
 import sys
 
-import numpy as np
-
 if not __package__:  # run by path: the repository root on sys.path, for `tools.*`
     sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))))
 
 from tools.post import section_png as sp  # noqa: E402
+
+import numpy as np  # noqa: E402 (after tools.common: a missing module is said plainly)
 
 
 def fail(msg):

@@ -116,7 +116,25 @@ struct RunSummary {
   // The case's checks: its bounds (each failing when the run did not end ok) and references.
   std::vector<ExpectResult> expect;
   std::vector<ReferenceResult> references;
+  // The case's shield equation beside the engine's verdict (none when the case declares none).
+  struct ShieldEquation {
+    WhippleShot shot;
+    ShieldEquationVerdict equation;
+    std::string verdict;                    // the `reference:` entry set against it
+    std::optional<bool> engine_perforated;  // none: the run did not measure it
+    std::string note;                       // when the two disagree, what to make of it
+  };
+  std::optional<ShieldEquation> shield_equation;
+  std::optional<MeshStudySpec> mesh_study;  // the case's, with the run's and the file's cells
 };
+
+/// What a run says before it starts of its case's shot and cells: Christiansen's verdict
+/// (`shield_equation:`) and, on cells coarser than the file's own, the mesh study's note.
+std::vector<std::string> shield_notes(const Case& c);
+
+/// The equation's verdict beside the engine's, once the references are measured.
+RunSummary::ShieldEquation judge_shield_equation(const Case& c,
+                                                 const std::vector<ReferenceResult>& refs);
 
 /// Everything but the case's checks and the regimes, from the run as it ended.
 RunSummary summarize(const Case& c, const Simulation& sim, const OutputWriter& writer,

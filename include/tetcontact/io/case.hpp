@@ -8,7 +8,9 @@
 #include <string>
 #include <vector>
 
+#include "tetcontact/diagnostics/gauges.hpp"
 #include "tetcontact/diagnostics/reference.hpp"
+#include "tetcontact/diagnostics/shield_equation.hpp"
 #include "tetcontact/io/vtk.hpp"
 #include "tetcontact/material/material.hpp"
 #include "tetcontact/mesh/mesh.hpp"
@@ -85,6 +87,10 @@ struct BoundarySpec {
 
 struct OutputSpec {
   double interval = 0.0;  // simulated seconds between frames
+  /// `gauges:`: the points recorded to gauges.csv (diagnostics/gauges.hpp), a row at the first
+  /// step at or after each multiple of gauge_interval (0: every step) and at the end.
+  std::vector<GaugeSpec> gauges;
+  double gauge_interval = 0.0;
   std::vector<std::string> fields;
   long history_every = 1;                // steps between history rows
   VtuFormat format = VtuFormat::binary;  // how the frames' arrays are stored
@@ -132,6 +138,34 @@ struct CampaignSpec {
   std::vector<std::string> group_by;  // columns whose values split the statistics
 };
 
+/// `shield_equation:`: Christiansen's equation for the case's Whipple-shield shot
+/// (diagnostics/shield_equation.hpp), printed at the start of a run and written to its summary
+/// beside the verdict of the `reference:` entry it names, with a note when the two disagree.
+struct ShieldEquationSpec {
+  bool declared = false;
+  WhippleShot shot;  // the densities are the named bodies' materials'
+  std::string projectile_body, bumper_body;
+  std::string verdict;  // a `reference:` entry of measure perforated
+};
+
+/// `mesh_study:`: what a mesh study measured moving on cells coarser than the case's own, said
+/// by a run whose cells are coarser. Each `cells_across` entry (a name and an expression, as
+/// "cells through the bumper: = tb / hb") is evaluated with the run's parameters and with the
+/// file's own (no override); the run is coarser when any has fewer with the run's.
+struct MeshStudySpec {
+  struct Resolution {
+    std::string name;
+    double run = 0.0, file = 0.0;  // cells across, with the run's parameters and the file's
+  };
+  std::vector<Resolution> cells_across;
+  std::string note;
+  bool coarser() const {
+    for (const Resolution& r : cells_across)
+      if (r.run < r.file * (1.0 - 1e-9)) return true;
+    return false;
+  }
+};
+
 struct Case {
   std::string file;  // path as given
   std::string name;
@@ -176,6 +210,8 @@ struct Case {
   /// (at the end), in the order given.
   std::vector<std::pair<std::string, double>> expect;
   CampaignSpec campaign;
+  ShieldEquationSpec shield_equation;
+  MeshStudySpec mesh_study;
 
   const Material& material(const std::string& name) const;
 };

@@ -8,6 +8,7 @@
 #include <utility>
 #include <vector>
 
+#include "tetcontact/diagnostics/gauges.hpp"
 #include "tetcontact/diagnostics/penetration.hpp"
 #include "tetcontact/io/case.hpp"
 #include "tetcontact/io/files.hpp"
@@ -68,6 +69,27 @@ class OutputWriter : public Observer {
   std::vector<std::pair<double, std::string>> frames_, particle_frames_;
   PenetrationProbe* probe_ = nullptr;
   Penetration penetration_max_, penetration_last_;
+};
+
+/// gauges.csv: per row the step and time, then per gauge (columns "NAME:quantity") its
+/// position, velocity, the cell's pressure, Cauchy stress, plastic strain, temperature and
+/// damage (0 intact, 1 damaged, 2 destroyed, 3 a particle); empty where no cell holds a space
+/// gauge's point. A row at the first step at or after each multiple of the interval (0: every
+/// step) and at the end. One process only: the cells' fields of a distributed run are each
+/// rank's.
+class GaugeWriter : public Observer {
+ public:
+  GaugeWriter(const Mesh& mesh, const OutputSpec& spec, const std::string& dir, double end_time);
+  void observe(const State& st, const Sample& sample) override;
+  /// Moves gauges.csv into place (also after a failed run: its rows are true data).
+  void close() { file_.commit(); }
+  long rows() const { return rows_; }
+
+ private:
+  Gauges gauges_;
+  double interval_, end_time_, next_ = 0.0;
+  AtomicFile file_;
+  long rows_ = 0;
 };
 
 }  // namespace tc
