@@ -6,7 +6,9 @@
     tools/dev/     developer aids: frames at scale, random CCD queries, run comparisons,
                    sample Gmsh meshes
     tools/common/  what the tools share: the summary.json / history.csv key names
-                   (summary_keys) and Christiansen's Whipple shield equations (christiansen)
+                   (summary_keys), Christiansen's Whipple shield equations (christiansen), what
+                   a figure draws as numbers for the tests (figure_data), and a missing
+                   third-party module said with its Debian package (on import)
 
 Every script runs by path (`/usr/bin/python3 tools/post/check_vtu.py ...`) and as a module from
 the repository root (`python3 -m tools.post.check_vtu ...`). A script run by path finds the

@@ -598,7 +598,15 @@ TEST(Material, SteinbergGuinanShortcutsAgreeWithTheFullComputation) {
     const double eq = f * y_full;
     const PlasticIncrement r = plastic_increment(m, eq, eps, 1e-8, temperature, rho, p);
     EXPECT_EQ(r.dplastic > 0.0, eq > y_full) << f;
-    EXPECT_GE(r.yield, r.dplastic > 0.0 ? 0.0 : eq) << f;  // an elastic step scales nothing
+    if (r.dplastic > 0.0) {
+      // The return: on the trial stress's radial line, eq − 3G Δε̄p, and between the yield it
+      // started from and the trial stress (the law hardens with ε̄p).
+      EXPECT_NEAR(r.yield, eq - 3.0 * ss.g * r.dplastic, 1e-12 * eq) << f;
+      EXPECT_GE(r.yield, y_full * (1.0 - 1e-12)) << f;
+      EXPECT_LE(r.yield, eq) << f;
+    } else {
+      EXPECT_GE(r.yield, eq) << f;  // an elastic step scales nothing
+    }
   }
   // Molten above T_m(η), not just below it, whether or not the bound decided.
   for (double e : {0.97, 1.0, 1.1}) {

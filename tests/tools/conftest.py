@@ -13,6 +13,15 @@ import pytest
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 PYTHON = "/usr/bin/python3"  # Debian's, with numpy, vtk9 and matplotlib
+# The plot tools write what they draw beside each PNG (tools/common/figure_data.py): read it
+# with figure().
+os.environ["TETCONTACT_FIGURE_DATA"] = "1"
+
+
+def figure(png):
+    """What the figure OUT.png draws, as tools/common/figure_data.py writes it."""
+    with open(png + ".json") as f:
+        return json.load(f)
 
 
 def case(name):

@@ -5,7 +5,7 @@ through the program itself on real runs."""
 import json
 import os
 
-from conftest import run_tool
+from conftest import figure, run_tool
 
 PREDICTIONS = """row,line,metal,parameters.L,predicted:box length,measured:box length,error:box length,predicted:perforated,measured:perforated,right:perforated,status,wall_seconds,folder
 1,3,Al,0.001,0.001,0.001,0,P,P,1,ok,0.1,row-1_0123456789ab
@@ -37,6 +37,13 @@ def test_numbers_and_categories(out):
     assert r.stdout.splitlines()[0] == "written: " + png
     assert open(png, "rb").read(8) == b"\x89PNG\r\n\x1a\n"
     assert not os.path.exists(png + ".tmp.png")
+    # What is drawn: the numbers measured against computed, a set of points per group (row 3
+    # has no measurement: not drawn), and the confusion table with its counts.
+    numbers, categories = figure(png)["axes"][:2]
+    points = {x["label"]: (x["x"], x["y"]) for x in numbers["lines"] if x["label"] in ("Al", "Cu")}
+    assert points == {"Al": ([0.001], [0.001]), "Cu": ([0.0025], [0.002])}
+    assert categories["images"] == [[[1.0, 1.0], [0.0, 0.0]]]
+    assert sorted(t["text"] for t in categories["texts"]) == ["0", "0", "1", "1"]
 
 
 def test_refusals(out):

@@ -3,7 +3,10 @@ header): the brackets drawn beside Christiansen's curve, brackets not found list
 without --vary and a file that is not a limit.csv refused (exit 2)."""
 import os
 
-from conftest import run_tool
+import pytest
+
+from conftest import figure, run_tool
+from tools.common import christiansen
 
 HEADER = "parameters.v,key,lo,hi,criterion_lo,criterion_hi,runs,reused,wall_seconds,status\n"
 
@@ -21,6 +24,16 @@ def test_brackets_and_missing(out):
     assert open(png, "rb").read(8) == b"\x89PNG\r\n\x1a\n"
     assert "not found: 7000 m/s: no bracket" in r.stdout
     assert sum(1 for x in r.stdout.splitlines() if x.startswith("not found")) == 1
+    # What is drawn: the equation's curve (km/s, mm) and a bar per bracket found, none at 7 km/s.
+    lines = figure(png)["axes"][0]["lines"]
+    curve = [x for x in lines if x["label"].startswith("Christiansen")]
+    assert len(curve) == 1 and len(curve[0]["x"]) > 100
+    for v, d in zip(curve[0]["x"], curve[0]["y"]):
+        assert d == pytest.approx(christiansen.critical_diameter(v * 1e3, 1e-3, 2e-3, 30e-3) * 1e3,
+                                  rel=1e-12)
+    bars = sorted((x["x"], x["y"]) for x in lines if len(x["x"]) == 2 and x["x"][0] == x["x"][1])
+    assert bars == [([3.0, 3.0], [pytest.approx(2.0), pytest.approx(2.5)]),
+                    ([5.0, 5.0], [pytest.approx(1.5), pytest.approx(2.0)])]
 
 
 def test_refusals(out):

@@ -6,7 +6,9 @@ import subprocess
 
 import pytest
 
-from conftest import case, run_tool
+import csv
+
+from conftest import case, figure, run_tool
 
 
 @pytest.fixture(scope="module")
@@ -24,6 +26,15 @@ def test_every_run_plotted(sweep):
     png = os.path.splitext(sweep)[0] + ".png"
     assert open(png, "rb").read(8) == b"\x89PNG\r\n\x1a\n"
     assert f"{png}: 4 runs plotted, 0 left out" in r.stdout
+    # What is drawn: each run's wall time against its |error| and its energy balance, a line
+    # per pass count, as sweep.csv has them.
+    rows = list(csv.DictReader(open(sweep)))
+    drawn_error, drawn_balance = (
+        sorted(p for x in a["lines"] for p in zip(x["x"], x["y"])) for a in figure(png)["axes"])
+    assert drawn_error == sorted((float(r["wall_seconds"]), max(abs(float(r["error"])), 1e-16))
+                                 for r in rows)
+    assert drawn_balance == sorted(
+        (float(r["wall_seconds"]), max(float(r["energy_balance_max"]), 1e-16)) for r in rows)
 
 
 def test_failed_run_left_out(sweep, out):

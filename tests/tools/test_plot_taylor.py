@@ -3,7 +3,7 @@ src/app/campaign.cpp's predictions.csv): two laws drawn side by side to a PNG, a
 material; a folder that is not such a campaign refused (exit 2)."""
 import os
 
-from conftest import run_tool
+from conftest import figure, run_tool
 
 HEADER = ("row,line,material,parameters.D0,parameters.L0,parameters.v,parameters.T0,"
           "parameters.rho,materials.rod,predicted:final length,measured:final length,"
@@ -25,6 +25,20 @@ def test_two_laws(out):
                  check=0)
     assert r.stdout.strip() == "written: " + png
     assert open(png, "rb").read(8) == b"\x89PNG\r\n\x1a\n"
+    # What is drawn, a panel per material: Lf / L0 measured and computed at each speed.
+    panels = {a["title"]: a for a in figure(png)["axes"]}
+    assert sorted(panels) == ["Al 6061-T6", "Cu OFHC"]
+
+    def points(panel):
+        return sorted((x["x"][0], round(x["y"][0], 12)) for x in panels[panel]["lines"]
+                      if len(x["x"]) == 1)
+    al = points("Al 6061-T6")  # measured once, computed by each law
+    assert al == sorted([(227.0, round(0.0102 / 0.0114, 12))]
+                        + 2 * [(227.0, round(0.00985 / 0.0114, 12))])
+    cu = points("Cu OFHC")  # row 3: computed only
+    assert cu == sorted([(190.0, round(0.0171 / 0.0254, 12))]
+                        + 2 * [(190.0, round(0.018 / 0.0254, 12))]
+                        + 2 * [(150.0, round(0.020 / 0.0254, 12))])
 
 
 def test_refusals(out):

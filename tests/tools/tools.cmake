@@ -39,6 +39,8 @@ tetcontact_tool_test(tools_summary_keys test_summary_keys.py)   # the keys in re
 tetcontact_tool_test(tools_missing_modules test_missing_modules.py)   # a package named, no traceback
 # All of tools/ and tests/tools/: no tracker numbers or shorthand.
 tetcontact_tool_test(tools_wording test_wording.py)
+# The manual's command lines: cases checked, options listed, tools' arguments.
+tetcontact_tool_test(docs_commands test_docs_commands.py)
 
 # check_vtu.py's own modes on shipped cases (as tests/parallel/test_mpi.cpp calls it): the .vtu
 # series must open in a real VTK reader (the one ParaView is built on).

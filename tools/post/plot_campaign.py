@@ -15,6 +15,11 @@ import json
 import os
 import sys
 
+if not __package__:  # run by path: the repository root on sys.path, for `tools.*`
+    sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))))
+
+from tools.common import figure_data  # noqa: E402
+
 
 def fail(msg):
     print("plot_campaign.py: error: " + msg, file=sys.stderr)
@@ -113,6 +118,7 @@ def main(argv):
     tmp = out + ".tmp.png"
     fig.savefig(tmp, dpi=100, bbox_inches="tight")
     os.replace(tmp, out)
+    figure_data.save(fig, out)
     print("written: " + out)
     return 0
 

@@ -18,6 +18,7 @@ import sys
 if not __package__:  # run by path: the repository root on sys.path, for `tools.*`
     sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))))
 
+from tools.common import figure_data  # noqa: E402
 from tools.common import christiansen  # noqa: E402
 from tools.common import summary_keys as K  # noqa: E402
 
@@ -85,6 +86,7 @@ def main(argv):
     tmp = out + ".tmp.png"
     fig.savefig(tmp, dpi=110, bbox_inches="tight")
     os.replace(tmp, out)
+    figure_data.save(fig, out)
     print("written: " + out)
     for m in missing:
         print("not found: " + m)

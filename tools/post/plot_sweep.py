@@ -16,6 +16,7 @@ import sys
 if not __package__:  # run by path: the repository root on sys.path, for `tools.*`
     sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))))
 
+from tools.common import figure_data  # noqa: E402
 from tools.common import summary_keys as K  # noqa: E402
 
 
@@ -81,6 +82,7 @@ def main(argv):
     tmp = out + ".tmp.png"
     fig.savefig(tmp, dpi=90)
     os.replace(tmp, out)
+    figure_data.save(fig, out)
     print("%s: %d runs plotted, %d left out (failed or no error)" % (out, len(good), len(rows) - len(good)))
     return 0
 

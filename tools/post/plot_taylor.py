@@ -15,6 +15,11 @@ import csv
 import os
 import sys
 
+if not __package__:  # run by path: the repository root on sys.path, for `tools.*`
+    sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))))
+
+from tools.common import figure_data  # noqa: E402
+
 COLUMNS = ["material", "parameters.L0", "parameters.v", "parameters.T0",
            "predicted:final length", "measured:final length"]
 MARKERS = ["o", "s", "^", "D"]
@@ -96,6 +101,7 @@ def main(argv):
     tmp = out + ".tmp.png"
     fig.savefig(tmp, dpi=100, bbox_inches="tight")
     os.replace(tmp, out)
+    figure_data.save(fig, out)
     print("written: " + out)
     return 0
 
