@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -85,6 +86,33 @@ inline CliResult run_cli(const std::string& args, const std::string& scratch) {
   std::filesystem::remove(out);
   std::filesystem::remove(err);
   return r;
+}
+
+/// A CSV file with a header row (predictions.csv, gauges.csv) as rows of column → value; no
+/// field of the tests' files holds a quoted comma.
+inline std::vector<std::map<std::string, std::string>> read_csv(const std::string& path) {
+  std::istringstream in(read_text(path));
+  const auto fields = [](const std::string& row) {
+    std::vector<std::string> f;
+    std::stringstream ss(row);
+    for (std::string x; std::getline(ss, x, ',');) f.push_back(x);
+    if (!row.empty() && row.back() == ',') f.emplace_back();
+    return f;
+  };
+  std::string row;
+  std::getline(in, row);
+  const std::vector<std::string> header = fields(row);
+  std::vector<std::map<std::string, std::string>> out;
+  while (std::getline(in, row)) {
+    const std::vector<std::string> f = fields(row);
+    if (f.size() != header.size())
+      throw std::runtime_error(path + ": a row of " + std::to_string(f.size()) + " fields under " +
+                               std::to_string(header.size()) + " columns: " + row);
+    std::map<std::string, std::string> m;
+    for (std::size_t i = 0; i < f.size(); ++i) m[header[i]] = f[i];
+    out.push_back(m);
+  }
+  return out;
 }
 
 /// history.csv without its wall-clock columns (seconds_*).

@@ -56,30 +56,6 @@ Al,1.5,5,
 Cu,1.0,"10",0.8
 )csv";
 
-// predictions.csv as rows of column → value (no field of these tests holds a comma).
-std::vector<std::map<std::string, std::string>> read_csv(const std::string& path) {
-  std::istringstream in(test::read_text(path));
-  const auto fields = [](const std::string& row) {
-    std::vector<std::string> f;
-    std::stringstream ss(row);
-    for (std::string x; std::getline(ss, x, ',');) f.push_back(x);
-    if (!row.empty() && row.back() == ',') f.emplace_back();
-    return f;
-  };
-  std::string row;
-  std::getline(in, row);
-  const std::vector<std::string> header = fields(row);
-  std::vector<std::map<std::string, std::string>> out;
-  while (std::getline(in, row)) {
-    const std::vector<std::string> f = fields(row);
-    EXPECT_EQ(f.size(), header.size()) << row;
-    std::map<std::string, std::string> m;
-    for (std::size_t i = 0; i < std::min(f.size(), header.size()); ++i) m[header[i]] = f[i];
-    out.push_back(m);
-  }
-  return out;
-}
-
 std::size_t run_folders(const std::string& dir) {
   std::size_t n = 0;
   for (const auto& e : fs::directory_iterator(dir + "/runs")) n += e.is_directory();
@@ -100,7 +76,7 @@ TEST(Campaign, RowsMapToParametersAndMaterialsAndTheErrorsAreExact) {
                                    "' --jobs 2 --out '" + out + "'",
                                dir.str());
   ASSERT_EQ(r.code, 0) << r.err;
-  const auto rows = read_csv(out + "/predictions.csv");
+  const auto rows = test::read_csv(out + "/predictions.csv");
   ASSERT_EQ(rows.size(), 4u);
   const double L[] = {1.0e-3, 2.0e-3, 1.5e-3, 1.0e-3}, rho[] = {2703, 8930, 2703, 8930};
   for (std::size_t i = 0; i < rows.size(); ++i) {
@@ -153,7 +129,7 @@ TEST(Campaign, RowsMapToParametersAndMaterialsAndTheErrorsAreExact) {
                                       "' --out '" + out + "' --rows 'metal=Cu;1-3'",
                                   dir.str());
   ASSERT_EQ(some.code, 0) << some.err;
-  const auto picked = read_csv(out + "/predictions.csv");
+  const auto picked = test::read_csv(out + "/predictions.csv");
   ASSERT_EQ(picked.size(), 1u);
   EXPECT_EQ(picked[0].at("row"), "2");
 
@@ -170,7 +146,7 @@ TEST(Campaign, RowsMapToParametersAndMaterialsAndTheErrorsAreExact) {
               std::string::npos)
         << busy.err;
     EXPECT_EQ(run_folders(out), 8u);
-    EXPECT_EQ(read_csv(out + "/predictions.csv").size(), 1u);
+    EXPECT_EQ(test::read_csv(out + "/predictions.csv").size(), 1u);
   }
   const auto after = test::run_cli("campaign '" + dir / "box.yaml" + "' '" + dir / "boxes.csv" +
                                        "' --out '" + out + "' --rows 1",
@@ -231,7 +207,7 @@ TEST(Campaign, ACaseEditedWhileItsRunsGoOnStopsTheCampaign) {
                                    dir.str());
   ASSERT_EQ(again.code, 0) << again.err;
   EXPECT_NE(again.err.find("0 read from earlier runs, 40 to run"), std::string::npos) << again.err;
-  const auto rows = read_csv(out + "/predictions.csv");
+  const auto rows = test::read_csv(out + "/predictions.csv");
   ASSERT_EQ(rows.size(), 40u);
   for (const auto& row : rows)
     EXPECT_EQ(test::read_json(out + "/runs/" + row.at("folder") + "/summary.json")["end_time"]
@@ -280,7 +256,7 @@ TEST(Campaign, BadTablesAreRefusedAndUnmeasuredTablesPredict) {
   EXPECT_NE(plain.err.find("no column 'Lf_mm': box length is predicted, not compared"),
             std::string::npos)
       << plain.err;
-  const auto rows = read_csv(dir / "plain/predictions.csv");
+  const auto rows = test::read_csv(dir / "plain/predictions.csv");
   ASSERT_EQ(rows.size(), 1u);
   EXPECT_NEAR(std::stod(rows[0].at("predicted:box length")), 1.0e-3, 1e-15);
   EXPECT_EQ(test::read_json(dir / "plain/statistics.json")["comparisons"][0]["all"]["compared"]
@@ -348,7 +324,7 @@ campaign:
                                    "' --jobs 2 --out '" + dir / "out" + "'",
                                dir.str());
   ASSERT_EQ(r.code, 0) << r.err;
-  const auto rows = read_csv(dir / "out/predictions.csv");
+  const auto rows = test::read_csv(dir / "out/predictions.csv");
   ASSERT_EQ(rows.size(), 3u);
   EXPECT_EQ(rows[0].at("predicted:plate perforated"), "NP");
   EXPECT_EQ(rows[1].at("predicted:plate perforated"), "P");

@@ -7,7 +7,6 @@
 
 #include <cmath>
 #include <map>
-#include <sstream>
 
 #include "../test_util.hpp"
 
@@ -15,26 +14,10 @@ namespace {
 
 using Row = std::map<std::string, std::string>;
 
-// predictions.csv by its header (its fields here have no quoted commas).
+// predictions.csv's rows by their number.
 std::map<std::string, Row> predictions(const std::string& path) {
-  std::istringstream in(tc::test::read_text(path));
-  const auto fields = [](const std::string& line) {
-    std::vector<std::string> f;
-    std::stringstream ss(line);
-    for (std::string x; std::getline(ss, x, ',');) f.push_back(x);
-    if (!line.empty() && line.back() == ',') f.emplace_back();
-    return f;
-  };
-  std::string line;
-  std::getline(in, line);
-  const std::vector<std::string> header = fields(line);
   std::map<std::string, Row> out;
-  while (std::getline(in, line)) {
-    const std::vector<std::string> f = fields(line);
-    Row r;
-    for (std::size_t i = 0; i < header.size() && i < f.size(); ++i) r[header[i]] = f[i];
-    out[r["row"]] = r;
-  }
+  for (Row& r : tc::test::read_csv(path)) out[r.at("row")] = r;
   return out;
 }
 
