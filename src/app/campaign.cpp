@@ -405,7 +405,8 @@ Json statistics(const CampaignSpec::Comparison& cmp, const std::vector<const Row
     if (equation) {  // the shield equation on the same rows
       long eq_right = 0, eq_n = 0;
       for (const RowRun* r : rows)
-        if (const auto e = equation_category(cmp, *r); e && r->measured[i]) {
+        if (const auto e = equation_category(cmp, *r);
+            e && r->measured[i] && i < r->predicted.size() && !std::isnan(r->predicted[i])) {
           ++eq_n;
           eq_right += *e == *r->measured[i];
         }

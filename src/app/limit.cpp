@@ -270,25 +270,24 @@ int limit_command(const LimitOptions& o) {
   // The shield equation beside the engine: its critical diameter for the shots at the
   // bracket's ends (the same at both when the search varies the diameter).
   bool equation = false;
-  try {
-    for (Bracket& br : brackets) {
+  for (Bracket& br : brackets) {
+    try {
       std::vector<std::string> sets = o.overrides;
       if (!o.vary.empty()) sets.push_back(o.vary.front().first + "=" + br.vary_value);
       sets.push_back(o.find + "=" + fmt(br.a));
       br.equation_a = equation_critical_diameter(o.case_path, sets);
       sets.back() = o.find + "=" + fmt(br.b);
       br.equation_b = equation_critical_diameter(o.case_path, sets);
-      equation = !std::isnan(br.equation_a);
-      if (equation && !o.quiet)
+      equation = equation || !std::isnan(br.equation_a);
+      if (!std::isnan(br.equation_a) && !o.quiet)
         std::cout << "limit: "
                   << (o.vary.empty() ? "" : o.vary.front().first + "=" + br.vary_value + ": ")
                   << o.find << " in [" << fmt(br.a) << ", " << fmt(br.b)
                   << "]; Christiansen's equation: critical diameter " << fmt(br.equation_a)
                   << (br.equation_b == br.equation_a ? "" : " to " + fmt(br.equation_b)) << " m\n";
+    } catch (const CaseError& e) {  // the brackets stand; the equation's column stays empty
+      std::cerr << "limit: no equation beside " << br.vary_value << ": " << e.what() << "\n";
     }
-  } catch (const CaseError& e) {
-    std::cerr << "tetcontact: error: " << e.what() << "\n";
-    return 2;
   }
   std::ostringstream csv;
   csv << (o.vary.empty() ? "" : csv_field(o.vary.front().first) + ",")
@@ -299,7 +298,8 @@ int limit_command(const LimitOptions& o) {
     csv << csv_field(o.find) << ',' << fmt(br.a) << ',' << fmt(br.b) << ',' << br.value_a << ','
         << br.value_b << ',' << br.runs << ',' << br.reused << ',' << fmt(br.wall) << ','
         << fmt(br.run_sum) << ',' << csv_field(br.status);
-    if (equation) csv << ',' << fmt(br.equation_a) << ',' << fmt(br.equation_b);
+    const auto cell = [](double x) { return std::isnan(x) ? std::string() : fmt(x); };
+    if (equation) csv << ',' << cell(br.equation_a) << ',' << cell(br.equation_b);
     csv << '\n';
   }
   write_file_atomic(dir + "/limit.csv", csv.str());

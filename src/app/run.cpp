@@ -245,6 +245,7 @@ int report_run(const RunOptions& o, const Case& c, const Simulation& sim, Output
   if (run.gauges) run.gauges->close();
   RunSummary summary = summarize(c, sim, writer, run.status, run.wall);
   summary.out_dir = run.dir;
+  summary.gauge_rows = run.gauges ? run.gauges->rows() : 0;
   summary.warnings = run.warnings;
   summary.regimes = regime_notes(c, sim.model());
   summary.communication = run.communication;

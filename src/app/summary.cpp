@@ -689,8 +689,9 @@ void print_table(const RunSummary& s) {
   for (const auto& [name, seconds] : s.stages)
     os << " " << name << " " << fmt(seconds, "%.3f") << " s ("
        << fmt(100 * seconds / std::max(total, 1e-300), "%.0f") << "%)";
-  os << "\n  output     " << s.out_dir << "/ (case.pvd with " << s.frames
-     << " frames, history.csv, summary.json)\n";
+  os << "\n  output     " << s.out_dir << "/ (case.pvd with " << s.frames << " frames, history.csv"
+     << (s.gauge_rows > 0 ? ", gauges.csv with " + std::to_string(s.gauge_rows) + " rows" : "")
+     << ", summary.json)\n";
   print_references(s.references, os);
   if (const auto& e = s.shield_equation) {
     os << format("  equation   %-28s critical diameter %.3g mm (%s): %s", "Christiansen",

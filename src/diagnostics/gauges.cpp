@@ -80,7 +80,8 @@ std::vector<GaugeReading> Gauges::read(const State& st) {
       r.x += b[i] * st.x[k[i]];
       r.v += b[i] * st.v[k[i]];
     }
-    r.stress = cauchy_stress(st, r.cell);
+    // As the frames' `stress`: s − p I, the viscosity q apart.
+    r.stress = to_mat3(st.s[r.cell]) - st.p[r.cell] * Mat3::Identity();
     r.pressure = st.p[r.cell];
     r.plastic_strain = st.eps_p[r.cell];
     r.temperature = st.temperature[r.cell];

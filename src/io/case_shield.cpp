@@ -65,16 +65,19 @@ void read_mesh_study(const Reader& r, const YAML::Node& root, const YAML::Node& 
   // The file's own parameters: its expressions without any override.
   const std::vector<std::pair<std::string, double>> own = parameter_values(r, as_written);
   const std::map<std::string, double> names(own.begin(), own.end());
-  const YAML::Node written = as_written["mesh_study"]["cells_across"];
+  // The file's own entries (none when an override added the section or the entry).
+  const YAML::Node study = as_written["mesh_study"];
+  const YAML::Node written = study && study["cells_across"] ? study["cells_across"] : YAML::Node();
   for (auto it = cells.begin(); it != cells.end(); ++it) {
     const std::string name = it->first.Scalar(), path = join(join(p, "cells_across"), name);
     MeshStudySpec::Resolution res;
     res.name = name;
     res.run = r.positive(it->second, path, "cells");
-    const YAML::Node w = written[name];
-    res.file = w && is_expression(w) ? expression_value(r, w, path, names)
-               : w                   ? r.number(w, path)
-                                     : res.run;  // added by an override: nothing to compare
+    const YAML::Node w = written && written.IsMap() ? written[name] : YAML::Node();
+    const bool own = w.IsDefined() && !w.IsNull();  // the file gives this entry
+    res.file = !own               ? res.run         // added by an override: nothing to compare
+               : is_expression(w) ? expression_value(r, w, path, names)
+                                  : r.number(w, path);
     m.cells_across.push_back(res);
   }
 }

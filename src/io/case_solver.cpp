@@ -93,10 +93,11 @@ void read_gauges(const Reader& r, const YAML::Node& root, Case& c) {
            r.keys(n, p, {"name", "at", "follows"});
            GaugeSpec s;
            s.name = r.string(r.require(n, p, "name"), join(p, "name"));
-           if (s.name.empty() || s.name.find_first_of(",\"\n") != std::string::npos)
+           if (s.name.empty() || s.name.find_first_of(",\":\n") != std::string::npos ||
+               s.name.front() == ' ' || s.name.back() == ' ')
              r.fail(n["name"], join(p, "name"),
-                    "a gauge's name names its columns in gauges.csv: not empty, no comma, "
-                    "quote or line break");
+                    "a gauge's name names its columns in gauges.csv (NAME:vx, ...): not empty, "
+                    "no comma, colon, quote or line break, no space at either end");
            for (const GaugeSpec& other : c.output.gauges)
              if (other.name == s.name)
                r.fail(n["name"], join(p, "name"), "two gauges named '" + s.name + "'");

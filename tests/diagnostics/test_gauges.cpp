@@ -191,7 +191,13 @@ TEST(Gauges, SeeThePlaneElasticWaveOfAColumnOnAWall) {
 // written (exit 2, naming the file and the gauge), and so is a malformed entry.
 TEST(Gauges, RunWritesGaugesCsvAndRefusesBadGauges) {
   test::TempDir dir("gauges-cli");
-  test::write_text(dir / "column.yaml", k_column);
+  // The case's gauges and one fixed in space above the column, where no cell ever is.
+  std::string text = k_column;
+  const std::string last = "    - {name: fixed, at: [0, 0, 2.5e-3], follows: space}\n";
+  ASSERT_NE(text.find(last), std::string::npos);
+  text.replace(text.find(last), last.size(),
+               last + "    - {name: above, at: [0, 0, 20.0e-3], follows: space}\n");
+  test::write_text(dir / "column.yaml", text);
   const auto r = test::run_cli(
       "run '" + dir / "column.yaml" + "' --quiet --out '" + dir / "out" + "' --set end_time=0.5e-6",
       dir.str());
@@ -211,6 +217,13 @@ TEST(Gauges, RunWritesGaugesCsvAndRefusesBadGauges) {
     std::getline(ls, t, ',');
     last_t = std::stod(t);
   }
+  // Every row has 16 fields a gauge (read_csv refuses another count); the gauge above the
+  // column has every one empty, the others none.
+  for (const auto& row : test::read_csv(dir / "out/gauges.csv"))
+    for (const char* q : {"x", "vz", "pressure", "szz", "damage"}) {
+      EXPECT_TRUE(row.at(std::string("above:") + q).empty());
+      EXPECT_FALSE(row.at(std::string("fixed:") + q).empty());
+    }
   EXPECT_GE(rows, 50);  // 0.5 µs at 10 ns, and the start
   EXPECT_LE(rows, 52);
   EXPECT_GE(last_t, 0.5e-6);  // the run's last step, at or just after the end time
@@ -227,4 +240,5 @@ TEST(Gauges, RunWritesGaugesCsvAndRefusesBadGauges) {
   refused("gauges.points.0.follows=body", "follows must be material or space");
   refused("gauges.points.1.name=middle", "two gauges named 'middle'");
   refused("gauges.points.1.name=a,b", "no comma");
+  refused("gauges.points.1.name=a:b", "colon");
 }

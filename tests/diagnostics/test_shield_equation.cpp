@@ -153,4 +153,11 @@ TEST(ShieldEquation, BadDeclarationsAreRefusedNamingTheKey) {
   refused("shield_equation.obliquity=90", "shield_equation.obliquity", "0 ≤ θ < 90");
   refused("shield_equation.wall_yield=0", "shield_equation.wall_yield", "must be positive");
   refused("mesh_study.cells_across.wall=-1", "mesh_study.cells_across.wall", "must be positive");
+  // A study the file does not declare, added by overrides: nothing of the file's to compare.
+  const tc::Case added =
+      tc::load_case(tc::test::source_path("data/cases/cubes-edge.yaml"),
+                    {"mesh_study.note=a note", "mesh_study.cells_across.cube=2"});
+  ASSERT_EQ(added.mesh_study.cells_across.size(), 1u);
+  EXPECT_EQ(added.mesh_study.cells_across[0].file, 2.0);
+  EXPECT_FALSE(added.mesh_study.coarser());
 }

@@ -200,7 +200,7 @@ def test_every_command_line_holds(binary, where, line, argv):
                                    text=True, cwd=ROOT)
                 assert r.returncode == 0, f"{where}: campaign --check: {r.stderr}"
                 assert "checked" in r.stdout, (table, r.stdout)
-            elif sub != "check":
+            else:
                 check_case(binary, case, sets(rest), where)
     elif any(a.endswith(".py") and a.startswith("tools/") for a in argv):
         check_tool(argv, where)

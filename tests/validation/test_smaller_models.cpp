@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <deque>
 #include <string>
 #include <vector>
 
@@ -47,7 +48,7 @@ std::vector<std::string> coarse_shot(const std::string& ww, const std::string& c
 // still walls for the other nodes): what the quarter's checks must catch.
 std::vector<ReferenceResult> without_the_planes_hold(const std::string& file,
                                                      const std::vector<std::string>& sets) {
-  static std::vector<Case> keep;  // the results point into the case
+  static std::deque<Case> keep;  // the results point into the case: it never moves
   keep.push_back(load_case(test::source_path(file), sets));
   const Case& c = keep.back();
   Model loose = build_model(c);

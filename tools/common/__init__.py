@@ -21,6 +21,7 @@ def _missing_module(kind, value, tb):
             f"{tool}: error: this python3 ({sys.executable}) has no module '{top}': install "
             f"Debian's {package} (apt-get install {package}; `make run` installs it when run as "
             f"root), or run the tool with /usr/bin/python3\n")
+        sys.stdout.flush()
         sys.stderr.flush()
         os._exit(2)
     sys.__excepthook__(kind, value, tb)

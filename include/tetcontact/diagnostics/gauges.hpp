@@ -32,7 +32,7 @@ struct GaugeSpec {
 struct GaugeReading {
   Index cell = -1;
   Vec3 x = Vec3::Zero(), v = Vec3::Zero();
-  Mat3 stress = Mat3::Zero();  // Cauchy: s − (p + q) I, Pa (tension positive)
+  Mat3 stress = Mat3::Zero();  // s − p I as the frames' stress (q apart), Pa (tension positive)
   double pressure = 0.0;       // the EOS's, Pa (compression positive)
   double plastic_strain = 0.0, temperature = 0.0;
   Damage damage = Damage::intact;

@@ -56,7 +56,7 @@ struct ShieldEquationVerdict {
 ShieldEquationVerdict christiansen_verdict(const WhippleShot& shot);
 
 /// One line a person reads: "Christiansen's equation: critical diameter 2.18 mm at 5.00 km/s,
-/// 30° (shatter): a 3.00 mm sphere perforates the wall".
+/// 30 deg (shatter): a 3.00 mm sphere perforates the wall".
 std::string describe(const WhippleShot& shot, const ShieldEquationVerdict& v);
 
 }  // namespace tc

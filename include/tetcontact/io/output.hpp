@@ -72,7 +72,7 @@ class OutputWriter : public Observer {
 };
 
 /// gauges.csv: per row the step and time, then per gauge (columns "NAME:quantity") its
-/// position, velocity, the cell's pressure, Cauchy stress, plastic strain, temperature and
+/// position, velocity, the cell's pressure, stress (s − p I), plastic strain, temperature and
 /// damage (0 intact, 1 damaged, 2 destroyed, 3 a particle); empty where no cell holds a space
 /// gauge's point. A row at the first step at or after each multiple of the interval (0: every
 /// step) and at the end. One process only: the cells' fields of a distributed run are each
