@@ -142,8 +142,10 @@ TEST(Validation, QuarterWhippleShieldGivesTheWholeShieldsVerdictAndDebris) {
 // wall graded (2 mm cells across its central 20 mm, each cell outside 1.2 times the one
 // before), whole shields: the same verdict, the cloud's measures bit for bit (the same bumper
 // and projectile, measured before the debris reaches the wall), and the mass and momentum
-// through the wall within 5 % (measured: 1.0 % and 1.4 %; as quarters the mass differed by
-// 8.7 %, the quarter's few hundred particles through the wall being the noisier sample).
+// through the wall within 5 % (measured: 0.02 % and 0.1 %; as quarters the mass differed by
+// 8.7 %, the quarter's few hundred particles through the wall being the noisier sample). The
+// cloud's equalities hold by construction while the graded wall adds no smaller cell (the step
+// is the same); the through-wall checks are the ones a grading too coarse fails (run below).
 TEST(Validation, GradedRearWallGivesTheUniformWallsAnswers) {
   const CaseRun uniform =
       run_case("data/cases/whipple.yaml", with(coarse_shot("60e-3", "60e-3"), {"symmetry=[]"}));
@@ -158,4 +160,13 @@ TEST(Validation, GradedRearWallGivesTheUniformWallsAnswers) {
     EXPECT_NEAR(graded.measured(name) / uniform.measured(name), 1.0, 0.05) << name;
   EXPECT_LT(graded.momentum_error, 1e-12);
   record("graded", uniform, graded);
+  // The check can fail: a wall graded from a core of 4 mm, each cell twice the one before, is
+  // too coarse where the debris lands (measured: 0.17 mg through against 0.37).
+  const CaseRun crude =
+      run_case("data/cases/whipple.yaml",
+               with(coarse_shot("60e-3", "4e-3"), {"symmetry=[]", "parameters.growth=2.0"}));
+  EXPECT_GT(
+      std::abs(crude.measured("mass through the wall") / uniform.measured("mass through the wall") -
+               1.0),
+      0.05);
 }
