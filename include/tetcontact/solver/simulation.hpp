@@ -120,6 +120,9 @@ class Simulation {
   /// The decomposition of a distributed run (ranks = 1 on one process): each rank
   /// updates the tets METIS gave it.
   const Partition& partition() const { return partition_; }
+  /// The last step's contact points with their accumulated impulses (the tests' view of what
+  /// the passes solved).
+  const StepContacts& contact_points() const { return points_; }
   /// Distributed: gathers every tet's fields on every rank (collective; the run's end, before
   /// the summary and references read them). Nothing on one process.
   void gather_state();
