@@ -466,7 +466,7 @@ std::vector<std::string> shield_notes(const Case& c) {
   if (c.mesh_study.coarser()) {
     std::string cells;
     for (const MeshStudySpec::Resolution& r : c.mesh_study.cells_across)
-      if (r.run < r.file * (1.0 - 1e-9))
+      if (r.coarser())
         cells += (cells.empty() ? "" : ", ") + r.name + " " + fmt(r.run, "%.3g") + " (the file's " +
                  fmt(r.file, "%.3g") + ")";
     out.push_back("cells coarser than the case file's own (cells across: " + cells +

@@ -156,12 +156,13 @@ struct MeshStudySpec {
   struct Resolution {
     std::string name;
     double run = 0.0, file = 0.0;  // cells across, with the run's parameters and the file's
+    bool coarser() const { return run < file * (1.0 - 1e-9); }
   };
   std::vector<Resolution> cells_across;
   std::string note;
   bool coarser() const {
     for (const Resolution& r : cells_across)
-      if (r.run < r.file * (1.0 - 1e-9)) return true;
+      if (r.coarser()) return true;
     return false;
   }
 };
