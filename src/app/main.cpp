@@ -66,6 +66,11 @@ CLI::App* add_run(CLI::App& app, tc::RunOptions& o) {
                   "output directory (default results/<case name>); created; a non-empty one is "
                   "refused");
   cmd->add_flag("--force", o.force, "reuse a non-empty --out, replacing a previous run's files");
+  cmd->add_option("--restart", o.restart,
+                  "go on from the newest checkpoint of this run folder (or of its checkpoints "
+                  "folder, or from one checkpoint file), in that folder; the same case, "
+                  "overrides and build as the run that wrote it (output.checkpoint)")
+      ->type_name("DIR");
   add_overrides(cmd, o.overrides);
   cmd->add_flag("--quiet", o.quiet,
                 "no progress and no final table (notes and warnings still go to stderr)");
@@ -77,6 +82,7 @@ CLI::App* add_run(CLI::App& app, tc::RunOptions& o) {
       "  case.pvd, frame_NNNN.vtu   ParaView series (open case.pvd)\n"
       "  history.csv                energies, momentum and stage timings per step\n"
       "  summary.json               the run's summary (status, balance, bodies, timings)\n"
+      "  checkpoints/step_N.ckpt    the state to restart from (output.checkpoint)\n"
       "Progress goes to stderr (a bar on a terminal, periodic lines otherwise), the final table\n"
       "to stdout. Exit codes: 0 success, 1 run failure or missed check, 2 bad input (nothing "
       "written).");

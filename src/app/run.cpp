@@ -2,6 +2,9 @@
 
 #include <unistd.h>
 
+#include <csignal>
+#include <cstdlib>
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -12,15 +15,18 @@
 #include <sstream>
 
 #include "tetcontact/app/partition.hpp"
+#include "tetcontact/app/runs.hpp"
 #include "tetcontact/app/setup.hpp"
 #include "tetcontact/app/summary.hpp"
 #include "tetcontact/diagnostics/expect.hpp"
 #include "tetcontact/diagnostics/reference.hpp"
 #include "tetcontact/io/case.hpp"
+#include "tetcontact/io/checkpoint.hpp"
 #include "tetcontact/io/files.hpp"
 #include "tetcontact/io/json.hpp"
 #include "tetcontact/io/output.hpp"
 #include "tetcontact/mesh/gmsh.hpp"
+#include "tetcontact/model/archive.hpp"
 #include "tetcontact/parallel/mpi.hpp"
 #include "tetcontact/parallel/parallel.hpp"
 #include "tetcontact/solver/run_loop.hpp"
@@ -83,6 +89,8 @@ int with_bad_input_guard(F&& body) {
     std::cerr << "tetcontact: error: " << e.what() << "\n";
   } catch (const GaugeError& e) {
     std::cerr << "tetcontact: error: " << e.what() << "\n";
+  } catch (const CheckpointError& e) {
+    std::cerr << "tetcontact: error: " << e.what() << "\n";
   }
   return 2;
 }
@@ -96,6 +104,7 @@ struct RunRecord {
   std::vector<std::string> warnings;
   ReferenceRecorder* references = nullptr;
   GaugeWriter* gauges = nullptr;
+  std::vector<std::pair<long, double>> restarts;  // the checkpoints it went on from
 };
 
 // The case's gauges placed on the model (GaugeError naming a gauge no cell holds, with the case
@@ -116,6 +125,50 @@ const char* k_no_distributed_gauges =
 
 int report_run(const RunOptions& o, const Case& c, const Simulation& sim, OutputWriter& writer,
                RunRecord run);
+
+// The hash of a run's complete inputs (runs.hpp's run_key): what a checkpoint must have been
+// written for. The threads and the checkpoints' own settings change no result: a run may go on
+// with others.
+std::string inputs_hash(const RunOptions& o, const Case& c) {
+  std::vector<std::string> overrides;
+  for (const std::string& s : o.overrides)
+    if (s.rfind("solver.threads=", 0) != 0 && s.rfind("output.checkpoint", 0) != 0)
+      overrides.push_back(s);
+  const std::string key = run_key(o.case_path, overrides, c.material_library);
+  Fnv1a f;
+  f.add(key.data(), key.size());
+  return f.hex();
+}
+
+// When a run's checkpoints are due (output.checkpoint): every `steps` steps, or at the first
+// step at or after each multiple of `interval`.
+class CheckpointClock {
+ public:
+  explicit CheckpointClock(const OutputSpec& spec)
+      : interval_(spec.checkpoint_interval), steps_(spec.checkpoint_steps) {}
+  bool on() const { return interval_ > 0.0 || steps_ > 0; }
+  bool due(const State& st) const {
+    if (steps_ > 0) return st.step % steps_ == 0;
+    return interval_ > 0.0 && st.t >= next_ - 1e-9 * interval_;
+  }
+  // Past the checkpoint at t (and, restarted, past every one before t).
+  void passed(double t) {
+    if (interval_ > 0.0)
+      while (next_ <= t + 1e-9 * interval_) next_ += interval_;
+  }
+
+ private:
+  double interval_;
+  long steps_;
+  double next_ = 0.0;
+};
+
+// Fault injection for the restart tests: TETCONTACT_KILL_AT_STEP=N kills the process (SIGKILL,
+// as an out-of-memory killer or a batch queue would) right after step N.
+long kill_at_step() {
+  const char* s = std::getenv("TETCONTACT_KILL_AT_STEP");
+  return s ? std::atol(s) : -1;
+}
 
 }  // namespace
 
@@ -152,6 +205,7 @@ int run_case(const RunOptions& o) {
   std::unique_ptr<Simulation> sim;
   std::string dir;
   std::vector<std::string> warnings;
+  Checkpoint restart;  // --restart: the checkpoint to go on from
   const int setup = with_bad_input_guard([&] {
     c = load_case(o.case_path, o.overrides);
     std::vector<std::string> notes;
@@ -173,6 +227,17 @@ int run_case(const RunOptions& o) {
       for (const std::string& n : regime_notes(c, sim->model()))
         std::cerr << "tetcontact: regime: " << n << "\n";
       for (const std::string& n : shield_notes(c)) std::cerr << "tetcontact: note: " << n << "\n";
+    }
+    if (!o.restart.empty()) {
+      // The run goes on in its own folder, from its newest checkpoint (refused when another
+      // build or other inputs wrote it), and nothing is written unless that checkpoint holds.
+      if (!o.out_dir.empty() || o.force)
+        throw OutputError("--restart goes on in the run's own folder: leave out --out and --force");
+      dir = restart_run_folder(o.restart);
+      if (std::filesystem::exists(dir + "/summary.json"))
+        throw OutputError(dir + ": the run there has ended (summary.json): nothing to restart");
+      restart = read_checkpoint(o.restart, program_identity(), inputs_hash(o, c));
+      return 0;
     }
     dir = o.out_dir.empty() ? "results/" + c.name : o.out_dir;
     // Only now, when the input is known to be good; in a distributed run rank 0 alone writes.
@@ -206,6 +271,48 @@ int run_case(const RunOptions& o) {
   Progress progress(o.quiet || !root, c.end_time);
   std::size_t falls = 0;  // step collapses said so far
   ReferenceRecorder references(c.references);
+  std::vector<std::pair<long, double>> restarts;  // the checkpoints this run went on from
+  // A checkpoint holds the simulation, then what the observers keep: the frames and history,
+  // the probe's lists, the references measured, the gauges' rows (last: a distributed run
+  // records none).
+  const auto persist_run = [&](Archive& ar) {
+    sim->persist(ar);
+    writer.persist(ar);
+    if (probe) probe->persist(ar);
+    references.persist(ar);
+    ar(restarts);
+    bool has_gauges = gauges != nullptr;
+    ar(has_gauges);
+    if (ar.loading() && gauges && !has_gauges)
+      throw ArchiveError(
+          "written by a distributed run, which records no gauges: restart it distributed");
+    if (has_gauges && gauges) gauges->persist(ar);
+  };
+  CheckpointClock checkpoints(c.output);
+  if (!o.restart.empty()) {
+    try {
+      Archive ar(std::move(restart.payload));
+      persist_run(ar);
+      if (gauges && !ar.at_end()) throw ArchiveError("data left over after the last section");
+    } catch (const ArchiveError& e) {
+      if (root)
+        std::cerr << "tetcontact: error: " << restart.path << ": cannot be read back: " << e.what()
+                  << "\n";
+      return 2;
+    }
+    checkpoints.passed(sim->state().t);
+    restarts.emplace_back(restart.header.step, restart.header.t);
+    for (; falls < sim->step_collapses().size(); ++falls)
+      warnings.push_back(sim->step_collapses()[falls].message());
+    if (root)
+      std::cerr << "tetcontact: note: restarting from " << restart.path << " (step "
+                << restart.header.step << ", t = " << fmt(restart.header.t) << " s)\n";
+  }
+  // What the checkpoints say of themselves: the build and the inputs (read once, when written).
+  const CheckpointHeader header = checkpoints.on()
+                                      ? CheckpointHeader{program_identity(), inputs_hash(o, c)}
+                                      : CheckpointHeader{};
+  const long kill_step = kill_at_step();
   RunHooks hooks;
   hooks.references = &references;
   hooks.each_step = [&](const Simulation& s) {
@@ -215,6 +322,19 @@ int run_case(const RunOptions& o) {
       warnings.push_back(w);
       if (root) std::cerr << (o.quiet ? "" : "\n") << "tetcontact: warning: " << w << "\n";
     }
+    if (checkpoints.on() && checkpoints.due(s.state()) && !s.done()) {
+      checkpoints.passed(s.state().t);
+      sim->gather_state();  // distributed: every tet's fields, on every rank alike
+      if (root) {
+        Archive ar;
+        persist_run(ar);
+        CheckpointHeader h = header;
+        h.step = s.state().step;
+        h.t = s.state().t;
+        write_checkpoint(dir, h, ar.bytes(), c.output.checkpoint_keep);
+      }
+    }
+    if (s.state().step == kill_step) std::raise(SIGKILL);
   };
   const std::string status = run_to_end(*sim, hooks);
   int code = status == "ok" ? 0 : 1;
@@ -224,9 +344,9 @@ int run_case(const RunOptions& o) {
   // The other ranks end with rank 0's code (a missed check is known to rank 0 alone).
   if (!root) return std::stoi(mpi::broadcast("", 0));
   try {
-    code = report_run(
-        o, c, *sim, writer,
-        {dir, status, code, seconds_since(t0), communication, warnings, &references, gauges.get()});
+    code = report_run(o, c, *sim, writer,
+                      {dir, status, code, seconds_since(t0), communication, warnings, &references,
+                       gauges.get(), restarts});
   } catch (...) {
     mpi::broadcast("1", 0);
     throw;
@@ -246,6 +366,7 @@ int report_run(const RunOptions& o, const Case& c, const Simulation& sim, Output
   RunSummary summary = summarize(c, sim, writer, run.status, run.wall);
   summary.out_dir = run.dir;
   summary.gauge_rows = run.gauges ? run.gauges->rows() : 0;
+  summary.restarts = run.restarts;
   summary.warnings = run.warnings;
   summary.regimes = regime_notes(c, sim.model());
   summary.communication = run.communication;
@@ -274,6 +395,9 @@ int report_run(const RunOptions& o, const Case& c, const Simulation& sim, Output
   }
   if (!c.mesh_study.cells_across.empty()) summary.mesh_study = c.mesh_study;
   write_file_atomic(run.dir + "/summary.json", summary_json(summary).dump(2) + "\n");
+  // The run has ended: a restart of it is refused, so its checkpoints are of no more use.
+  std::error_code ec;
+  std::filesystem::remove_all(checkpoint_folder(run.dir), ec);
   if (!o.quiet || code != 0) print_table(summary);
   if (o.check && code != 0 && run.status == "ok")
     std::cerr << "tetcontact: check failed: a reference value or an expected bound is missed\n";

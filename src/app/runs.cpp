@@ -19,29 +19,14 @@
 #include <vector>
 
 #include "tetcontact/io/case.hpp"
+#include "tetcontact/io/checkpoint.hpp"
 #include "tetcontact/io/files.hpp"
 
 namespace tc {
 
 namespace fs = std::filesystem;
 
-namespace {
-
-// 64-bit FNV-1a, as 16 hex digits.
-struct Fnv1a {
-  std::uint64_t h = 14695981039346656037ull;
-  void add(const char* p, std::size_t n) {
-    for (std::size_t i = 0; i < n; ++i)
-      h = (h ^ static_cast<unsigned char>(p[i])) * 1099511628211ull;
-  }
-  std::string hex() const {
-    char out[17];
-    std::snprintf(out, sizeof out, "%016llx", static_cast<unsigned long long>(h));
-    return out;
-  }
-};
-
-}  // namespace
+namespace {}  // namespace
 
 std::string program_identity() {
   static const std::string id = [] {
@@ -155,8 +140,9 @@ void InputFiles::require_unchanged() const {
                         "the new text");
 }
 
-void run_children(const std::vector<ChildRun*>& todo, int jobs,
+void run_children(const std::vector<ChildRun*>& runs, int jobs,
                   const std::function<void(ChildRun&)>& on_done, const InputFiles* inputs) {
+  std::vector<ChildRun*> todo = runs;  // and the restarts refused, again from the start
   // The children run this very image (a forked child's /proc/self/exe is its parent's), not
   // whatever file now lies at its path, so that their runs are of the build in their key.
   // Named `tetcontact` (argv[0]), as `ps` and `top` show them.
@@ -169,14 +155,37 @@ void run_children(const std::vector<ChildRun*>& todo, int jobs,
     if (changed.empty() && inputs) changed = inputs->changed();
     return changed.empty();
   };
+  // An interrupted run of this key with checkpoints: `run --restart DIR` instead of `--out DIR
+  // --force`.
+  const auto resumable = [](const ChildRun& r) {
+    std::ifstream in(r.dir + "/run.key", std::ios::binary);
+    std::ostringstream key;
+    key << in.rdbuf();
+    return in && key.str() == r.key && !fs::exists(r.dir + "/summary.json") &&
+           !checkpoint_files(r.dir).empty();
+  };
+  const auto restart_args = [](const ChildRun& r) {
+    std::vector<std::string> args;
+    for (std::size_t k = 0; k < r.args.size(); ++k) {
+      if (r.args[k] == "--out") {
+        ++k;
+        continue;
+      }
+      if (r.args[k] != "--force") args.push_back(r.args[k]);
+    }
+    args.insert(args.end(), {"--restart", r.dir});
+    return args;
+  };
   check();  // also when nothing is left to run: its results would be read under the old text
   while ((next < todo.size() && changed.empty()) || !running.empty()) {
     while (next < todo.size() && static_cast<int>(running.size()) < std::max(1, jobs) && check()) {
       ChildRun* r = todo[next++];
       fs::create_directories(r->dir);
+      r->restarted = !r->restarted && resumable(*r);
       write_file_atomic(r->dir + "/run.key", r->key);
       std::vector<std::string> args{"tetcontact"};
-      args.insert(args.end(), r->args.begin(), r->args.end());
+      const std::vector<std::string> own = r->restarted ? restart_args(*r) : r->args;
+      args.insert(args.end(), own.begin(), own.end());
       const pid_t pid = start_program(exe, args, r->dir + "/run.log");
       if (pid < 0) throw std::runtime_error("cannot start a run (fork)");
       running[pid] = r;
@@ -193,6 +202,13 @@ void run_children(const std::vector<ChildRun*>& todo, int jobs,
     ChildRun* r = it->second;
     running.erase(it);
     r->exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    if (r->restarted && r->exit_code == 2) {  // the checkpoint refused: from the start
+      std::error_code ec;
+      fs::rename(r->dir + "/run.log", r->dir + "/restart.log", ec);
+      fs::remove_all(checkpoint_folder(r->dir), ec);
+      todo.push_back(r);
+      continue;
+    }
     if (!check()) {  // it may have read the new text: not a run of its key
       std::error_code ec;
       if (fs::exists(r->dir + "/summary.json"))

@@ -592,6 +592,9 @@ Json summary_json(const RunSummary& s) {
   j["bodies"] = bodies_json(s);
   j["walls"] = walls_json(s);
   j["warnings"] = s.warnings;
+  Json restarts = Json::array();
+  for (const auto& [step, t] : s.restarts) restarts.push_back({{"step", step}, {"t", t}});
+  j["restarts"] = restarts;
   j["material_library"] = s.material_library.empty() ? Json() : Json(s.material_library);
   j["time_step"] = time_step_json(s);
   j["contact"] = contact_json(s);
@@ -692,6 +695,8 @@ void print_table(const RunSummary& s) {
   os << "\n  output     " << s.out_dir << "/ (case.pvd with " << s.frames << " frames, history.csv"
      << (s.gauge_rows > 0 ? ", gauges.csv with " + std::to_string(s.gauge_rows) + " rows" : "")
      << ", summary.json)\n";
+  for (const auto& [step, t] : s.restarts)
+    os << "  restarted  from the checkpoint of step " << step << " (t = " << fmt(t) << " s)\n";
   print_references(s.references, os);
   if (const auto& e = s.shield_equation) {
     os << format("  equation   %-28s critical diameter %.3g mm (%s): %s", "Christiansen",

@@ -1,4 +1,5 @@
 #include "tetcontact/broadphase/binding_lists.hpp"
+#include "tetcontact/model/persist.hpp"
 
 #include <algorithm>
 
@@ -23,6 +24,10 @@ void BindingLists::set(Candidates lists, const std::vector<Index>& ids,
   anchor_.resize(ids.size());
   for (std::size_t i = 0; i < ids.size(); ++i) anchor_[i] = x0[ids[i]];
   have_ = true;
+}
+
+void BindingLists::persist(Archive& ar) {
+  ar(lists_.node_face, lists_.edge_edge, anchor_, reach_, have_);
 }
 
 }  // namespace tc

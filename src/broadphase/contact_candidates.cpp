@@ -1,4 +1,5 @@
 #include "tetcontact/broadphase/contact_candidates.hpp"
+#include "tetcontact/model/persist.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -318,6 +319,19 @@ const CandidateLists& ContactCandidates::particles_at(const State& st, bool* reb
   if (!hold) search(st, false, true, st.x);
   if (rebuilt) *rebuilt = !hold;
   return particles_;
+}
+
+void ContactCandidates::persist(Archive& ar, const std::vector<Surface>& surfaces) {
+  ar.section("candidates");
+  if (ar.loading()) {
+    prims_ = surface_primitives(surfaces, lists_edges(settings_));
+    node_slot_ = slots_of(prims_, mesh_.x.size());
+  }
+  body_lists_.persist(ar);
+  particle_lists_.persist(ar);
+  ar(particle_anchored_, particles_listed_, version_);
+  ar(bodies_.node_face, bodies_.edge_edge, bodies_.faces, particles_.node_face,
+     particles_.edge_edge, particles_.faces);
 }
 
 }  // namespace tc

@@ -1,4 +1,5 @@
 #include "tetcontact/diagnostics/gauges.hpp"
+#include "tetcontact/model/persist.hpp"
 
 #include <algorithm>
 #include <limits>
@@ -88,6 +89,11 @@ std::vector<GaugeReading> Gauges::read(const State& st) {
     r.damage = st.damage[r.cell];
   }
   return out;
+}
+
+void Gauges::persist(Archive& ar) {
+  ar.section("gauges");
+  ar(cell_);
 }
 
 }  // namespace tc

@@ -1,4 +1,5 @@
 #include "tetcontact/diagnostics/penetration.hpp"
+#include "tetcontact/model/persist.hpp"
 
 #include <algorithm>
 
@@ -246,6 +247,19 @@ Penetration PenetrationProbe::measure(const std::vector<Vec3>& x,
   measure_depths(x, inside_body, first_particle, r);
   measure_crossings(x, r);
   return r;
+}
+
+void persist(Archive& ar, Penetration& p) {
+  ar(p.nodes_inside, p.max_depth, p.max_depth_over_h, p.crossings, p.max_crossing_depth,
+     p.particles_inside, p.max_particle_depth, p.node_depth, p.deepest_node_body, p.deepest_in_body,
+     p.crossing_edge_body, p.crossing_face_body);
+}
+
+void PenetrationProbe::persist(Archive& ar) {
+  ar.section("penetration");
+  inside_lists_.persist(ar);
+  cross_lists_.persist(ar);
+  ar(searches_, all_nodes_, in_tet_, nodes_, node_body_, edges_, edge_body_, faces_, face_body_);
 }
 
 }  // namespace tc

@@ -1,4 +1,5 @@
 #include "tetcontact/diagnostics/reference.hpp"
+#include "tetcontact/model/persist.hpp"
 
 #include <algorithm>
 #include <array>
@@ -521,6 +522,24 @@ std::vector<ReferenceResult> ReferenceRecorder::finish(const Model& model, const
     out.push_back(res);
   }
   return out;
+}
+
+void ReferenceRecorder::persist(Archive& ar) {
+  ar.section("references");
+  std::size_t n = done_.size();
+  ar(n);
+  if (n != refs_.size()) throw ArchiveError("references: the case has another number of them");
+  for (std::size_t i = 0; i < n; ++i) {
+    bool has = done_[i].has_value();
+    ar(has);
+    if (!has) {
+      done_[i].reset();
+      continue;
+    }
+    if (ar.loading()) done_[i].emplace().spec = &refs_[i];
+    ReferenceResult& r = *done_[i];
+    ar(r.measured, r.relative_error, r.pass, r.judged, r.error);
+  }
 }
 
 }  // namespace tc

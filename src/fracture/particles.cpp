@@ -5,6 +5,7 @@
 
 #include "tetcontact/element/element.hpp"
 #include "tetcontact/mesh/symmetry.hpp"
+#include "tetcontact/model/persist.hpp"
 
 namespace tc {
 
@@ -213,6 +214,11 @@ long Fragmentation::convert(const Mesh& mesh, const std::vector<Material>& mater
     removed_[t] = 1;
   }
   return static_cast<long>(cells.size());
+}
+
+void Fragmentation::persist(Archive& ar) {
+  ar.section("fracture");
+  ar(removed_, eroding_, cells_at_node_, particle_of_, mirror_planes_, total_mass_, ledger_);
 }
 
 }  // namespace tc

@@ -53,7 +53,28 @@ void read_output(const Reader& r, const YAML::Node& root, Case& c) {
   c.output.interval = c.end_time / 20.0;
   c.output.fields = {"displacement", "velocity", "stress", "pressure", "body"};
   if (const YAML::Node o = root["output"]) {
-    r.keys(o, "output", {"interval", "fields", "history_every", "format"});
+    r.keys(o, "output", {"interval", "fields", "history_every", "format", "checkpoint"});
+    if (const YAML::Node k = o["checkpoint"]) {
+      r.map(k, "output.checkpoint");
+      r.keys(k, "output.checkpoint", {"interval", "steps", "keep"});
+      if (k["interval"] && k["steps"])
+        r.fail(k, "output.checkpoint", "give `interval` (simulated seconds) or `steps`, not both");
+      if (!k["interval"] && !k["steps"])
+        r.fail(k, "output.checkpoint", "give `interval` (simulated seconds) or `steps`");
+      if (k["interval"])
+        c.output.checkpoint_interval = r.positive(k["interval"], "output.checkpoint.interval", "s");
+      if (k["steps"]) {
+        c.output.checkpoint_steps = r.integer(k["steps"], "output.checkpoint.steps");
+        if (c.output.checkpoint_steps < 1)
+          r.fail(k["steps"], "output.checkpoint.steps", "must be at least 1");
+      }
+      if (k["keep"]) {
+        const long keep = r.integer(k["keep"], "output.checkpoint.keep");
+        if (keep < 1 || keep > 1000)
+          r.fail(k["keep"], "output.checkpoint.keep", "must be from 1 to 1000");
+        c.output.checkpoint_keep = static_cast<int>(keep);
+      }
+    }
     if (const YAML::Node f = o["format"]) {
       c.output.format = r.choice(f, "output.format", k_vtu_format_names, "format");
     }

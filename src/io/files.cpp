@@ -2,9 +2,11 @@
 
 #include <charconv>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <regex>
+#include <sstream>
 
 namespace tc {
 
@@ -39,10 +41,12 @@ void prepare_output_dir(const std::string& dir, bool force) {
                           ": output directory is not empty; choose another --out or pass "
                           "--force to replace the results of a previous run");
       static const std::regex ours(
-          R"((case\.pvd|frame_\d+(_r\d+)?\.vtu|frame_\d+\.pvtu|particles\.pvd|particles_\d+\.vtu|history\.csv|summary\.json|sweep\.csv)(\.tmp)?)");
+          R"((case\.pvd|frame_\d+(_r\d+)?\.vtu|frame_\d+\.pvtu|particles\.pvd|particles_\d+\.vtu|history\.csv|gauges\.csv|summary\.json|sweep\.csv)(\.tmp)?)");
       for (const auto& entry : fs::directory_iterator(dir))
         if (entry.is_regular_file() && std::regex_match(entry.path().filename().string(), ours))
           fs::remove(entry.path());
+      // A previous run's checkpoints: a restart must not go on from another run's state.
+      fs::remove_all(dir + "/checkpoints", ec);
     }
   }
   fs::create_directories(dir, ec);
@@ -76,6 +80,29 @@ void AtomicFile::commit() {
   fs::rename(tmp_, path_, ec);
   if (ec) throw OutputError(path_ + ": cannot rename into place: " + ec.message());
   committed_ = true;
+}
+
+std::string AtomicFile::written() {
+  out_.flush();
+  if (!out_) throw OutputError(tmp_ + ": write failed");
+  std::ifstream in(tmp_, std::ios::binary);
+  std::ostringstream text;
+  text << in.rdbuf();
+  if (!in) throw OutputError(tmp_ + ": cannot read back");
+  return text.str();
+}
+
+void AtomicFile::rewrite(const std::string& content) {
+  out_.close();
+  out_.open(tmp_, std::ios::binary | std::ios::trunc);
+  out_ << content;
+  if (!out_) throw OutputError(tmp_ + ": cannot write");
+}
+
+std::string Fnv1a::hex() const {
+  char out[17];
+  std::snprintf(out, sizeof out, "%016llx", static_cast<unsigned long long>(h));
+  return out;
 }
 
 std::string format_double(double v) {

@@ -1,4 +1,5 @@
 #include "tetcontact/io/output.hpp"
+#include "tetcontact/model/persist.hpp"
 
 #include <chrono>
 #include <cstdio>
@@ -168,6 +169,24 @@ void GaugeWriter::observe(const State& st, const Sample& s) {
   }
   h << '\n';
   ++rows_;
+}
+
+void OutputWriter::persist(Archive& ar) {
+  ar.section("output");
+  ar(penetration_samples_, probe_seconds_, stage_seconds_, rows_, next_frame_, frames_,
+     particle_frames_, penetration_max_, penetration_last_);
+  std::string history = history_ && !ar.loading() ? history_->written() : std::string();
+  ar(history);
+  if (ar.loading() && history_) history_->rewrite(history);
+}
+
+void GaugeWriter::persist(Archive& ar) {
+  ar.section("gauge rows");
+  gauges_.persist(ar);
+  ar(next_, rows_);
+  std::string rows = ar.loading() ? std::string() : file_.written();
+  ar(rows);
+  if (ar.loading()) file_.rewrite(rows);
 }
 
 }  // namespace tc

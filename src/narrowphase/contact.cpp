@@ -1,4 +1,5 @@
 #include "tetcontact/narrowphase/contact.hpp"
+#include "tetcontact/model/persist.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -448,6 +449,11 @@ std::vector<ContactPoint> ContactDetection::detect(const State& st,
   stats.contacts = static_cast<long>(contacts.size());
   stats.narrowphase_seconds = since(t0);
   return contacts;
+}
+
+void ContactDetection::persist(Archive& ar) {
+  ar.section("contact");
+  ar(active_edges_);
 }
 
 }  // namespace tc

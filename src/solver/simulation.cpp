@@ -10,6 +10,7 @@
 #include <stdexcept>
 #include <type_traits>
 
+#include "tetcontact/model/persist.hpp"
 #include "tetcontact/parallel/mpi.hpp"
 #include "tetcontact/parallel/parallel.hpp"
 #include "tetcontact/response/heat.hpp"
@@ -624,6 +625,35 @@ void Simulation::record_fall(Index tet, Index particle, const Vec3& position,
   c.damage = static_cast<int>(fields[3]);
   c.steps_to_end = (settings_.end_time - st.t) / st.dt;
   step_collapses_.push_back(c);
+}
+
+void persist(Archive& ar, StepCollapse& c) {
+  ar(c.step, c.t, c.dt, c.first_dt, c.tet, c.particle, c.body, c.body_tet, c.position,
+     c.volume_ratio, c.pressure, c.plastic_strain, c.damage, c.steps_to_end);
+}
+
+void Simulation::persist(Archive& ar) {
+  ar.section("simulation");
+  std::size_t nodes = model_.mesh.x.size(), tets = model_.mesh.tets.size();
+  ar(nodes, tets);
+  if (nodes != model_.mesh.x.size() || tets != model_.mesh.tets.size())
+    throw ArchiveError("the mesh has another number of nodes or tets");
+  ar(state_);
+  double erosion = elements_.erosion_limit();
+  ar(erosion);
+  if (ar.loading()) elements_.set_erosion_limit(erosion);
+  if (candidates_) candidates_->persist(ar, state_.surfaces);
+  if (contact_) contact_->persist(ar);
+  if (fragmentation_) fragmentation_->persist(ar);
+  if (sph_) sph_->persist(ar);
+  ar.section("ledgers");
+  ar(kick_, contact_totals_, contact_heat_, wall_force_max_, first_, last_, have_sample_,
+     last_push_, energy_scale_, balance_error_max_, critical_tet_, min_dt_, particle_limited_steps_,
+     particle_min_dt_, first_dt_, collapse_factor_, step_collapses_, profile_);
+  if (ar.loading()) {
+    if (!model_.walls.empty()) surface_nodes_ = all_surface_nodes(state_.surfaces);
+    if (resolver_) resolver_->surfaces_changed();
+  }
 }
 
 std::string StepCollapse::message() const {

@@ -1,4 +1,5 @@
 #include "tetcontact/sph/sph.hpp"
+#include "tetcontact/model/persist.hpp"
 
 #include <Eigen/Eigenvalues>
 #include <algorithm>
@@ -705,6 +706,14 @@ Index append_cell_matter(ParticleMatter& pm, const State& st, Index tet, double 
   pm.damage.push_back(st.damage[tet]);
   pm.plane_impulse.push_back(Vec3::Zero());
   return pm.size() - 1;
+}
+
+void Stage::persist(Archive& ar) {
+  ar.section("sph");
+  ar(neighbours_.begin, neighbours_.list, neighbours_.ghost_source, neighbours_.ghost_planes,
+     neighbours_.particles);
+  ar(x_, v_, stress_, art_, heat_rate_, plane_force_, face_terms_, term_begin_, ghost_begin_,
+     face_begin_, face_list_, fresh_);
 }
 
 }  // namespace tc::sph

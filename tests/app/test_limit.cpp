@@ -4,6 +4,7 @@
 #include <algorithm>
 
 #include <chrono>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -168,6 +169,42 @@ TEST(Limit, ResumesAfterAKill) {
   EXPECT_EQ(l.runs, expected.runs);
   EXPECT_GE(l.reused, 3);  // the runs finished before the kill
   EXPECT_LT(l.reused, l.runs);
+}
+
+// A run killed within a search (its case writing checkpoints) goes on from its newest checkpoint
+// when the search is run again: the same bracket, that run's summary the figures of the run never
+// interrupted.
+TEST(Limit, AKilledRunGoesOnFromItsCheckpoint) {
+  test::TempDir dir("limit-checkpoint");
+  test::write_text(dir / "plate.yaml", test::k_plate);
+  const std::string cmd = "limit '" + dir / "plate.yaml" + "' " + k_search +
+                          " --quiet --set output.checkpoint.steps=20 --out '";
+  const auto whole = test::run_cli(cmd + dir / "whole" + "'", dir.str());
+  ASSERT_EQ(whole.code, 0) << whole.err;
+  const Line expected = read_limit(dir / "whole/limit.csv", false).at(0);
+  // Every run killed at step 150: the first at 200 m/s ends before it, the one at 4,000 m/s not.
+  setenv("TETCONTACT_KILL_AT_STEP", "150", 1);
+  const auto killed = test::run_cli(cmd + dir / "out" + "'", dir.str());
+  unsetenv("TETCONTACT_KILL_AT_STEP");
+  EXPECT_EQ(killed.code, 1) << killed.err;
+  const std::string cut = run_folder(dir / "out/runs/all", "parameters.v=4000");
+  ASSERT_TRUE(fs::exists(cut + "/checkpoints/step_0000000140.ckpt"));
+  ASSERT_FALSE(fs::exists(cut + "/summary.json"));
+  const auto resumed = test::run_cli(cmd + dir / "out" + "'", dir.str());
+  ASSERT_EQ(resumed.code, 0) << resumed.err;
+  const Line l = read_limit(dir / "out/limit.csv", false).at(0);
+  EXPECT_EQ(l.lo, expected.lo);
+  EXPECT_EQ(l.hi, expected.hi);
+  EXPECT_EQ(l.runs, expected.runs);
+  EXPECT_NE(test::read_text(cut + "/run.log").find("restarting from"), std::string::npos);
+  auto figures = [](test::Json s) {
+    for (const char* k : {"wall_seconds", "timings", "restarts"}) s.erase(k);
+    return s;
+  };
+  EXPECT_EQ(figures(test::read_json(cut + "/summary.json")),
+            figures(test::read_json(run_folder(dir / "whole/runs/all", "parameters.v=4000") +
+                                    "/summary.json")));
+  EXPECT_FALSE(fs::exists(cut + "/checkpoints"));
 }
 
 // A search run again into the same folder with another --set, or by another build of the program,

@@ -319,3 +319,48 @@ TEST(Mpi, BadInputStopsEveryRankAndOtherCommandsRefuseSeveralProcesses) {
   EXPECT_EQ(r.code, 2);
   EXPECT_NE(r.err.find("only `run` runs distributed"), std::string::npos) << r.err;
 }
+
+// A distributed run killed (one rank by SIGKILL, mpirun ending the others) goes on from its
+// newest checkpoint on 2 ranks: the frames, history and summary of the 2-rank run never
+// interrupted, bit for bit (the checkpoint holds every tet's fields, gathered from the ranks).
+TEST(Mpi, AKilledDistributedRunGoesOnFromItsCheckpointBitForBit) {
+  test::TempDir dir("mpi-restart");
+  const std::string args = "run " + quote(test::source_path("data/cases/cylinders.yaml")) +
+                           " --quiet --threads 1 --set output.checkpoint.steps=100";
+  const std::string whole = dir / "whole", cut = dir / "cut";
+  auto r = launch(2, args + " --out " + quote(whole), dir.str());
+  ASSERT_EQ(r.code, 0) << r.err;
+  const std::string killed =
+      "TETCONTACT_KILL_AT_STEP=250 mpirun --allow-run-as-root "
+      "--oversubscribe -x TETCONTACT_KILL_AT_STEP -np 2 '" +
+      std::string(TETCONTACT_BINARY) + "' " + args + " --out " + quote(cut) +
+      " >/dev/null 2>&1 </dev/null";
+  const int status = std::system(killed.c_str());
+  EXPECT_NE(WIFEXITED(status) ? WEXITSTATUS(status) : -1, 0);
+  ASSERT_TRUE(fs::exists(cut + "/checkpoints/step_0000000200.ckpt"));
+  EXPECT_FALSE(fs::exists(cut + "/summary.json"));
+  r = launch(2, args + " --restart " + quote(cut), dir.str());
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.err.find("restarting from"), std::string::npos) << r.err;
+  // Every file the same bytes (the pieces, the .pvtu, the series), the history but for its
+  // wall-clock columns, the summary's figures.
+  std::set<std::string> files;
+  for (const auto& e : fs::directory_iterator(whole)) files.insert(e.path().filename().string());
+  std::set<std::string> cut_files;
+  for (const auto& e : fs::directory_iterator(cut)) cut_files.insert(e.path().filename().string());
+  EXPECT_EQ(files, cut_files);
+  EXPECT_TRUE(files.count("frame_0006_r1.vtu") && files.count("frame_0006.pvtu"));
+  for (const std::string& f : files) {
+    if (f == "summary.json" || f == "history.csv") continue;
+    EXPECT_TRUE(test::read_text(whole + "/" + f) == test::read_text(cut + "/" + f)) << f;
+  }
+  EXPECT_EQ(test::history_without_timings(fs::path(whole) / "history.csv"),
+            test::history_without_timings(fs::path(cut) / "history.csv"));
+  test::Json restarted = test::read_json(cut + "/summary.json");
+  EXPECT_EQ(restarted.at("restarts").at(0).at("step"), 200);
+  restarted.erase("restarts");
+  test::Json uninterrupted = test::read_json(whole + "/summary.json");
+  EXPECT_EQ(uninterrupted.at("restarts").size(), 0u);
+  uninterrupted.erase("restarts");
+  EXPECT_EQ(figures(uninterrupted), figures(restarted));
+}

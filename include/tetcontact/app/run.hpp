@@ -13,6 +13,9 @@ struct RunOptions {
   bool quiet = false;
   bool check = false;                  // exit 1 when a reference value of the case is missed
   std::vector<std::string> overrides;  // --set path=value
+  /// --restart: a run folder (or its checkpoints folder, or one checkpoint file) to go on from
+  /// its newest checkpoint, in that folder.
+  std::string restart;
 };
 
 /// Exit codes: 0 success, 2 bad input (nothing written), 1 run failure (summary says why).

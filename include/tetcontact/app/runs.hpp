@@ -33,6 +33,8 @@ struct ChildRun {
   std::string key;                // run_key of its inputs
   std::vector<std::string> args;  // `run` and its options (after the program's path)
   int exit_code = -1;             // the child's exit status once run; -1 killed or not run
+  /// Went on from a checkpoint its folder held (an interrupted run of the same key).
+  bool restarted = false;
 };
 
 /// Finished with these inputs: DIR/summary.json is there and DIR/run.key holds `key`. A folder
@@ -62,6 +64,9 @@ struct InputsChanged : std::runtime_error {
 
 /// Runs `todo`, `jobs` at a time, each `this program ARGS` in its folder (created, run.key written
 /// first, the run's output to run.log); `on_done` is called as each ends, in the order they end.
+/// A folder that holds an interrupted run of the same key (run.key, no summary.json) and its
+/// checkpoints (a case with output.checkpoint) goes on from the newest (`run --restart` in place
+/// of `--out DIR --force`); a restart refused or failed there (exit 2) runs again from the start.
 /// The children execute this process's own image (/proc/self/exe), so a program rebuilt at its path
 /// meanwhile does not run under the key of the build that started them; they end (SIGTERM) when
 /// this process ends, however it ends, so none outlives the lock on its folder. With `inputs`, the

@@ -37,7 +37,10 @@ struct RunSummary {
   double end_when_released = 0.0, last_push = -1.0;
   std::vector<std::string> modules, warnings, regimes;
   std::size_t nodes = 0, tets = 0, surface_faces = 0, surface_edges = 0, frames = 0;
-  long gauge_rows = 0;                // rows of gauges.csv (0: no gauges recorded)
+  long gauge_rows = 0;  // rows of gauges.csv (0: no gauges recorded)
+  /// The checkpoints the run went on from (run --restart), oldest first: step and time. Its
+  /// wall_seconds are the last process's; its timings, the stages' over every process.
+  std::vector<std::pair<long, double>> restarts;
   std::vector<std::string> symmetry;  // the symmetry planes' names (the whole: 2^size copies)
   std::vector<std::pair<std::string, double>> stages;  // seconds per stage (StepProfile)
   std::optional<double> probe_seconds;  // the part of `output` the penetration probe took

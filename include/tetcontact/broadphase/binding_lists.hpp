@@ -13,6 +13,8 @@
 
 namespace tc {
 
+class Archive;
+
 /// The one reach rule: 0.2 of the smallest mean tet edge of the surfaces' bodies (half of the
 /// 0.4·dx the contact-boundary notes leave between the search radius and 0.75·Rmax), 0 when
 /// no surface has an edge.
@@ -45,6 +47,8 @@ class BindingLists {
   void anchor(const std::vector<Index>& ids, const std::vector<Vec3>& x0) { set({}, ids, x0); }
   /// The lists are found anew at the next use (the surfaces changed).
   void reset() { have_ = false; }
+  /// What a checkpoint holds of them: the lists, the anchors, whether they are set.
+  void persist(Archive& ar);
 
  private:
   Candidates lists_;

@@ -18,6 +18,8 @@
 
 namespace tc {
 
+class Archive;
+
 /// The surface primitives of all bodies, in surface order (the numbering every list uses).
 struct SurfacePrimitives {
   std::vector<Index> nodes, node_body, node_surface, node_slot;  // slot: index in its surface
@@ -105,6 +107,9 @@ class ContactCandidates {
   /// Counts the searches and primitive changes: a caller keeping data per listed pair rebuilds
   /// it when this changes.
   long version() const { return version_; }
+  /// What a checkpoint holds of it: the lists and where they were found. Reading it back takes
+  /// the primitives of `surfaces` (the checkpoint's, State::surfaces).
+  void persist(Archive& ar, const std::vector<Surface>& surfaces);
 
   const SurfacePrimitives& primitives() const { return prims_; }
   /// Each mesh node's index in primitives().nodes (−1: not on a surface).

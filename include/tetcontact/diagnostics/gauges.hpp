@@ -17,6 +17,8 @@
 
 namespace tc {
 
+class Archive;
+
 struct GaugeError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
@@ -52,6 +54,8 @@ class Gauges {
   const std::vector<GaugeSpec>& specs() const { return specs_; }
   /// Every gauge's reading at the state's time level.
   std::vector<GaugeReading> read(const State& st);
+  /// What a checkpoint holds of them: each gauge's cell.
+  void persist(Archive& ar);
 
  private:
   // The cell of `positions` that holds p best (the largest smallest barycentric coordinate,

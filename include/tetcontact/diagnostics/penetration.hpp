@@ -13,6 +13,8 @@
 
 namespace tc {
 
+class Archive;
+
 struct Penetration {
   long nodes_inside = 0;            // boundary nodes inside another body (depth > 0)
   double max_depth = 0.0;           // m: distance of such a node to that body's surface
@@ -33,6 +35,7 @@ struct Penetration {
 /// Raises each of `largest`'s maxima (counts and depths, not the per-node depths or the
 /// bodies) to `p`'s where p's is larger: the run's largest over its samples.
 void keep_largest(Penetration& largest, const Penetration& p);
+void persist(Archive& ar, Penetration& p);
 
 /// Exact predicates (CGAL's, in penetration_cgal.cpp): p in the closed tet (a, b, c, d);
 /// segment (p, q) passes through the interior of triangle (a, b, c), its ends strictly on
@@ -62,6 +65,8 @@ class PenetrationProbe {
   /// Searches of the binding lists so far (the nodes-in-tets search and the edges-across-faces
   /// one each count).
   long searches() const { return searches_; }
+  /// What a checkpoint holds of it: its lists and the primitives they were found for.
+  void persist(Archive& ar);
 
  private:
   Penetration measure(const std::vector<Vec3>& x, const std::vector<Surface>& surfaces,

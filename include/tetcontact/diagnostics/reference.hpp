@@ -12,6 +12,8 @@
 
 namespace tc {
 
+class Archive;
+
 struct ReferenceSpec {
   enum class Measure {
     length,         // extent of a body's bounding box along `axis`
@@ -150,6 +152,8 @@ class ReferenceRecorder {
   void measure_due(double t, const Model& model, const State& st, const RunFigures& run);
   std::vector<ReferenceResult> finish(const Model& model, const State& st,
                                       const RunFigures& run = {});
+  /// What a checkpoint holds of it: the references measured so far.
+  void persist(Archive& ar);
 
  private:
   const std::vector<ReferenceSpec>& refs_;

@@ -128,6 +128,7 @@ class ElementStage {
   }
   /// A cell whose stable step squared falls below `dt2` is listed eroding.
   void set_erosion_limit(double dt2) { options_.erode_dt2 = dt2; }
+  double erosion_limit() const { return options_.erode_dt2; }
   /// The forces and stable step of the current state (compute_forces).
   ForceResult forces(const std::vector<Tet>& tets, State& st) {
     return compute_forces(tets, options_, st, scratch_);

@@ -20,6 +20,8 @@
 
 namespace tc {
 
+class Archive;
+
 /// What the conversions moved, summed over the run, and how well each conserved.
 struct ConversionLedger {
   long particles = 0;           // cells turned into particles
@@ -91,6 +93,9 @@ class Fragmentation {
   const ConversionLedger& ledger() const { return ledger_; }
   /// The node of the particle that holds this cell, or −1 while it is a cell.
   Index particle_of(Index tet) const { return particle_of_[tet]; }
+  /// What a checkpoint holds of it (model/archive.hpp): the converted cells, the cells to
+  /// convert, the particles holding them, the ledger.
+  void persist(Archive& ar);
 
  private:
   Index cohering(Index t, const State& st, const std::vector<Material>& materials,

@@ -97,6 +97,12 @@ struct OutputSpec {
   /// diagnostics.every_step: the penetration measured at every step (history columns
   /// nodes_inside, crossings), not only at the frames.
   bool penetration_every_step = false;
+  /// `output.checkpoint`: the complete state written every `checkpoint_interval` simulated
+  /// seconds or every `checkpoint_steps` steps (one of them; 0: no checkpoints), keeping the
+  /// newest `checkpoint_keep` (io/checkpoint.hpp).
+  double checkpoint_interval = 0.0;
+  long checkpoint_steps = 0;
+  int checkpoint_keep = 2;
 };
 
 /// Average nodal pressure (anti-locking): on for plastic materials (auto), all, or none.

@@ -1,6 +1,8 @@
 // Output directories and atomic file writes.
 #pragma once
 
+#include <cstddef>
+#include <cstdint>
 #include <fstream>
 #include <stdexcept>
 #include <string>
@@ -14,7 +16,8 @@ struct OutputError : std::runtime_error {
 
 /// Creates `dir` (and parents). An existing non-empty directory is refused unless `force`,
 /// in which case the files a previous run wrote there (case.pvd, frame_*.vtu, history.csv,
-/// summary.json) are removed first so that no stale frame survives; other files are kept.
+/// gauges.csv, summary.json, the checkpoints folder) are removed first so that no stale frame
+/// or checkpoint survives; other files are kept.
 void prepare_output_dir(const std::string& dir, bool force);
 
 /// Writes `content` to `path` through a temporary file renamed into place.
@@ -27,6 +30,10 @@ class AtomicFile {
   ~AtomicFile();  // an uncommitted file is removed
   std::ofstream& stream() { return out_; }
   void commit();
+  /// What has been written so far (flushed first).
+  std::string written();
+  /// Starts the file again with `content` (a run restarted from a checkpoint).
+  void rewrite(const std::string& content);
 
  private:
   std::string path_, tmp_;
@@ -39,6 +46,17 @@ class AtomicFile {
 /// data/), else `data` beside the program itself. No source path is compiled in: the program
 /// works from a copied or moved tree. Throws std::runtime_error naming the places looked at.
 std::string data_dir();
+
+/// The 64-bit FNV-1a hash of bytes added in pieces, as 16 hex digits (keys of runs and
+/// checkpoints; not a cryptographic hash).
+struct Fnv1a {
+  std::uint64_t h = 14695981039346656037ull;
+  void add(const char* p, std::size_t n) {
+    for (std::size_t i = 0; i < n; ++i)
+      h = (h ^ static_cast<unsigned char>(p[i])) * 1099511628211ull;
+  }
+  std::string hex() const;
+};
 
 /// Shortest decimal form that reads back to the same double ("nan"/"inf" for non-finite).
 std::string format_double(double v);

@@ -16,6 +16,8 @@
 
 namespace tc {
 
+class Archive;
+
 /// A distributed run's share of the output: each rank writes the piece of its
 /// tets at every frame (frame_NNNN_rR.vtu); rank 0 joins them in frame_NNNN.pvtu and writes
 /// the series, the history and the particles. Default: one process, whole frames.
@@ -48,6 +50,9 @@ class OutputWriter : public Observer {
   /// Time levels the penetration was measured at (every frame, or every step with
   /// diagnostics.every_step).
   long penetration_samples() const { return penetration_samples_; }
+  /// What a checkpoint holds of it: the frames written, the next one due, the history so far
+  /// and the penetration's maxima (the probe's own lists are the probe's).
+  void persist(Archive& ar);
 
  private:
   bool frame_due(const Sample& s) const;
@@ -83,6 +88,8 @@ class GaugeWriter : public Observer {
   void observe(const State& st, const Sample& sample) override;
   /// Moves gauges.csv into place (also after a failed run: its rows are true data).
   void close() { file_.commit(); }
+  /// What a checkpoint holds of it: the rows so far and the next one due.
+  void persist(Archive& ar);
   long rows() const { return rows_; }
 
  private:

@@ -19,6 +19,8 @@
 
 namespace tc {
 
+class Archive;
+
 /// Per-step figures of the narrow phase between bodies.
 struct ContactStepStats {
   long candidates = 0;     // node–face pairs listed
@@ -44,6 +46,8 @@ class ContactDetection {
   /// The surfaces changed (cells turned into particles exposed new faces): the edge pairs in
   /// contact are kept under their edges' new indices (ContactCandidates::surfaces_changed).
   void edges_renamed(const std::vector<Index>& renamed);
+  /// What a checkpoint holds of it: the edge pairs in contact.
+  void persist(Archive& ar);
 
   /// Contacts of this step: every surface node of one body against the faces of the others
   /// (symmetric), from positions xⁿ (st.x) and x* (st.x_star). A candidate is a contact when

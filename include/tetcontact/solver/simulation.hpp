@@ -126,6 +126,13 @@ class Simulation {
   /// Distributed: gathers every tet's fields on every rank (collective; the run's end, before
   /// the summary and references read them). Nothing on one process.
   void gather_state();
+  /// What a checkpoint holds of the run (model/archive.hpp), between two steps: the state, what
+  /// each stage keeps from one step to the next (the candidate lists and where they were found,
+  /// the edge pairs in contact, the converted cells, the SPH particles' last forces, the erosion
+  /// limit) and the run's ledgers and samples. Read back into a Simulation set up from the same
+  /// model, the steps that follow are those of the run that wrote it, bit for bit. Distributed:
+  /// written after gather_state() (every tet's fields), read back on any number of ranks.
+  void persist(Archive& ar);
   /// Distributed: this rank's tets (ascending); null on one process.
   const std::vector<Index>* rank_tets() const { return elements_.rank_tets(); }
 

@@ -68,6 +68,10 @@
 #include "tetcontact/mesh/surface.hpp"
 #include "tetcontact/model/state.hpp"
 
+namespace tc {
+class Archive;
+}  // namespace tc
+
 namespace tc::sph {
 
 struct Options {
@@ -166,11 +170,14 @@ class Stage {
   const Options& options() const { return options_; }
   /// The face pairs of the last forces: (particle or mirror image, face) within reach.
   std::size_t face_pairs() const { return face_list_.size(); }
+  /// What a checkpoint holds of it: the last forces' lists and terms, which the next step reads.
+  void persist(Archive& ar);
 
  private:
   void find(const State& st, const std::vector<Face>& faces, const Candidates& candidates);
   // The step's terms of the particle's points (itself, then its images) with the faces.
   struct FaceTerm {
+    using archive_bitwise = void;  // plain numbers (model/archive.hpp)
     Index particle;
     unsigned mask;  // of the image (0: the particle)
     Face face;      // its nodes
