@@ -18,6 +18,7 @@
 #include <sstream>
 #include <thread>
 
+#include "tetcontact/app/run.hpp"
 #include "tetcontact/app/runs.hpp"
 #include "tetcontact/app/sweep.hpp"
 #include "tetcontact/diagnostics/reference.hpp"
@@ -243,6 +244,23 @@ int limit_command(const LimitOptions& o) {
   } catch (const CaseError& e) {
     std::cerr << "tetcontact: error: " << e.what() << "\n";
     return 2;
+  }
+  if (o.check) {  // each case the search starts from, as `check` sees it; nothing runs
+    int worst = 0;
+    for (const std::string& w : values)
+      for (const double x : {o.lo, o.hi}) {
+        RunOptions r;
+        r.case_path = o.case_path;
+        r.overrides = o.overrides;
+        r.overrides.push_back(o.find + "=" + fmt(x));
+        if (!o.vary.empty()) r.overrides.push_back(o.vary.front().first + "=" + w);
+        worst = std::max(worst, check_case(r));
+      }
+    if (worst == 0)
+      std::cout << "limit: " << 2 * values.size()
+                << " cases checked (each end of the bracket at each value): each makes a valid "
+                   "case; nothing run\n";
+    return worst;
   }
   const std::string dir = o.out_dir.empty() ? "results/" + case_name + "-limit" : o.out_dir;
   RunsFolderLock lock;

@@ -207,6 +207,9 @@ CLI::App* add_limit(CLI::App& app, tc::LimitOptions& l) {
                   "earlier search's runs/ is resumed");
   add_overrides(cmd, l.overrides);
   cmd->add_flag("--quiet", l.quiet, "no progress lines");
+  cmd->add_flag("--check", l.check,
+                "check the case at both ends of the bracket at each --vary value as `check` does "
+                "(the keys, the meshes, the first step); nothing runs, nothing is written");
   cmd->footer(
       "Each run is `tetcontact run` into DIR/runs/<KEY2=w>/<KEY=x>_<hash>/ (summary.json,\n"
       "run.log, run.key: the program's build, the case file, every override, the library);\n"

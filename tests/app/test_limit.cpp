@@ -250,3 +250,22 @@ TEST(Limit, AnotherOverrideIsNeverReused) {
   EXPECT_NE(typo.err.find("no parameter 'V' (did you mean 'v'?)"), std::string::npos) << typo.err;
   EXPECT_FALSE(fs::exists(dir / "typo"));
 }
+
+// --check: every case the search starts from checked as `check` does, nothing run or written; a
+// value that makes a bad case is named.
+TEST(Limit, CheckChecksEachCaseOfTheSearchAndRunsNothing) {
+  test::TempDir dir("limit-check");
+  test::write_text(dir / "plate.yaml", test::k_plate);
+  const std::string cmd = "limit '" + dir / "plate.yaml" +
+                          "' --find parameters.v --between 200 4000 --criterion perforated:plate "
+                          "--vary parameters.tb=1.0e-3,2.0e-3 --check --out '" +
+                          dir / "out" + "'";
+  const auto ok = test::run_cli(cmd, dir.str());
+  ASSERT_EQ(ok.code, 0) << ok.err;
+  EXPECT_NE(ok.out.find("limit: 4 cases checked"), std::string::npos) << ok.out;
+  EXPECT_EQ(std::count(ok.out.begin(), ok.out.end(), '\n'), 5) << ok.out;  // 4 cases, 1 total
+  EXPECT_FALSE(fs::exists(dir / "out"));
+  const auto bad = test::run_cli(cmd + " --set end_time=-1", dir.str());
+  EXPECT_EQ(bad.code, 2) << bad.err;
+  EXPECT_FALSE(fs::exists(dir / "out"));
+}

@@ -1,6 +1,11 @@
 """Every command line of the manual holds: each ```sh block of README.md, docs/ and
 data/*/README.md, each `tetcontact ...` quoted in their prose, and each tool's usage in
-docs/guide/commands.md's table, checked without running the long work.
+docs/guide/commands.md's table.
+
+Run as far as a test affords (test_every_line_with_a_case_runs): each `run` line on a shipped case
+(also under `mpirun`) and each run of each `sweep` line, set up and stepped ten steps
+(solver.max_steps); each `profile` line over five steps; each `limit` line with `--check`; each
+`ccd` line on a shipped query set as given. Checked without running the long work:
 
 - `build/tetcontact run CASE [--set ...]` (also under `mpirun`): the case and its overrides pass
   `tetcontact check` (the file, the keys, the meshes, the first step); its other options are
@@ -17,7 +22,9 @@ docs/guide/commands.md's table, checked without running the long work.
 
 A command of a block that names a placeholder (CASE.yaml, DIR, ...) instead of a file is checked
 for its options only."""
+import csv
 import glob
+import json
 import os
 import re
 import shlex
@@ -215,3 +222,115 @@ def test_every_command_line_holds(binary, where, line, argv):
                          ids=[f"{f}:{n}" for f, n, _ in table_tools()])
 def test_every_tool_usage_in_the_table_holds(where, line, argv):
     check_tool([a for a in argv if a not in ("(or", ")")], f"{where}:{line}")
+
+
+def without(argv, flags, valued):
+    """argv without the flags in `flags` and the options in `valued` with their values."""
+    kept, k = [], 0
+    while k < len(argv):
+        if argv[k] in valued:
+            k += 2
+            continue
+        if argv[k] not in flags:
+            kept.append(argv[k])
+        k += 1
+    return kept
+
+
+def top_level_values(values):
+    """How many values a --vary list gives: its commas outside brackets and braces, plus one."""
+    depth, n = 0, 1
+    for ch in values:
+        depth += ch in "[{"
+        depth -= ch in "]}"
+        n += ch == "," and depth == 0
+    return n
+
+
+def has_placeholder(argv):
+    """A line a reader completes (N, DIR, KEY=VALUE, ...): its options are checked, not run."""
+    return any(a in ("N", "DIR", "...", "…") or a.split("=")[0].isupper() for a in argv)
+
+
+RUNS_ITS_CASE = ("run", "sweep", "profile", "limit")
+
+RUN_LINES = [(f, n, a) for f, n, a in COMMANDS
+             if "build/tetcontact" in a
+             and a[a.index("build/tetcontact") + 1:][:1] in [[c] for c in RUNS_ITS_CASE]
+             and any(x.endswith(".yaml") and not is_placeholder(x) for x in a)
+             and "--restart" not in a and not has_placeholder(a[a.index("build/tetcontact"):])]
+
+
+def test_the_manual_has_lines_that_run():
+    subs = [a[a.index("build/tetcontact") + 1] for _, _, a in RUN_LINES]
+    assert subs.count("run") >= 15 and subs.count("sweep") >= 4 and subs.count("limit") >= 2 \
+        and subs.count("profile") >= 1, subs
+
+
+@pytest.mark.parametrize("where,line,argv", RUN_LINES, ids=[f"{f}:{n}" for f, n, _ in RUN_LINES])
+def test_every_line_with_a_case_runs(binary, out, where, line, argv):
+    """Each `run`, `sweep`, `profile` and `limit` line of the manual runs on its case with its
+    overrides, threads and processes, as far as a test can afford: a run or each run of a sweep
+    set up and stepped ten steps (solver.max_steps: the run then stops as failed, saying so),
+    writing its frames, history and summary; a profile over five steps; a search with `--check`
+    (each case it starts from checked as `check` does; its runs take hours)."""
+    where = f"{where}:{line}"
+    launcher = []
+    if argv[0] == "mpirun":  # under mpirun: its process count, as root and oversubscribed here
+        launcher = ["mpirun", "--allow-run-as-root", "--oversubscribe", "-np",
+                    argv[argv.index("-np") + 1]]
+    argv = argv[argv.index("build/tetcontact") + 1:]
+    sub, rest = argv[0], argv[1:]
+    result = os.path.join(out, sub)
+    if sub == "limit":
+        cmd = [binary, sub] + without(rest, ("--quiet",), ("--out",)) + ["--check"]
+        r = subprocess.run(cmd, capture_output=True, text=True, cwd=ROOT)
+        assert r.returncode == 0 and "cases checked" in r.stdout, (
+            f"{where}: {' '.join(cmd)}: exit {r.returncode}: {r.stdout}{r.stderr}")
+        assert not os.path.exists(result)
+        return
+    if sub == "profile":
+        cmd = [binary, sub] + without(rest, (), ("--steps", "--ccd-queries")) + [
+            "--steps", "5", "--ccd-queries", os.path.join(out, "queries.txt")]
+        r = subprocess.run(cmd, capture_output=True, text=True, cwd=ROOT)
+        assert r.returncode == 0, f"{where}: {' '.join(cmd)}: exit {r.returncode}: {r.stderr}"
+        assert "method" in r.stdout and "grid" in r.stdout, r.stdout
+        return
+    cmd = launcher + [binary, sub] + without(rest, ("--force", "--check", "--quiet"), ("--out",)) \
+        + ["--quiet", "--out", result, "--set", "solver.max_steps=10"]
+    r = subprocess.run(cmd, capture_output=True, text=True, cwd=ROOT)
+    said = f"{where}: {' '.join(cmd)}: exit {r.returncode}: {r.stderr}"
+    if sub == "sweep":  # exit 1: its runs stopped
+        assert r.returncode == 1, said
+        with open(os.path.join(result, "sweep.csv")) as f:
+            rows = list(csv.DictReader(f))
+        combinations = 1
+        for k, a in zip(rest, rest[1:]):
+            if k == "--vary":
+                combinations *= top_level_values(a.split("=", 1)[1])
+        assert len(rows) == combinations, (where, len(rows), combinations)
+        for row in rows:
+            assert row["status"].startswith("failed: max_steps (10) reached"), (where, row)
+        return
+    assert r.returncode == 1 and "max_steps (10) reached" in r.stderr, said
+    with open(os.path.join(result, "summary.json")) as f:
+        summary = json.load(f)
+    assert summary["status"].startswith("failed: max_steps (10) reached"), (where, summary["status"])
+    assert summary["steps"] == 10, (where, summary["steps"])
+    frame = "frame_0000.pvtu" if launcher else "frame_0000.vtu"
+    assert os.path.isfile(os.path.join(result, frame)), (where, frame)
+    assert os.path.isfile(os.path.join(result, "history.csv")), where
+
+
+CCD_LINES = [(f, n, a) for f, n, a in COMMANDS
+             if "build/tetcontact" in a and a[a.index("build/tetcontact") + 1:][:1] == ["ccd"]
+             and any(x.startswith("data/") for x in a)]
+
+
+@pytest.mark.parametrize("where,line,argv", CCD_LINES, ids=[f"{f}:{n}" for f, n, _ in CCD_LINES])
+def test_every_ccd_line_on_a_shipped_set_runs(binary, where, line, argv):
+    """`ccd` on a query set of data/ runs as the manual gives it (seconds)."""
+    assert CCD_LINES, "the manual runs the CCD on a shipped set"
+    argv = argv[argv.index("build/tetcontact") + 1:]
+    r = subprocess.run([binary] + argv, capture_output=True, text=True, cwd=ROOT)
+    assert r.returncode == 0, f"{where}:{line}: exit {r.returncode}: {r.stderr}"

@@ -21,6 +21,9 @@ struct LimitOptions {
   double tolerance = 0.05;  // the bracket's width relative to its upper end
   std::string out_dir;      // default results/<case name>-limit
   bool quiet = false;
+  /// --check: the case at both ends of the bracket, at each --vary value, checked as `tetcontact
+  /// check` does (the file, the keys, the meshes, the first step); nothing runs, nothing written.
+  bool check = false;
   std::vector<std::string> overrides;  // --set, applied to every run
 };
 
