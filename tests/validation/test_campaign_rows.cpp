@@ -55,9 +55,9 @@ TEST(Validation, TaylorCampaignRowsHoldTheirTabulatedErrors) {
     EXPECT_LT(std::stod(plain.at(house).at("error:final length")), -0.07) << house;
 }
 
-// docs/validation/whipple-studies.md's refined-wall table: row 858 (a 3.175 mm sphere at 2.5 km/s on a
-// 2.54 mm wall) measured P, Christiansen's equation P, the engine NP (the engine's debris calls
-// perforated shields safe); row 383 (6.6 km/s, a 4.06 mm wall) NP by all three.
+// docs/validation/whipple-studies.md's refined-wall table: row 858 (a 3.175 mm sphere at 2.5 km/s
+// on a 2.54 mm wall) measured P, Christiansen's equation P, the engine NP (the engine's debris
+// calls perforated shields safe); row 383 (6.6 km/s, a 4.06 mm wall) NP by all three.
 TEST(Validation, WhippleCampaignRowsGiveTheTabulatedVerdicts) {
   tc::test::TempDir dir("campaign-rows-whipple");
   const auto rows =
