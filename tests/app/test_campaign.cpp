@@ -3,6 +3,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cstdlib>
 #include <filesystem>
 #include <map>
 #include <sstream>
@@ -63,6 +64,43 @@ std::size_t run_folders(const std::string& dir) {
 }
 
 }  // namespace
+
+// A run killed within a campaign (its case writing checkpoints) goes on from its newest checkpoint
+// when the campaign is run again: every run's summary the figures of the campaign never
+// interrupted, the killed ones restarted.
+TEST(Campaign, AKilledRunGoesOnFromItsCheckpoint) {
+  test::TempDir dir("campaign-checkpoint");
+  test::write_text(dir / "box.yaml", k_box);
+  test::write_text(dir / "boxes.csv", k_boxes);
+  const std::string cmd = "campaign '" + dir / "box.yaml" + "' '" + dir / "boxes.csv" +
+                          "' --jobs 2 --set end_time=2.0e-5 --set output.checkpoint.steps=20 "
+                          "--out '";
+  const auto whole = test::run_cli(cmd + dir / "whole" + "'", dir.str());
+  ASSERT_EQ(whole.code, 0) << whole.err;
+  setenv("TETCONTACT_KILL_AT_STEP", "90", 1);  // every run killed at step 90 of 140 or more
+  const auto killed = test::run_cli(cmd + dir / "out" + "'", dir.str());
+  unsetenv("TETCONTACT_KILL_AT_STEP");
+  EXPECT_NE(killed.code, 0);
+  const auto resumed = test::run_cli(cmd + dir / "out" + "'", dir.str());
+  ASSERT_EQ(resumed.code, 0) << resumed.err;
+  const auto figures = [](test::Json s) {
+    for (const char* k : {"wall_seconds", "timings", "restarts"}) s.erase(k);
+    return s;
+  };
+  const auto rows = test::read_csv(dir / "out/predictions.csv");
+  ASSERT_EQ(rows.size(), 4u);
+  int restarted = 0;
+  for (const auto& row : rows) {
+    const std::string run = dir / "out/runs/" + row.at("folder");
+    const test::Json s = test::read_json(run + "/summary.json");
+    EXPECT_GT(test::number(s, "/steps"), 90) << row.at("folder");
+    restarted += !s.at("restarts").empty();
+    EXPECT_EQ(figures(s),
+              figures(test::read_json(dir / "whole/runs/" + row.at("folder") + "/summary.json")))
+        << row.at("folder");
+  }
+  EXPECT_EQ(restarted, 4);
+}
 
 // Rows become runs (a parameter from a column with its unit factor, a material slot from a name
 // map), each prediction is compared with its row's measurement, and the statistics are the
