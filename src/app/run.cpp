@@ -118,11 +118,6 @@ void check_gauges(const Case& c, const Model& model) {
   }
 }
 
-// A distributed run records no gauges: the cells' fields are each rank's.
-const char* k_no_distributed_gauges =
-    "gauges: a distributed run does not record them (each rank holds its own cells' fields): "
-    "no gauges.csv; run on threads (--threads N) for it";
-
 int report_run(const RunOptions& o, const Case& c, const Simulation& sim, OutputWriter& writer,
                RunRecord run);
 
@@ -221,7 +216,6 @@ int run_case(const RunOptions& o) {
     }
     check_gauges(c, sim->model());
     warnings = mach_warnings(c, sim->model());
-    if (!c.output.gauges.empty() && mpi::ranks() > 1) warnings.push_back(k_no_distributed_gauges);
     if (root) {
       for (const std::string& w : warnings) std::cerr << "tetcontact: warning: " << w << "\n";
       for (const std::string& n : regime_notes(c, sim->model()))
@@ -254,9 +248,11 @@ int run_case(const RunOptions& o) {
   OutputWriter writer(sim->model(), c.output, dir, c.end_time, &sim->profile(),
                       {mpi::rank(), mpi::ranks(), sim->rank_tets()});
   sim->add_observer(&writer, mpi::ranks() > 1 ? "output:pvtu+history" : "output:vtu+history");
-  std::unique_ptr<GaugeWriter> gauges;  // one process only
-  if (!c.output.gauges.empty() && mpi::ranks() == 1) {
-    gauges = std::make_unique<GaugeWriter>(sim->model().mesh, c.output, dir, c.end_time);
+  std::unique_ptr<GaugeWriter> gauges;  // distributed: the owners of the cells send their fields
+  if (!c.output.gauges.empty()) {
+    gauges = std::make_unique<GaugeWriter>(sim->model().mesh, c.output, dir, c.end_time,
+                                           mpi::ranks() > 1 ? &sim->partition().tet_rank : nullptr,
+                                           mpi::rank());
     sim->add_observer(gauges.get(), "output:gauges");
   }
   // Interpenetration at every frame, independent of the contact code (bodies ≥ 2, or
@@ -273,27 +269,21 @@ int run_case(const RunOptions& o) {
   ReferenceRecorder references(c.references);
   std::vector<std::pair<long, double>> restarts;  // the checkpoints this run went on from
   // A checkpoint holds the simulation, then what the observers keep: the frames and history,
-  // the probe's lists, the references measured, the gauges' rows (last: a distributed run
-  // records none).
+  // the probe's lists, the references measured, the gauges' rows.
   const auto persist_run = [&](Archive& ar) {
     sim->persist(ar);
     writer.persist(ar);
     if (probe) probe->persist(ar);
     references.persist(ar);
     ar(restarts);
-    bool has_gauges = gauges != nullptr;
-    ar(has_gauges);
-    if (ar.loading() && gauges && !has_gauges)
-      throw ArchiveError(
-          "written by a distributed run, which records no gauges: restart it distributed");
-    if (has_gauges && gauges) gauges->persist(ar);
+    if (gauges) gauges->persist(ar);
   };
   CheckpointClock checkpoints(c.output);
   if (!o.restart.empty()) {
     try {
       Archive ar(std::move(restart.payload));
       persist_run(ar);
-      if (gauges && !ar.at_end()) throw ArchiveError("data left over after the last section");
+      if (!ar.at_end()) throw ArchiveError("data left over after the last section");
     } catch (const ArchiveError& e) {
       if (root)
         std::cerr << "tetcontact: error: " << restart.path << ": cannot be read back: " << e.what()

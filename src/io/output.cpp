@@ -1,8 +1,11 @@
 #include "tetcontact/io/output.hpp"
 #include "tetcontact/model/persist.hpp"
 
+#include <algorithm>
+#include <array>
 #include <chrono>
 #include <cstdio>
+#include <cstring>
 
 #include "tetcontact/io/vtk.hpp"
 #include "tetcontact/parallel/mpi.hpp"
@@ -133,12 +136,15 @@ void OutputWriter::close() {
 }
 
 GaugeWriter::GaugeWriter(const Mesh& mesh, const OutputSpec& spec, const std::string& dir,
-                         double end_time)
+                         double end_time, const std::vector<int>* tet_rank, int rank)
     : gauges_(mesh, spec.gauges),
       interval_(spec.gauge_interval),
       end_time_(end_time),
-      file_(dir + "/gauges.csv") {
-  auto& h = file_.stream();
+      tet_rank_(tet_rank),
+      rank_(rank) {
+  if (rank_ != 0) return;  // the file is rank 0's
+  file_ = std::make_unique<AtomicFile>(dir + "/gauges.csv");
+  auto& h = file_->stream();
   h << "step,t";
   for (const GaugeSpec& g : gauges_.specs())
     for (const char* q : {"x", "y", "z", "vx", "vy", "vz", "pressure", "sxx", "syy", "szz", "sxy",
@@ -152,9 +158,31 @@ void GaugeWriter::observe(const State& st, const Sample& s) {
   if (!(interval_ == 0.0 || s.t >= next_ - 1e-9 * interval_ || final)) return;
   if (interval_ > 0.0)
     while (next_ <= s.t + 1e-9 * interval_) next_ += interval_;
-  auto& h = file_.stream();
+  std::vector<GaugeReading> readings = gauges_.read(st);
+  if (tet_rank_) {
+    // A cell's fields are current on the rank that owns it: it sends them, in gauge order.
+    for (GaugeReading& r : readings) {
+      if (r.cell < 0) continue;
+      std::array<double, 12> f;
+      std::copy(r.stress.data(), r.stress.data() + 9, f.begin());
+      f[9] = r.pressure;
+      f[10] = r.plastic_strain;
+      f[11] = r.temperature;
+      std::string bytes(sizeof f, '\0');
+      std::memcpy(bytes.data(), f.data(), sizeof f);
+      bytes = mpi::broadcast(bytes, (*tet_rank_)[static_cast<std::size_t>(r.cell)]);
+      std::memcpy(f.data(), bytes.data(), sizeof f);
+      std::copy(f.begin(), f.begin() + 9, r.stress.data());
+      r.pressure = f[9];
+      r.plastic_strain = f[10];
+      r.temperature = f[11];
+    }
+  }
+  ++rows_;
+  if (!file_) return;
+  auto& h = file_->stream();
   h << s.step << ',' << format_double(s.t);
-  for (const GaugeReading& r : gauges_.read(st)) {
+  for (const GaugeReading& r : readings) {
     if (r.cell < 0) {  // no cell holds the point: not measured
       h << std::string(16, ',');
       continue;
@@ -168,7 +196,6 @@ void GaugeWriter::observe(const State& st, const Sample& s) {
       << static_cast<int>(r.damage);
   }
   h << '\n';
-  ++rows_;
 }
 
 void OutputWriter::persist(Archive& ar) {
@@ -184,9 +211,9 @@ void GaugeWriter::persist(Archive& ar) {
   ar.section("gauge rows");
   gauges_.persist(ar);
   ar(next_, rows_);
-  std::string rows = ar.loading() ? std::string() : file_.written();
+  std::string rows = ar.loading() || !file_ ? std::string() : file_->written();
   ar(rows);
-  if (ar.loading()) file_.rewrite(rows);
+  if (ar.loading() && file_) file_->rewrite(rows);
 }
 
 }  // namespace tc

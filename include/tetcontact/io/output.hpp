@@ -80,14 +80,19 @@ class OutputWriter : public Observer {
 /// position, velocity, the cell's pressure, stress (s − p I), plastic strain, temperature and
 /// damage (0 intact, 1 damaged, 2 destroyed, 3 a particle); empty where no cell holds a space
 /// gauge's point. A row at the first step at or after each multiple of the interval (0: every
-/// step) and at the end. One process only: the cells' fields of a distributed run are each
-/// rank's.
+/// step) and at the end. Distributed (`tet_rank`, the partition's rank of each tet, and this
+/// process's `rank`): every rank reads the gauges (the nodes are whole on each), the rank that
+/// owns a gauge's cell sends the cell's fields to the others (a collective per gauge and row),
+/// and rank 0 writes the file: the rows of one process, bit for bit.
 class GaugeWriter : public Observer {
  public:
-  GaugeWriter(const Mesh& mesh, const OutputSpec& spec, const std::string& dir, double end_time);
+  GaugeWriter(const Mesh& mesh, const OutputSpec& spec, const std::string& dir, double end_time,
+              const std::vector<int>* tet_rank = nullptr, int rank = 0);
   void observe(const State& st, const Sample& sample) override;
   /// Moves gauges.csv into place (also after a failed run: its rows are true data).
-  void close() { file_.commit(); }
+  void close() {
+    if (file_) file_->commit();
+  }
   /// What a checkpoint holds of it: the rows so far and the next one due.
   void persist(Archive& ar);
   long rows() const { return rows_; }
@@ -95,7 +100,9 @@ class GaugeWriter : public Observer {
  private:
   Gauges gauges_;
   double interval_, end_time_, next_ = 0.0;
-  AtomicFile file_;
+  const std::vector<int>* tet_rank_;  // distributed: each tet's rank; null on one process
+  int rank_;
+  std::unique_ptr<AtomicFile> file_;  // rank 0's
   long rows_ = 0;
 };
 
