@@ -158,11 +158,23 @@ class CheckpointClock {
   double next_ = 0.0;
 };
 
-// Fault injection for the restart tests: TETCONTACT_KILL_AT_STEP=N kills the process (SIGKILL,
-// as an out-of-memory killer or a batch queue would) right after step N.
+// Fault injection for the restart tests: TETCONTACT_KILL_AT_STEP=N sends the process a signal
+// right after step N: SIGKILL (as an out-of-memory killer would), or the signal number
+// TETCONTACT_KILL_SIGNAL gives (15: a batch queue's SIGTERM).
 long kill_at_step() {
   const char* s = std::getenv("TETCONTACT_KILL_AT_STEP");
   return s ? std::atol(s) : -1;
+}
+int kill_signal() {
+  const char* s = std::getenv("TETCONTACT_KILL_SIGNAL");
+  return s ? std::atoi(s) : SIGKILL;
+}
+
+// SIGTERM or SIGINT (a batch queue's notice before its limit, Ctrl-C) in a run with checkpoints:
+// the step under way ends, a checkpoint of it is written, and the run stops there.
+volatile std::sig_atomic_t g_stop_signal = 0;
+extern "C" void note_stop_signal(int signal) {
+  g_stop_signal = signal;
 }
 
 }  // namespace
@@ -303,8 +315,26 @@ int run_case(const RunOptions& o) {
                                       ? CheckpointHeader{program_identity(), inputs_hash(o, c)}
                                       : CheckpointHeader{};
   const long kill_step = kill_at_step();
+  long stop_signal = 0;  // the signal that stopped the run (every rank alike)
+  long checkpoint_step = -1;
+  const auto write_now = [&](const Simulation& s) {
+    sim->gather_state();  // distributed: every tet's fields, on every rank alike
+    checkpoint_step = s.state().step;
+    if (!root) return;
+    Archive ar;
+    persist_run(ar);
+    CheckpointHeader h = header;
+    h.step = s.state().step;
+    h.t = s.state().t;
+    write_checkpoint(dir, h, ar.bytes(), c.output.checkpoint_keep);
+  };
+  if (checkpoints.on()) {
+    std::signal(SIGTERM, note_stop_signal);
+    std::signal(SIGINT, note_stop_signal);
+  }
   RunHooks hooks;
   hooks.references = &references;
+  hooks.stop = [&] { return stop_signal != 0; };
   hooks.each_step = [&](const Simulation& s) {
     progress.update(s.state());
     for (; falls < s.step_collapses().size(); ++falls) {
@@ -314,19 +344,28 @@ int run_case(const RunOptions& o) {
     }
     if (checkpoints.on() && checkpoints.due(s.state()) && !s.done()) {
       checkpoints.passed(s.state().t);
-      sim->gather_state();  // distributed: every tet's fields, on every rank alike
-      if (root) {
-        Archive ar;
-        persist_run(ar);
-        CheckpointHeader h = header;
-        h.step = s.state().step;
-        h.t = s.state().t;
-        write_checkpoint(dir, h, ar.bytes(), c.output.checkpoint_keep);
-      }
+      write_now(s);
     }
-    if (s.state().step == kill_step) std::raise(SIGKILL);
+    if (s.state().step == kill_step) std::raise(kill_signal());
+    if (!checkpoints.on() || s.done()) return;
+    // A stop asked by a signal: on every rank at the same step (the largest over the ranks).
+    stop_signal = mpi::ranks() > 1 ? mpi::max(static_cast<long>(g_stop_signal))
+                                   : static_cast<long>(g_stop_signal);
+    if (stop_signal != 0 && checkpoint_step != s.state().step) write_now(s);
   };
   const std::string status = run_to_end(*sim, hooks);
+  if (status == "interrupted") {
+    progress.done();
+    if (root) {
+      std::string sets;
+      for (const std::string& s : o.overrides) sets += " --set '" + s + "'";
+      std::cerr << "tetcontact: stopped by signal " << stop_signal << " after step "
+                << sim->state().step << " (t = " << fmt(sim->state().t)
+                << " s), its checkpoint written: go on with `tetcontact run " << o.case_path << sets
+                << " --restart " << dir << "`\n";
+    }
+    return static_cast<int>(128 + stop_signal);
+  }
   int code = status == "ok" ? 0 : 1;
   progress.done();
   sim->gather_state();  // distributed: the tets' fields whole for the summary and references

@@ -12,6 +12,7 @@ std::string run_to_end(Simulation& sim, const RunHooks& hooks) {
         hooks.references->measure_due(sim.state().t, sim.model(), sim.state(), sim.run_figures());
       }
       if (hooks.each_step) hooks.each_step(sim);
+      if (hooks.stop && hooks.stop()) return "interrupted";
     }
     sim.finish();
   } catch (const RunFailure& e) {  // in a distributed run: on every rank alike

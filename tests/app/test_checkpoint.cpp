@@ -129,6 +129,34 @@ TEST(Checkpoint, TheSpallPlateKilledGoesOnWithItsGauges) {
   EXPECT_GT(test::number(s, "/fracture/particles"), 0);
 }
 
+// SIGTERM (a batch queue's notice) or SIGINT in a run with checkpoints: the step under way ends,
+// its checkpoint is written and the run stops (exit 128 + the signal), losing nothing; the
+// restart ends as the run never interrupted.
+TEST(Checkpoint, ASigtermStopsTheRunWithACheckpointOfItsLastStep) {
+  test::TempDir dir("checkpoint-sigterm");
+  const std::string args = "run " + quote(k_spall) + " --quiet";
+  const auto w = test::run_cli(args + " --out " + quote(dir / "whole"), dir.str());
+  ASSERT_EQ(w.code, 0) << w.err;
+  // Checkpoints every 100,000 steps: none due in the run; the signal's is the only one.
+  const std::string sets = " --set output.checkpoint.steps=100000";
+  setenv("TETCONTACT_KILL_SIGNAL", "15", 1);
+  const auto k = run_killed_at(333, args + sets + " --out " + quote(dir / "cut"), dir.str());
+  unsetenv("TETCONTACT_KILL_SIGNAL");
+  EXPECT_EQ(k.code, 128 + 15) << k.err;
+  EXPECT_NE(k.err.find("stopped by signal 15 after step 333"), std::string::npos) << k.err;
+  EXPECT_EQ(files_in(dir / "cut/checkpoints"), std::set<std::string>{"step_0000000333.ckpt"});
+  EXPECT_FALSE(fs::exists(dir / "cut/summary.json"));
+  const auto r = test::run_cli(args + sets + " --restart " + quote(dir / "cut"), dir.str());
+  ASSERT_EQ(r.code, 0) << r.err;
+  expect_same_run(dir / "whole", dir / "cut");
+  // Without checkpoints a signal ends the run as it always did: nothing is written for it.
+  setenv("TETCONTACT_KILL_SIGNAL", "15", 1);
+  const auto plain = run_killed_at(333, args + " --out " + quote(dir / "plain"), dir.str());
+  unsetenv("TETCONTACT_KILL_SIGNAL");
+  EXPECT_EQ(plain.code, 128 + 15);
+  EXPECT_FALSE(fs::exists(dir / "plain/checkpoints"));
+}
+
 // What cannot be gone on from is refused (exit 2, the file named, nothing written), and a
 // restart that can, can only once.
 TEST(Checkpoint, AnotherCasesBuildsOrADamagedCheckpointIsRefused) {
