@@ -172,8 +172,13 @@ int kill_signal() {
 
 // SIGTERM or SIGINT (a batch queue's notice before its limit, Ctrl-C) in a run with checkpoints:
 // the step under way ends, a checkpoint of it is written, and the run stops there.
+// A second signal while the step ends acts as it would without checkpoints.
 volatile std::sig_atomic_t g_stop_signal = 0;
 extern "C" void note_stop_signal(int signal) {
+  if (g_stop_signal != 0) {
+    std::signal(signal, SIG_DFL);
+    std::raise(signal);
+  }
   g_stop_signal = signal;
 }
 
@@ -242,7 +247,11 @@ int run_case(const RunOptions& o) {
       dir = restart_run_folder(o.restart);
       if (std::filesystem::exists(dir + "/summary.json"))
         throw OutputError(dir + ": the run there has ended (summary.json): nothing to restart");
-      restart = read_checkpoint(o.restart, program_identity(), inputs_hash(o, c));
+      std::vector<std::string> skipped;  // damaged newer ones
+      restart = read_checkpoint(o.restart, program_identity(), inputs_hash(o, c), &skipped);
+      if (root)
+        for (const std::string& s : skipped)
+          std::cerr << "tetcontact: warning: " << s << ": going on from the one before\n";
       return 0;
     }
     dir = o.out_dir.empty() ? "results/" + c.name : o.out_dir;
@@ -296,7 +305,7 @@ int run_case(const RunOptions& o) {
       Archive ar(std::move(restart.payload));
       persist_run(ar);
       if (!ar.at_end()) throw ArchiveError("data left over after the last section");
-    } catch (const ArchiveError& e) {
+    } catch (const std::exception& e) {  // ArchiveError; a damaged size's bad_alloc too
       if (root)
         std::cerr << "tetcontact: error: " << restart.path << ": cannot be read back: " << e.what()
                   << "\n";
@@ -317,6 +326,7 @@ int run_case(const RunOptions& o) {
   const long kill_step = kill_at_step();
   long stop_signal = 0;  // the signal that stopped the run (every rank alike)
   long checkpoint_step = -1;
+  bool checkpoint_failed = false;  // said once; the run goes on without that checkpoint
   const auto write_now = [&](const Simulation& s) {
     sim->gather_state();  // distributed: every tet's fields, on every rank alike
     checkpoint_step = s.state().step;
@@ -326,7 +336,15 @@ int run_case(const RunOptions& o) {
     CheckpointHeader h = header;
     h.step = s.state().step;
     h.t = s.state().t;
-    write_checkpoint(dir, h, ar.bytes(), c.output.checkpoint_keep);
+    try {
+      write_checkpoint(dir, h, ar.bytes(), c.output.checkpoint_keep);
+    } catch (const OutputError& e) {
+      if (checkpoint_failed) return;
+      checkpoint_failed = true;
+      const std::string w = std::string("checkpoint not written (the run goes on): ") + e.what();
+      warnings.push_back(w);
+      std::cerr << (o.quiet ? "" : "\n") << "tetcontact: warning: " << w << "\n";
+    }
   };
   if (checkpoints.on()) {
     std::signal(SIGTERM, note_stop_signal);
@@ -356,6 +374,8 @@ int run_case(const RunOptions& o) {
   const std::string status = run_to_end(*sim, hooks);
   if (status == "interrupted") {
     progress.done();
+    writer.close();  // the history and gauges so far in place (a restart writes them anew)
+    if (gauges) gauges->close();
     if (root) {
       std::string sets;
       for (const std::string& s : o.overrides) sets += " --set '" + s + "'";

@@ -75,14 +75,15 @@ namespace {
 
 // Forks and execs `program` (a path, or a name looked up in PATH) with the arguments `args`
 // (args[0] its name) and its output to `log` and no input: the child's pid, or -1. The child
-// ends (SIGTERM) when this process does, however it ends: a run left going without the search
+// ends (SIGKILL: a run with checkpoints would finish its step on SIGTERM) when this process does,
+// however it ends: a run left going without the search
 // or campaign that holds its folder would race a new one started on the same folder.
 pid_t start_program(const std::string& program, std::vector<std::string> args,
                     const std::string& log) {
   const pid_t parent = getpid();
   const pid_t pid = fork();
   if (pid == 0) {  // the child: its output to the log, then the program
-    prctl(PR_SET_PDEATHSIG, SIGTERM);
+    prctl(PR_SET_PDEATHSIG, SIGKILL);
     if (getppid() != parent) _exit(127);  // the parent ended before the line above
     const int fd = open(log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
     const int in = open("/dev/null", O_RDONLY);
@@ -182,6 +183,10 @@ void run_children(const std::vector<ChildRun*>& runs, int jobs,
       ChildRun* r = todo[next++];
       fs::create_directories(r->dir);
       r->restarted = !r->restarted && resumable(*r);
+      if (r->restarted) {  // the interrupted run's log kept beside the restart's
+        std::error_code ec;
+        fs::rename(r->dir + "/run.log", r->dir + "/interrupted.log", ec);
+      }
       write_file_atomic(r->dir + "/run.key", r->key);
       std::vector<std::string> args{"tetcontact"};
       const std::vector<std::string> own = r->restarted ? restart_args(*r) : r->args;

@@ -1,7 +1,12 @@
 #include "tetcontact/io/checkpoint.hpp"
 
+#include <fcntl.h>
+#include <unistd.h>
+
 #include <algorithm>
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -57,7 +62,33 @@ std::string write_checkpoint(const std::string& run_dir, const CheckpointHeader&
   head << k_magic << "\nprogram " << h.program << "\ninputs " << h.inputs << "\nstep " << h.step
        << "\nt " << t << "\npayload " << payload.size() << ' ' << hash_of(payload) << "\n";
   const std::string path = folder + name;
-  write_file_atomic(path, head.str() + payload);
+  // Written under a temporary name, flushed to the disk, renamed, the folder flushed: after a
+  // crash of the machine the file is whole or absent, and only then are older ones removed.
+  const std::string tmp = path + ".tmp", bytes = head.str() + payload;
+  const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+  if (fd < 0) throw OutputError(tmp + ": cannot open for writing: " + std::strerror(errno));
+  std::size_t done = 0;
+  while (done < bytes.size()) {
+    const ssize_t n = ::write(fd, bytes.data() + done, bytes.size() - done);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) {
+      const std::string why = std::strerror(errno);
+      ::close(fd);
+      fs::remove(tmp, ec);
+      throw OutputError(tmp + ": write failed: " + why);
+    }
+    done += static_cast<std::size_t>(n);
+  }
+  if (::fsync(fd) != 0 || ::close(fd) != 0) {
+    fs::remove(tmp, ec);
+    throw OutputError(tmp + ": cannot be flushed to the disk");
+  }
+  fs::rename(tmp, path, ec);
+  if (ec) throw OutputError(path + ": cannot rename into place: " + ec.message());
+  if (const int dfd = ::open(folder.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC); dfd >= 0) {
+    ::fsync(dfd);
+    ::close(dfd);
+  }
   std::vector<std::string> files = checkpoint_files(run_dir);
   for (std::size_t k = 0; k + static_cast<std::size_t>(keep) < files.size(); ++k)
     fs::remove(files[k], ec);
@@ -72,20 +103,16 @@ std::string restart_run_folder(const std::string& where) {
   return p.empty() ? std::string(".") : p.string();
 }
 
-Checkpoint read_checkpoint(const std::string& where, const std::string& program,
-                           const std::string& inputs) {
+namespace {
+
+// A checkpoint file that is not whole (cut short, its checksum wrong, not this format).
+struct DamagedCheckpoint : CheckpointError {
+  using CheckpointError::CheckpointError;
+};
+
+Checkpoint parse_checkpoint(const std::string& path) {
   Checkpoint c;
-  std::error_code ec;
-  if (fs::is_regular_file(where, ec)) {
-    c.path = where;
-  } else {
-    const std::vector<std::string> files = checkpoint_files(restart_run_folder(where));
-    if (files.empty())
-      throw CheckpointError(where + ": no checkpoint to restart from (a run writes them into " +
-                            checkpoint_folder(restart_run_folder(where)) +
-                            " when its case sets output.checkpoint)");
-    c.path = files.back();
-  }
+  c.path = path;
   std::ifstream in(c.path, std::ios::binary);
   std::ostringstream text;
   text << in.rdbuf();
@@ -97,21 +124,52 @@ Checkpoint read_checkpoint(const std::string& where, const std::string& program,
   std::size_t payload_size = 0;
   std::getline(head, magic);
   if (magic != k_magic)
-    throw CheckpointError(c.path +
-                          ": not a checkpoint of this program's format (its first line is '" +
-                          magic.substr(0, 60) + "', expected '" + k_magic + "')");
+    throw DamagedCheckpoint(c.path +
+                            ": not a checkpoint of this program's format (its first line is '" +
+                            magic.substr(0, 60) + "', expected '" + k_magic + "')");
   head >> key >> c.header.program >> key >> c.header.inputs >> key >> c.header.step >> key >>
       t_hex >> key >> payload_size >> payload_hash;
   head.ignore(1);
-  if (!head) throw CheckpointError(c.path + ": damaged header");
+  if (!head) throw DamagedCheckpoint(c.path + ": damaged header");
   c.header.t = std::strtod(t_hex.c_str(), nullptr);
   const std::size_t start = static_cast<std::size_t>(head.tellg());
   if (bytes.size() - start != payload_size)
-    throw CheckpointError(c.path + ": damaged: " + std::to_string(bytes.size() - start) +
-                          " bytes of data where the header says " + std::to_string(payload_size));
+    throw DamagedCheckpoint(c.path + ": damaged: " + std::to_string(bytes.size() - start) +
+                            " bytes of data where the header says " + std::to_string(payload_size));
   c.payload = bytes.substr(start);
   if (hash_of(c.payload) != payload_hash)
-    throw CheckpointError(c.path + ": damaged: its data does not match its checksum");
+    throw DamagedCheckpoint(c.path + ": damaged: its data does not match its checksum");
+  return c;
+}
+
+}  // namespace
+
+Checkpoint read_checkpoint(const std::string& where, const std::string& program,
+                           const std::string& inputs, std::vector<std::string>* skipped) {
+  std::vector<std::string> files;
+  std::error_code ec;
+  const bool one_file = fs::is_regular_file(where, ec);
+  if (one_file) {
+    files.push_back(where);
+  } else {
+    files = checkpoint_files(restart_run_folder(where));
+    if (files.empty())
+      throw CheckpointError(where + ": no checkpoint to restart from (a run writes them into " +
+                            checkpoint_folder(restart_run_folder(where)) +
+                            " when its case sets output.checkpoint)");
+  }
+  // The newest that is whole; a damaged one (a crash while the disk had not written it) gives
+  // way to the one before, said in `skipped`. Named as one file, it must be whole.
+  Checkpoint c;
+  for (std::size_t k = files.size(); k-- > 0;) {
+    try {
+      c = parse_checkpoint(files[k]);
+      break;
+    } catch (const DamagedCheckpoint& e) {
+      if (one_file || k == 0) throw;
+      if (skipped) skipped->push_back(e.what());
+    }
+  }
   if (c.header.program != program)
     throw CheckpointError(c.path + ": written by another build of tetcontact (program " +
                           c.header.program + ", this one is " + program +

@@ -10,6 +10,7 @@
 #include <stdexcept>
 #include <type_traits>
 
+#include "tetcontact/io/files.hpp"
 #include "tetcontact/model/persist.hpp"
 #include "tetcontact/parallel/mpi.hpp"
 #include "tetcontact/parallel/parallel.hpp"
@@ -638,6 +639,20 @@ void Simulation::persist(Archive& ar) {
   ar(nodes, tets);
   if (nodes != model_.mesh.x.size() || tets != model_.mesh.tets.size())
     throw ArchiveError("the mesh has another number of nodes or tets");
+  // The mesh itself (a mesh file the case names is not in the inputs' hash): its nodes, tets
+  // and bodies, bit for bit.
+  Fnv1a f;
+  const Mesh& mesh = model_.mesh;
+  f.add(reinterpret_cast<const char*>(mesh.x.data()), mesh.x.size() * sizeof(Vec3));
+  f.add(reinterpret_cast<const char*>(mesh.tets.data()), mesh.tets.size() * sizeof(Tet));
+  f.add(reinterpret_cast<const char*>(mesh.tet_body.data()),
+        mesh.tet_body.size() * sizeof(mesh.tet_body[0]));
+  std::uint64_t mesh_hash = f.h;
+  ar(mesh_hash);
+  if (mesh_hash != f.h)
+    throw ArchiveError(
+        "written on another mesh (the same numbers of nodes and tets, other "
+        "positions or cells: a mesh file changed since)");
   ar(state_);
   double erosion = elements_.erosion_limit();
   ar(erosion);

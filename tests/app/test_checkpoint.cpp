@@ -6,6 +6,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <set>
+#include <sstream>
 
 #include "../test_util.hpp"
 
@@ -181,15 +182,21 @@ TEST(Checkpoint, AnotherCasesBuildsOrADamagedCheckpointIsRefused) {
   other.replace(other.find("program ") + 8, 4, "0000");
   test::write_text(ckpt, other);
   refused("", ckpt + ": written by another build of tetcontact");
-  // A damaged file: one byte of its data changed, or its end cut off.
+  // A damaged file named on its own: one byte of its data changed, or its end cut off.
   other = good;
   other[other.size() - 100] ^= 0x55;
   test::write_text(ckpt, other);
-  refused("", ckpt + ": damaged: its data does not match its checksum");
+  const auto refused_file = [&](const std::string& why) {
+    const auto r = test::run_cli(args + " --restart " + quote(ckpt), dir.str());
+    EXPECT_EQ(r.code, 2) << r.err;
+    EXPECT_NE(r.err.find(why), std::string::npos) << r.err;
+    EXPECT_EQ(files_in(cut), before) << "nothing written";
+  };
+  refused_file(ckpt + ": damaged: its data does not match its checksum");
   test::write_text(ckpt, good.substr(0, good.size() - 10));
-  refused("", ckpt + ": damaged");
-  test::write_text(ckpt, good);
+  refused_file(ckpt + ": damaged");
   // --restart goes on in the run's own folder.
+  test::write_text(ckpt, good);
   refused(" --out " + quote(dir / "elsewhere"), "--restart goes on in the run's own folder");
   EXPECT_FALSE(fs::exists(dir / "elsewhere"));
   // A folder without checkpoints.
@@ -197,13 +204,68 @@ TEST(Checkpoint, AnotherCasesBuildsOrADamagedCheckpointIsRefused) {
   const auto none = test::run_cli(args + " --restart " + quote(dir / "empty"), dir.str());
   EXPECT_EQ(none.code, 2);
   EXPECT_NE(none.err.find("no checkpoint to restart from"), std::string::npos) << none.err;
-  // The checkpoint named by its file: goes on; then the run has ended and is not restarted.
-  const auto r = test::run_cli(args + " --restart " + quote(ckpt), dir.str());
+  // In a folder, a damaged newest checkpoint (a crash before the disk had it) gives way to the
+  // one before, with a warning; then the run has ended and is not restarted.
+  other = good;
+  other[other.size() - 100] ^= 0x55;
+  test::write_text(ckpt, other);
+  const auto r = test::run_cli(args + " --restart " + quote(cut), dir.str());
   ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.err.find(ckpt + ": damaged: its data does not match its checksum: going on from "
+                              "the one before"),
+            std::string::npos)
+      << r.err;
+  EXPECT_NE(r.err.find("restarting from " + cut + "/checkpoints/step_0000000100.ckpt"),
+            std::string::npos)
+      << r.err;
   EXPECT_TRUE(fs::exists(cut + "/summary.json"));
   const auto again = test::run_cli(args + " --restart " + quote(cut), dir.str());
   EXPECT_EQ(again.code, 2);
   EXPECT_NE(again.err.find("the run there has ended"), std::string::npos) << again.err;
+}
+
+// A mesh file the case reads is not in the inputs' hash: the checkpoint holds the mesh's own
+// hash, and a mesh file changed since (the same counts of nodes and tets) is refused.
+TEST(Checkpoint, ACheckpointOfAnotherMeshIsRefused) {
+  test::TempDir dir("checkpoint-mesh");
+  fs::create_directories(dir / "cases");
+  fs::create_directories(dir / "meshes");
+  fs::copy_file(test::source_path("data/cases/two-blocks-msh.yaml"), dir / "cases/blocks.yaml");
+  for (const char* m : {"two-blocks-v41.msh", "two-blocks-v22.msh"})
+    fs::copy_file(test::source_path(std::string("data/meshes/") + m), dir / "meshes/" + m);
+  const std::string args = "run " + quote(dir / "cases/blocks.yaml") +
+                           " --quiet --set end_time=2.0e-5 --set output.checkpoint.steps=5";
+  const std::string cut = dir / "cut";
+  ASSERT_EQ(run_killed_at(12, args + " --out " + quote(cut), dir.str()).code, 137);
+  ASSERT_TRUE(fs::exists(cut + "/checkpoints/step_0000000010.ckpt"));
+  // The right block's nodes moved by a part in a million along x.
+  const std::string path = dir / "meshes/two-blocks-v22.msh";
+  std::istringstream in(test::read_text(path));
+  std::string out, line;
+  int nodes = -1;
+  while (std::getline(in, line)) {
+    if (nodes > 0) {
+      std::istringstream f(line);
+      long id;
+      double x, y, z;
+      f >> id >> x >> y >> z;
+      std::ostringstream moved;
+      moved.precision(17);
+      moved << id << ' ' << x * (1 + 1e-6) << ' ' << y << ' ' << z;
+      line = moved.str();
+      --nodes;
+    } else if (nodes == -2) {
+      nodes = std::stoi(line);
+    }
+    if (line == "$Nodes") nodes = -2;
+    out += line + "\n";
+  }
+  EXPECT_EQ(nodes, 0);
+  test::write_text(path, out);
+  const auto r = test::run_cli(args + " --restart " + quote(cut), dir.str());
+  EXPECT_EQ(r.code, 2) << r.err;
+  EXPECT_NE(r.err.find("written on another mesh"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(cut + "/summary.json"));
 }
 
 // output.checkpoint's keys, each checked with the key named.

@@ -68,7 +68,7 @@ struct InputsChanged : std::runtime_error {
 /// checkpoints (a case with output.checkpoint) goes on from the newest (`run --restart` in place
 /// of `--out DIR --force`); a restart refused or failed there (exit 2) runs again from the start.
 /// The children execute this process's own image (/proc/self/exe), so a program rebuilt at its path
-/// meanwhile does not run under the key of the build that started them; they end (SIGTERM) when
+/// meanwhile does not run under the key of the build that started them; they end (SIGKILL) when
 /// this process ends, however it ends, so none outlives the lock on its folder. With `inputs`, the
 /// files are checked first, before each start and at each end: once one has changed no run starts,
 /// a run that ends after the change (it may have read the new text under the old key) has its

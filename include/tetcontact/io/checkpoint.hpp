@@ -40,11 +40,12 @@ struct Checkpoint {
   std::string payload;
 };
 
-/// The newest checkpoint of `where` (a run folder, its checkpoints folder, or one checkpoint
-/// file), required to be whole (its checksum) and written by `program` for `inputs`; else
-/// CheckpointError naming the file and what differs.
+/// The newest whole checkpoint of `where` (a run folder, its checkpoints folder, or one
+/// checkpoint file, which must be whole), written by `program` for `inputs`; else
+/// CheckpointError naming the file and what differs. In a folder a damaged newest one (cut
+/// short, its checksum wrong) gives way to the one before, said in `skipped`.
 Checkpoint read_checkpoint(const std::string& where, const std::string& program,
-                           const std::string& inputs);
+                           const std::string& inputs, std::vector<std::string>* skipped = nullptr);
 
 /// The run folder a `--restart` argument names (the folder holding the checkpoints folder).
 std::string restart_run_folder(const std::string& where);

@@ -5,6 +5,7 @@
 // element by element; any other type through a `persist(Archive&, T&)` found by ADL.
 #pragma once
 
+#include <algorithm>
 #include <cstddef>
 #include <cstring>
 #include <optional>
@@ -84,8 +85,9 @@ class Archive {
     std::size_t n = v.size();
     raw(&n, sizeof n);
     if (loading_) {
-      if (ArchiveBitwise<T>::value &&
-          n > (bytes_.size() - at_) / std::max<std::size_t>(sizeof(T), 1))
+      // Every element takes a byte at least (a bitwise one its size): a longer list is not data.
+      const std::size_t each = ArchiveBitwise<T>::value ? std::max<std::size_t>(sizeof(T), 1) : 1;
+      if (n > (bytes_.size() - at_) / each)
         throw ArchiveError("truncated: a list longer than the data left");
       v.resize(n);
     }
