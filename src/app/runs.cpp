@@ -59,12 +59,21 @@ std::string run_folder_name(const std::string& label, const std::string& key) {
   return label + "_" + f.hex().substr(0, 12);
 }
 
-bool finished_run(const ChildRun& r) {
-  if (!fs::exists(r.dir + "/summary.json")) return false;
-  std::ifstream in(r.dir + "/run.key", std::ios::binary);
+namespace {
+
+// The key a run folder holds (run.key), "" when it holds none.
+std::string stored_key(const std::string& dir) {
+  std::ifstream in(dir + "/run.key", std::ios::binary);
   std::stringstream text;
   text << in.rdbuf();
-  if (text.str() != r.key)
+  return text.str();
+}
+
+}  // namespace
+
+bool finished_run(const ChildRun& r) {
+  if (!fs::exists(r.dir + "/summary.json")) return false;
+  if (stored_key(r.dir) != r.key)
     throw std::runtime_error(r.dir +
                              ": holds a finished run of other inputs than its name says "
                              "(run.key differs); move the folder away");
@@ -159,10 +168,7 @@ void run_children(const std::vector<ChildRun*>& runs, int jobs,
   // An interrupted run of this key with checkpoints: `run --restart DIR` instead of `--out DIR
   // --force`.
   const auto resumable = [](const ChildRun& r) {
-    std::ifstream in(r.dir + "/run.key", std::ios::binary);
-    std::ostringstream key;
-    key << in.rdbuf();
-    return in && key.str() == r.key && !fs::exists(r.dir + "/summary.json") &&
+    return !fs::exists(r.dir + "/summary.json") && stored_key(r.dir) == r.key &&
            !checkpoint_files(r.dir).empty();
   };
   const auto restart_args = [](const ChildRun& r) {
