@@ -302,6 +302,8 @@ Json verification_json(const ContactLedger& ct) {
   v["failed_edge_edge"] = ct.failed_edge_edge;
   v["extra_pass_rounds"] = ct.extra_rounds;
   v["rescue_points"] = ct.rescue_points;
+  v["step_cuts"] = ct.step_cuts;
+  v["shortest_cut_step"] = ct.cut_step_min;
   v["failed_after_extra_passes"] = ct.failed_after_extra;
   v["steps_failed"] = ct.steps_failed;
   v["impact_zones"] = ct.impact_zones;

@@ -14,7 +14,8 @@ void read_contact(const Reader& r, const YAML::Node& root, Case& c) {
   if (const YAML::Node s = root["contact"]) {
     r.keys(s, "contact",
            {"enabled", "broadphase", "margin", "passes", "order", "normal", "friction", "pairs",
-            "binding_lists", "edge_edge", "initial_overlap", "verify", "separation", "heat"});
+            "binding_lists", "edge_edge", "initial_overlap", "verify", "step_cuts", "separation",
+            "heat"});
     c.contact = s["enabled"] ? r.boolean(s["enabled"], "contact.enabled") : true;
     ContactSettings& cs = c.contact_settings;
     if (const YAML::Node o = s["initial_overlap"]) {
@@ -26,6 +27,7 @@ void read_contact(const Reader& r, const YAML::Node& root, Case& c) {
     if (s["edge_edge"]) cs.edge_edge = r.boolean(s["edge_edge"], "contact.edge_edge");
     if (s["heat"]) cs.heat = r.boolean(s["heat"], "contact.heat");
     if (s["verify"]) cs.verify = r.boolean(s["verify"], "contact.verify");
+    if (s["step_cuts"]) cs.step_cuts = r.count(s["step_cuts"], "contact.step_cuts", 0, 20);
     if (s["binding_lists"])
       cs.binding_lists = r.boolean(s["binding_lists"], "contact.binding_lists");
     if (s["broadphase"]) {

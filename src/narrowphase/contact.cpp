@@ -252,6 +252,7 @@ void ContactDetection::edge_edge_contacts(const State& st, const ContactCandidat
   stats.edge_candidates = static_cast<long>(cand.edge_edge.size());
   stats.edge_contacts = 0;
   std::vector<std::pair<std::pair<Index, Index>, Vec3>> active;
+  step_start_edges_ = active_edges_;
   const std::vector<std::pair<std::pair<Index, Index>, Vec3>> previous = std::move(active_edges_);
   const auto closest_at_start = [&](Index ea, Index eb) {
     const Edge &e1 = edges[ea], &e2 = edges[eb];

@@ -61,17 +61,19 @@ Verification StepResolver::verify_again(const State& st, ContactCandidates& cand
 
 // The step's motion verified (verify/verify.hpp). Where pairs fail, each gets a contact
 // point of its own and the islands of contact points that move their nodes get further passes
-// (up to k_extra_rounds rounds, doubling), verified after each; what still fails goes into rigid
-// impact zones (response/impact_zones.hpp), verified again until none fails: a failure across
-// zones merges them, one inside a zone escalates it (rigid → exact translation → frozen).
-void StepResolver::resolve(State& st, StepContacts& points, ContactCandidates& candidates,
-                           const ContactDetection& contact, int passes, ContactLedger& ct) {
+// (up to k_extra_rounds rounds, doubling), verified after each; what still fails is left to a
+// shorter step (the caller's) when `may_cut`, else goes into rigid impact zones
+// (response/impact_zones.hpp), verified again until none fails: a failure across zones merges
+// them, one inside a zone escalates it (rigid → exact translation → frozen).
+bool StepResolver::resolve(State& st, StepContacts& points, ContactCandidates& candidates,
+                           const ContactDetection& contact, int passes, bool may_cut,
+                           ContactLedger& ct) {
   fixed_x_.clear();
   end_positions(st);
   Verification v = verifier_.verify(st, x_end_, candidates);
   ct.rebuilds += v.searches;
   ct.verified_pairs += v.pairs_checked;
-  if (v.failed.empty()) return;
+  if (v.failed.empty()) return true;
   ct.failed_pairs += static_cast<long>(v.failed.size());
   for (const FailedPair& p : v.failed) {
     ct.failed_touching += p.touching_at_start;
@@ -80,10 +82,39 @@ void StepResolver::resolve(State& st, StepContacts& points, ContactCandidates& c
   ++ct.steps_failed;
   x_tested_ = x_end_;
   v = extra_passes(st, points, candidates, contact, passes, std::move(v), ct);
-  if (v.failed.empty()) return;
+  if (v.failed.empty()) return true;
+  if (may_cut && helped_by_cut(st, v)) return false;
   ct.failed_after_extra += static_cast<long>(v.failed.size());
   ++ct.steps_with_zones;
   impact_zones(st, points, candidates, passes, std::move(v), ct);
+  return true;
+}
+
+// Whether the pairs still failing are left to the step taken again with half its τ. A pair of
+// bodies apart at the start that meets during the step is what the passes' linearization missed
+// by the second order of the step's motion, which halving quarters. A pair touching at the start,
+// or a particle's, that fails again after a halving is one that halving does not help (on the
+// coarse Whipple quarter with SPH debris, an edge pair of the sphere and the bumper touching on
+// the symmetry axis failed at every step and every halving: up to four halvings a step took 4.3
+// times the steps and 10 times the time), and so is a try that leaves more pairs failing than
+// the one before.
+bool StepResolver::helped_by_cut(const State& st, const Verification& v) {
+  std::vector<std::array<Index, 5>> failing;
+  for (const FailedPair& p : v.failed)
+    failing.push_back({p.edge_edge, p.nodes[0], p.nodes[1], p.nodes[2], p.nodes[3]});
+  std::sort(failing.begin(), failing.end());
+  if (st.step == cut_at_step_) {  // a try of this step was cut before
+    if (failing.size() > cut_failing_.size()) return false;
+    for (const FailedPair& p : v.failed)
+      if ((p.touching_at_start || p.body_a < 0) &&
+          std::binary_search(
+              cut_failing_.begin(), cut_failing_.end(),
+              std::array<Index, 5>{p.edge_edge, p.nodes[0], p.nodes[1], p.nodes[2], p.nodes[3]}))
+        return false;
+  }
+  cut_at_step_ = st.step;
+  cut_failing_ = std::move(failing);
+  return true;
 }
 
 // Further passes where the failures are: a failing pair becomes a contact point of its own

@@ -245,14 +245,20 @@ void Simulation::step() {
        << " s before end_time " << settings_.end_time << " s";
     throw RunFailure(os.str());
   }
-  timed(Stage::predict, [&] { predict_stage(); });  // U*, x* (eqs. 2, 3)
-  detect_stage();   // contact points: walls, bodies (broadphase, narrowphase), particles
-  respond_stage();  // the sequential passes over them, island by island
-  timed(Stage::predict, [&] { hold_constraints(state_, model_.constraints); });
-  if (resolver_) timed(Stage::verify, [&] { resolve_stage(); });  // the verified step
-  note_push();                                                    // end_when_released
-  timed(Stage::balance, [&] { sample_stage(); });                 // energy, momentum at tⁿ
-  timed(Stage::output, [&] { output_stage(); });                  // observers see tⁿ
+  // A step whose motion fails its verification after the further passes is taken again from
+  // the prediction with half the step, up to contact.step_cuts times and while no try leaves
+  // the very pairs the one before it left; then impact zones take them.
+  for (int cut = 0;; ++cut) {
+    timed(Stage::predict, [&] { predict_stage(); });  // U*, x* (eqs. 2, 3)
+    detect_stage();   // contact points: walls, bodies (broadphase, narrowphase), particles
+    respond_stage();  // the sequential passes over them, island by island
+    timed(Stage::predict, [&] { hold_constraints(state_, model_.constraints); });
+    if (!resolver_ || resolve_stage(cut < model_.contact->step_cuts)) break;  // verified
+    cut_step();
+  }
+  note_push();                                     // end_when_released
+  timed(Stage::balance, [&] { sample_stage(); });  // energy, momentum at tⁿ
+  timed(Stage::output, [&] { output_stage(); });   // observers see tⁿ
   if (model_.contact_heat && corrects()) timed(Stage::commit, [&] { heat_stage(); });
   timed(Stage::commit, [&] { commit_stage(); });  // Uⁿ⁺¹, xⁿ⁺¹ (eq. 1)
   if (fragmentation_) timed(Stage::fracture, [&] { fracture_stage(); });  // cells → particles
@@ -354,10 +360,25 @@ void Simulation::note_push() {
   if (pushed) last_push_ = state_.t;
 }
 
-// The step's motion verified, and failures resolved (solver/resolve.hpp).
-void Simulation::resolve_stage() {
-  resolver_->resolve(state_, points_, *candidates_, *contact_, model_.contact->passes,
-                     contact_totals_);
+// The step's motion verified, and failures resolved (solver/resolve.hpp); false when they are
+// left to the step taken again shorter.
+bool Simulation::resolve_stage(bool may_cut) {
+  StageTimer timer(profile_[Stage::verify]);
+  return resolver_->resolve(state_, points_, *candidates_, *contact_, model_.contact->passes,
+                            may_cut, contact_totals_);
+}
+
+// The step taken again with half its τ: the prediction, detection and passes start over from
+// Uⁿ⁻¹ᐟ², xⁿ and Fⁿ, which none of them changed (the passes and the resolver change U* and the
+// impulses, which the prediction and the passes set anew; particles the detection moved out of
+// a body stay out). Halving quarters what the passes' linearization of a pair's constraint
+// misses over the step (second order in the motion).
+void Simulation::cut_step() {
+  state_.dt *= 0.5;
+  if (contact_) contact_->retake_step();
+  ++contact_totals_.step_cuts;
+  ContactLedger& ct = contact_totals_;
+  ct.cut_step_min = ct.cut_step_min > 0.0 ? std::min(ct.cut_step_min, state_.dt) : state_.dt;
 }
 
 void Simulation::predict_stage() {

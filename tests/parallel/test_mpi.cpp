@@ -224,6 +224,21 @@ TEST(Mpi, CoarseWhippleShieldWithDuctileFailureIsBitIdenticalOn2And3Ranks) {
   EXPECT_GT(test::number(s, "/fracture/ductile_failed_at_floor"), 100);  // 277 of 281
 }
 
+// The coarse Whipple quarter verified, edge–edge contact on: steps whose failures the further
+// passes leave are taken again shorter, and a zone acts; every rank takes the same decisions
+// (the verification is whole on each), so the run is the one process's.
+TEST(Mpi, CoarseVerifiedWhippleShieldWithShorterStepsIsBitIdenticalOn2And3Ranks) {
+  const test::Json s = same_on_any_rank_count(
+      "whipple-verified", "data/cases/whipple.yaml",
+      "--set parameters.hb=1.0e-3 --set parameters.hw=2.0e-3 --set parameters.np=6 "
+      "--set parameters.tear=5.0e-6 --set parameters.S=15e-3 --set parameters.cb=24e-3 "
+      "--set parameters.ww=30e-3 --set parameters.cw=30e-3 --set contact.edge_edge=true "
+      "--set contact.verify=true",
+      {2, 3});
+  EXPECT_GT(test::number(s, "/contact/verification/step_cuts"), 5);  // 13 measured
+  EXPECT_EQ(test::number(s, "/contact/verification/unresolved_steps"), 0);
+}
+
 // SPH debris on the coarse Whipple shield: every rank runs the particles whole, as one process.
 TEST(Mpi, CoarseWhippleShieldWithSphDebrisIsBitIdenticalOn2And3Ranks) {
   const test::Json s = same_on_any_rank_count(

@@ -131,11 +131,12 @@ TEST(Threads, CubesEdgeContactIsBitIdenticalOn1To3Threads) {
 }
 
 TEST(Threads, VerifiedStepsWithZonesAreBitIdenticalOn1To3Threads) {
-  // The cubes without edge contact: the verification fails pairs, extra passes and rigid and
-  // translated impact zones remove them.
+  // The cubes without edge contact: the verification fails pairs, extra passes, steps taken
+  // again shorter and rigid and translated impact zones remove them.
   const test::Json s = same_on_any_thread_count(
       "verified", "data/cases/cubes-edge.yaml",
       "--set contact.verify=true --set contact.edge_edge=false --set diagnostics.every_step=true");
+  EXPECT_GT(test::number(s, "/contact/verification/step_cuts"), 0);
   EXPECT_GT(test::number(s, "/contact/verification/impact_zones"), 0);
   EXPECT_GT(test::number(s, "/contact/verification/translated_zones"), 0);
 }

@@ -159,7 +159,7 @@ def fake_summary(**over):
         "fracture": {"particles": 0, "mass_to_particles": 0.0},
         "safeguards": {"eroded": None, "particles_moved_out": None},
         "contact": {"verification": {"failed_after_passes": 1234, "steps_failed": 7,
-                                     "steps_with_zones": 5, "impact_zones": 9,
+                                     "step_cuts": 1500, "steps_with_zones": 5, "impact_zones": 9,
                                      "translated_zones": 8, "frozen_zones": 1}},
         "expect": [{"name": "max_depth_over_h", "bound": 0.1, "measured": 0.05, "pass": True},
                    {"name": "energy_balance", "bound": 1e-3, "measured": 2.5e-4, "pass": True}],
@@ -264,14 +264,14 @@ def test_verify_rows():
     s = fake_summary(references=[{"name": "hole", "measured": 2.0, "pass": False}])
     row = cells(T.verify_row("cubes-edge", s))
     assert row == ["cubes-edge", "on", "1 / 3 at all 12345 steps", "**hole 2**",
-                   "1,234 (7 of 12345)", "5: 9 (8 / 1)", "0.25 s / 10 s"]
+                   "1,234 (7 of 12345)", "1,500", "5: 9 (8 / 1)", "0.25 s / 10 s"]
     off = fake_summary(contact={})
     off["penetration"]["measured_at"] = "output frames"
     assert cells(T.verify_row("bars", off)) == ["bars", "off", "1 / 3 at the frames", "pass",
-                                                "—", "—", "— / 10 s"]
+                                                "—", "—", "—", "— / 10 s"]
     full = cells(T.verify_full_row("ball-plate", fake_summary()))
     assert full == ["ball-plate", "1 / 3 at all 12345 steps", "pass", "3.0e-16", "2.5e-4",
-                    "1,234 (7 of 12345)", "5: 9 (8 / 1)", "0.25 s / 10 s"]
+                    "1,234 (7 of 12345)", "1,500", "5: 9 (8 / 1)", "0.25 s / 10 s"]
 
 
 def test_strength_row():

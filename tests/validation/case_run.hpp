@@ -28,6 +28,7 @@ struct CaseRun {
   double time = 0.0, end_time = 0.0, last_push = -1.0;  // s
   std::string ended_by;                                 // Simulation::ended_by
   Sample last;                                          // the final sample
+  ContactLedger contact;                                // Simulation::contact_totals
   /// The named reference's measured value (a failure when it is missing or unmeasured).
   double measured(const std::string& name) const {
     for (const ReferenceResult& r : refs)
@@ -63,6 +64,7 @@ inline CaseRun run_case(const std::string& file, const std::vector<std::string>&
   r.last_push = sim.last_push();
   r.ended_by = sim.ended_by();
   r.last = sim.last_sample();
+  r.contact = sim.contact_totals();
   return r;
 }
 

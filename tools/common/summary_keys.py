@@ -94,6 +94,7 @@ DUCTILE_FAILED_AT_FLOOR = "ductile_failed_at_floor"
 VERIFICATION = ("contact", "verification")  # contact.verify on; its keys below
 VERIFY_FAILED_AFTER_PASSES = VERIFICATION + ("failed_after_passes",)
 VERIFY_STEPS_FAILED = VERIFICATION + ("steps_failed",)
+VERIFY_STEP_CUTS = VERIFICATION + ("step_cuts",)  # steps taken again with half their step
 VERIFY_STEPS_WITH_ZONES = VERIFICATION + ("steps_with_zones",)
 VERIFY_IMPACT_ZONES = VERIFICATION + ("impact_zones",)
 VERIFY_TRANSLATED_ZONES = VERIFICATION + ("translated_zones",)

@@ -541,16 +541,21 @@ VERIFY_ROWS = [  # (what, case, --set values)
     for on in ("false", "true")
 ]
 VERIFY_HEADER = [
-    "| case | verify | crossings / nodes inside | checks | failing pairs (steps) | "
+    "| case | verify | crossings / nodes inside | checks | failing pairs (steps) | step cuts | "
     "steps with zones: zones (translated / frozen) | verify stage / run |",
-    "|---|---|---|---|---|---|---|"]
+    "|---|---|---|---|---|---|---|---|"]
 FULL_CASES = ["cubes-edge", "two-blocks-msh", "plate-impact-1d", "staggered-patch",
               "bars-impact", "spall-plate", "taylor-copper", "cylinders", "ball-plate",
               "taylor-symmetric", "hertz-spheres"]
 VERIFY_FULL_HEADER = [
     "| case | crossings / nodes inside | checks | momentum | energy | failing pairs (steps) | "
-    "steps with zones: zones (translated / frozen) | verify stage / run |",
-    "|---|---|---|---|---|---|---|---|"]
+    "step cuts | steps with zones: zones (translated / frozen) | verify stage / run |",
+    "|---|---|---|---|---|---|---|---|---|"]
+
+
+def cuts(s):
+    """The steps the verification had taken again with half their step."""
+    return f"{get(s, K.VERIFY_STEP_CUTS):,}"
 
 
 def zones(s):
@@ -576,7 +581,8 @@ def verify_row(what, s):
     cost = (f"{get(s, K.TIMINGS).get(K.STAGE_VERIFY, 0):.3g} s / {wall:.3g} s" if on
             else f"— / {wall:.3g} s")
     return (f"| {what} | {'on' if on else 'off'} | {pen} | {missed(s)} | "
-            f"{failing(s) if on else '—'} | {zones(s) if on else '—'} | {cost} |")
+            f"{failing(s) if on else '—'} | {cuts(s) if on else '—'} | "
+            f"{zones(s) if on else '—'} | {cost} |")
 
 
 def verify(binary, work, opts):
@@ -592,7 +598,7 @@ def verify_full_row(name, s):
     return (f"| {name} | {get(s, K.MAX_CROSSINGS)} / {get(s, K.MAX_NODES_INSIDE)} at all "
             f"{get(s, K.PENETRATION_SAMPLES)} steps | {missed(s)} | "
             f"{g(get(s, K.MOMENTUM_ERROR))} | {g(get(s, K.ENERGY_BALANCE_ERROR_MAX))} | "
-            f"{failing(s)} | {zones(s)} | "
+            f"{failing(s)} | {cuts(s)} | {zones(s)} | "
             f"{get(s, K.TIMINGS).get(K.STAGE_VERIFY, 0):.3g} s / {get(s, K.WALL_SECONDS):.3g} s |")
 
 

@@ -24,6 +24,10 @@ struct ContactLedger {
   long extra_rounds = 0;        // rounds of further passes
   long rescue_points = 0;       // contact points made for failing pairs
   long failed_after_extra = 0;  // pairs still failing after them: the zones' work
+  // Steps taken again with half the step because pairs still failed after the further passes
+  // (Simulation::step; one count per halving), and the shortest step so taken (s; 0: none).
+  long step_cuts = 0;
+  double cut_step_min = 0.0;
   // The rigid impact zones that removed them (response/impact_zones.hpp): zones made, the
   // largest (nodes), steps that needed zones, zones frozen (and translated), rounds of
   // verification after the first, and steps whose failures outlasted k_zone_rounds (0 unless the

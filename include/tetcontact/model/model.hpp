@@ -62,10 +62,17 @@ struct ContactSettings {
   /// off (`contact.edge_edge: false`) for studies of node–face contact alone.
   bool edge_edge = true;
   /// Verify every step's motion with the exact CCD (verify/verify.hpp); pairs that fail
-  /// get further passes, then rigid impact zones (response/impact_zones.hpp). On by default:
+  /// get further passes, then a shorter step (`step_cuts`), then rigid impact zones
+  /// (response/impact_zones.hpp). On by default:
   /// with it no edge crosses a face and no node ends inside a cell at any step's end
   /// (docs/design/verification.md); off (`contact.verify: false`) for studies.
   bool verify = true;
+  /// With `verify`: how many times a step whose pairs still fail after the further passes is
+  /// taken again with half the step before rigid impact zones take them (0: zones at once).
+  /// The passes linearize each pair's constraint over the step; halving the step quarters what
+  /// that misses (second order in the motion) and leaves the bodies' relative motion as it is,
+  /// where a rigid zone takes it away (docs/design/verification.md).
+  int step_cuts = 4;
   /// The stand-off contacts aim at (m), beyond the rounding margin: a pair closing within a
   /// step stops this far apart; an edge pair already closer is pushed back to it
   /// (ContactPoint::push_speed), a node–face pair or a rescued pair held. Below 0: 1e-5 of the

@@ -67,7 +67,8 @@ enum class Stage {
   narrowphase,  // detect: node–face and edge–edge contact points
   particles,    // detect: particle contact points
   response,     // respond: the sequential passes over walls and contacts, by islands
-  verify,       // resolve: the step verified, rescue points, impact zones (contact.verify)
+  verify,       // resolve: the step verified, rescue points, impact zones (contact.verify; a
+                // step taken again shorter counts its stages again, each where it belongs)
   balance,      // sample: energy and momentum at tⁿ
   output,       // observers see tⁿ
   commit,       // Uⁿ⁺¹, xⁿ⁺¹

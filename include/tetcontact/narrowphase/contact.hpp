@@ -48,6 +48,9 @@ class ContactDetection {
   void edges_renamed(const std::vector<Index>& renamed);
   /// What a checkpoint holds of it: the edge pairs in contact.
   void persist(Archive& ar);
+  /// The step is taken again, shorter (Simulation::step): the next detect() starts from the
+  /// edge pairs in contact at the end of the step before, as the first try did.
+  void retake_step() { active_edges_ = step_start_edges_; }
 
   /// Contacts of this step: every surface node of one body against the faces of the others
   /// (symmetric), from positions xⁿ (st.x) and x* (st.x_star). A candidate is a contact when
@@ -99,6 +102,7 @@ class ContactDetection {
   // contacts already made for staying in contact; an edge pair that has drifted through by
   // round-off would otherwise never be found crossing again.
   std::vector<std::pair<std::pair<Index, Index>, Vec3>> active_edges_;
+  std::vector<std::pair<std::pair<Index, Index>, Vec3>> step_start_edges_;  // for retake_step
   double reach_ = 0.0;       // binding_reach of the start's surfaces: edge pairs stay in contact
   double separation_ = 0.0;  // aimed at beyond the rounding margin (ContactSettings::separation)
   double push_speed_ = 0.0;  // ContactPoint::push_speed

@@ -1,5 +1,6 @@
 // The resolve stage (contact.verify): the step's motion verified with the exact CCD, and where
-// pairs fail, rescue points and further passes, then rigid impact zones, until none fails.
+// pairs fail, rescue points and further passes; what they leave, a shorter step or, as a last
+// resort, rigid impact zones, until none fails.
 #pragma once
 
 #include <utility>
@@ -50,9 +51,11 @@ class StepResolver {
   /// found anew where the end positions leave their reach); failing pairs resolved by rescue
   /// points (from `contact`, added to `points.bodies`), further passes (`passes` in the first
   /// round) and impact zones, which change U* (st.v_star) and may fix end positions
-  /// (fixed_positions()). The counts go to `ledger`.
-  void resolve(State& st, StepContacts& points, ContactCandidates& candidates,
-               const ContactDetection& contact, int passes, ContactLedger& ledger);
+  /// (fixed_positions()). With `may_cut`, pairs still failing after the further passes are left
+  /// to the step taken again shorter (Simulation::step) instead of zones where a halving may
+  /// help them (helped_by_cut): returns false then. The counts go to `ledger`.
+  bool resolve(State& st, StepContacts& points, ContactCandidates& candidates,
+               const ContactDetection& contact, int passes, bool may_cut, ContactLedger& ledger);
 
   /// Nodes of translated and frozen impact zones of the last resolve() with their xⁿ⁺¹: the
   /// commit writes these positions.
@@ -64,6 +67,7 @@ class StepResolver {
   Verification extra_passes(State& st, StepContacts& points, ContactCandidates& candidates,
                             const ContactDetection& contact, int passes, Verification v,
                             ContactLedger& ct);
+  bool helped_by_cut(const State& st, const Verification& v);
   Verification impact_zones(State& st, StepContacts& points, ContactCandidates& candidates,
                             int passes, Verification v, ContactLedger& ct);
   // The constraints held, as hold_constraints() does after the passes (their impulse booked as
@@ -86,6 +90,9 @@ class StepResolver {
   std::vector<Index> changed_;  // nodes whose end position changed since the last verification
   std::vector<Vec3> x_tested_;  // the end positions last verified
   std::vector<std::pair<Index, Vec3>> fixed_x_;  // nodes of translated and frozen zones, xⁿ⁺¹
+  // The pairs (edge–edge, nodes) the last try left to a shorter step, sorted, and its step.
+  std::vector<std::array<Index, 5>> cut_failing_;
+  long cut_at_step_ = -1;
 };
 
 }  // namespace tc

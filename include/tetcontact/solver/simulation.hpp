@@ -151,7 +151,8 @@ class Simulation {
   bool corrects() const;  // walls, contact or particles: the step corrects U*
   void detect_stage();
   void respond_stage();
-  void resolve_stage();
+  bool resolve_stage(bool may_cut);
+  void cut_step();
   void note_push();  // last_push_
   template <class Body>
   void timed(Stage stage, Body&& body);
