@@ -79,7 +79,8 @@ bool StepResolver::resolve(State& st, StepContacts& points, ContactCandidates& c
     ct.failed_touching += p.touching_at_start;
     ct.failed_edge_edge += p.edge_edge;
   }
-  ++ct.steps_failed;
+  ct.steps_failed += st.step != failed_at_step_;  // a step taken again counts once
+  failed_at_step_ = st.step;
   x_tested_ = x_end_;
   v = extra_passes(st, points, candidates, contact, passes, std::move(v), ct);
   if (v.failed.empty()) return true;

@@ -18,7 +18,8 @@ struct ContactLedger {
   // Islands of the correction passes (response/islands.hpp), summed over the steps.
   long islands = 0, island_points = 0, largest_island_points = 0;
   // The verification of each step's motion (verify/verify.hpp), summed over the steps:
-  // pairs checked, pairs failing after the passes (from apart, from touching), steps with any.
+  // pairs checked, pairs failing after the passes (from apart, from touching; each try of a step
+  // taken again shorter counts its own), steps with any.
   long verified_pairs = 0, failed_pairs = 0, failed_touching = 0, steps_failed = 0;
   long failed_edge_edge = 0;    // of failed_pairs, edge–edge pairs
   long extra_rounds = 0;        // rounds of further passes

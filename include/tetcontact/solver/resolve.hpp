@@ -93,6 +93,7 @@ class StepResolver {
   // The pairs (edge–edge, nodes) the last try left to a shorter step, sorted, and its step.
   std::vector<std::array<Index, 5>> cut_failing_;
   long cut_at_step_ = -1;
+  long failed_at_step_ = -1;  // the last step with failing pairs (ContactLedger::steps_failed)
 };
 
 }  // namespace tc
