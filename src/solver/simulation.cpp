@@ -246,8 +246,8 @@ void Simulation::step() {
     throw RunFailure(os.str());
   }
   // A step whose motion fails its verification after the further passes is taken again from
-  // the prediction with half the step, up to contact.step_cuts times and while no try leaves
-  // the very pairs the one before it left; then impact zones take them.
+  // the prediction with half the step, up to contact.step_cuts times and while halving may help
+  // what fails (StepResolver::helped_by_cut); then impact zones take it.
   for (int cut = 0;; ++cut) {
     timed(Stage::predict, [&] { predict_stage(); });  // U*, x* (eqs. 2, 3)
     detect_stage();   // contact points: walls, bodies (broadphase, narrowphase), particles
