@@ -224,6 +224,7 @@ Model build_model(const Case& c, std::vector<std::string>* notes) {
   model.element.anp_stabilization = c.anp_stabilization;
   model.particles = c.fracture && c.particles;
   model.erosion_step_ratio = model.particles ? c.erosion_step_ratio : 0.0;
+  model.erosion_per_body = c.erosion_per_body;
   model.fragment_clusters = model.particles && c.fragment_clusters;
   model.sph_debris = model.particles && c.sph_debris;
   model.sph = c.sph;

@@ -98,8 +98,10 @@ std::optional<RunSummary::Particles> particles_of(const Simulation& sim) {
     p.sph_face_pairs = double(sim.sph_face_pairs()) / double(st.sph.size());
   }
   p.sph_faces = model.sph_debris && model.sph.faces;
+  const std::vector<double> erosion = sim.erosion_steps();
   for (std::size_t b = 0; b < model.mesh.bodies.size(); ++b) {  // where the particles came from
     RunSummary::FromBody from{model.mesh.bodies[b].name, 0, 0.0};
+    if (b < erosion.size()) from.erosion_step = erosion[b];
     for (Index i = 0; i < st.particle_count(); ++i)
       if (model.mesh.tet_body[st.particle_tet[i]] == static_cast<Index>(b))
         ++from.particles, from.mass += st.m[st.first_particle + i];
@@ -396,6 +398,7 @@ Json fracture_json(const RunSummary& s) {
     o["name"] = b.name;
     o["particles"] = b.particles;
     o["mass"] = b.mass;
+    o["erosion_step"] = or_null(b.erosion_step);  // s, fracture.erosion_step_ratio's limit
     if (p.ductile_failed) {
       o["ductile_failed"] = b.ductile_failed;
       o["ductile_failed_at_floor"] = b.ductile_failed_at_floor;

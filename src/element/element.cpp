@@ -59,10 +59,30 @@ struct TetGeometry {
   if (!(g.vol > 0.0)) inverted(t, when, g.vol, st.vol0[t]);
 }
 
-// Forces of one tet from its current stress σ = s − (p + q) I and its current geometry, and
-// its CFL limit:
-//   f_i = σ a_i / 3 (f_0 = −(f_1 + f_2 + f_3): each tet's forces balance),
+// The CFL limit of one tet, squared:
 //   τ_t = l / (Q + sqrt(Q² + c²)), l = 3V / max|a_i|, Q = C1 c + C2 l |ε̇v| in compression.
+// Compared as squares (ForceResult::dt_stable holds τ² until finish_forces): a tet in expansion
+// needs no square root at all.
+[[gnu::always_inline]] inline double stable_step2(Index t, const TetGeometry& g,
+                                                  const ElementOptions& options, const State& st) {
+  const double l2 = 9.0 * g.vol * g.vol / g.amax2;
+  const double c2 = st.sound2[t];
+  double dt2;
+  if (st.trace_d[t] < 0.0) {
+    const double c = std::sqrt(c2), l = std::sqrt(l2);
+    const double qs =
+        options.viscosity_linear * c + options.viscosity_quadratic * l * -st.trace_d[t];
+    const double dt = l / (qs + std::sqrt(qs * qs + c2));
+    dt2 = dt * dt;
+  } else {
+    dt2 = l2 / c2;
+  }
+  return dt2;
+}
+
+// Forces of one tet from its current stress σ = s − (p + q) I and its current geometry, and
+// its CFL limit (stable_step2):
+//   f_i = σ a_i / 3 (f_0 = −(f_1 + f_2 + f_3): each tet's forces balance).
 // The forces go to the tet's own corners f[0..3]; gather_forces adds them at the nodes.
 [[gnu::always_inline]] inline void tet_forces(Index t, const TetGeometry& g,
                                               const ElementOptions& options, const State& st,
@@ -84,25 +104,13 @@ struct TetGeometry {
     f0[2] += fz;
   }
   f[0] = Vec3(-f0[0], -f0[1], -f0[2]);
-  // Compared as squares (r.dt_stable holds τ² until finish_forces): a tet in expansion needs
-  // no square root at all.
-  const double l2 = 9.0 * g.vol * g.vol / g.amax2;
-  const double c2 = st.sound2[t];
-  double dt2;
-  if (st.trace_d[t] < 0.0) {
-    const double c = std::sqrt(c2), l = std::sqrt(l2);
-    const double qs =
-        options.viscosity_linear * c + options.viscosity_quadratic * l * -st.trace_d[t];
-    const double dt = l / (qs + std::sqrt(qs * qs + c2));
-    dt2 = dt * dt;
-  } else {
-    dt2 = l2 / c2;
-  }
+  const double dt2 = stable_step2(t, g, options, st);
   if (dt2 < r.dt_stable) {
     r.dt_stable = dt2;
     r.critical_tet = t;
   }
-  if (dt2 < options.erode_dt2) r.eroding.push_back(t);
+  if (!options.erode_dt2.empty() && dt2 < options.erode_dt2[options.tet_body[t]])
+    r.eroding.push_back(t);
 }
 
 std::vector<ForceResult> block_results(std::size_t tets) {
@@ -142,6 +150,22 @@ void init_sound_speed(const std::vector<Material>& materials, State& st) {
     st.sound2[t] =
         sound_speed2(m, mu, st.p[t], eos_terms(m, mu, st.e_int[t] / st.vol0[t]), st.temperature[t]);
   }
+}
+
+std::vector<double> body_stable_steps(const std::vector<Tet>& tets,
+                                      const std::vector<Index>& tet_body, std::size_t bodies,
+                                      const ElementOptions& options, const State& st) {
+  std::vector<double> dt2(bodies, std::numeric_limits<double>::infinity());
+  TetGeometry g;
+  for (std::size_t t = 0; t < tets.size(); ++t) {
+    if (st.damage[t] == Damage::particle) continue;
+    const Index ti = static_cast<Index>(t);
+    end_geometry(ti, tets[t], st, g, "");
+    double& b = dt2[static_cast<std::size_t>(tet_body[t])];
+    b = std::min(b, stable_step2(ti, g, options, st));
+  }
+  for (double& d : dt2) d = std::sqrt(d);
+  return dt2;
 }
 
 ForceResult compute_forces(const std::vector<Tet>& tets, const ElementOptions& options, State& st,

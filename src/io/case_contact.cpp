@@ -92,7 +92,8 @@ void read_fracture(const Reader& r, const YAML::Node& root, Case& c) {
   // into particles (on unless `particles: false`: then they stay in the mesh without stress).
   if (const YAML::Node s = root["fracture"]) {
     r.keys(s, "fracture",
-           {"enabled", "particles", "erosion_step_ratio", "fragments", "debris", "sph"});
+           {"enabled", "particles", "erosion_step_ratio", "erosion_reference", "fragments",
+            "debris", "sph"});
     c.fracture = s["enabled"] ? r.boolean(s["enabled"], "fracture.enabled") : true;
     c.particles = s["particles"] ? r.boolean(s["particles"], "fracture.particles") : true;
     if (const YAML::Node e = s["erosion_step_ratio"]) {
@@ -103,6 +104,13 @@ void read_fracture(const Reader& r, const YAML::Node& root, Case& c) {
         r.fail(e, "fracture.erosion_step_ratio",
                "erosion turns cells into particles: needs "
                "fracture.particles true");
+    }
+    // The first step the erosion's ratio is a fraction of: the whole model's, or each body's.
+    if (const YAML::Node e = s["erosion_reference"]) {
+      const std::string v = r.string(e, "fracture.erosion_reference");
+      if (v != "model" && v != "body")
+        r.fail(e, "fracture.erosion_reference", "must be model or body, not '" + v + "'");
+      c.erosion_per_body = v == "body";
     }
     // What a converted cell becomes: its own particle, or part of a cohering neighbour's.
     if (const YAML::Node f = s["fragments"]) {

@@ -252,8 +252,10 @@ void ContactDetection::edge_edge_contacts(const State& st, const ContactCandidat
   stats.edge_candidates = static_cast<long>(cand.edge_edge.size());
   stats.edge_contacts = 0;
   std::vector<std::pair<std::pair<Index, Index>, Vec3>> active;
-  step_start_edges_ = active_edges_;
-  const std::vector<std::pair<std::pair<Index, Index>, Vec3>> previous = std::move(active_edges_);
+  // Last step's pairs stay in step_start_edges_ for a step taken again (retake_step).
+  step_start_edges_ = std::move(active_edges_);
+  active_edges_.clear();
+  const std::vector<std::pair<std::pair<Index, Index>, Vec3>>& previous = step_start_edges_;
   const auto closest_at_start = [&](Index ea, Index eb) {
     const Edge &e1 = edges[ea], &e2 = edges[eb];
     return closest_points_on_segments(x0[e1[0]], x0[e1[1]], x0[e2[0]], x0[e2[1]]);

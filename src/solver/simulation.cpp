@@ -522,6 +522,25 @@ void Simulation::fracture_stage() {
   if (resolver_) resolver_->surfaces_changed();
 }
 
+// Erosion's limits, set at the first step: a cell erodes when its stable step falls below
+// erosion_step_ratio times the first step, the whole model's (`first`, its smallest cell's) or
+// its own body's (fracture.erosion_reference: body).
+void Simulation::set_erosion_limits(double first) {
+  const Mesh& mesh = model_.mesh;
+  std::vector<double> steps(mesh.bodies.size(), first);
+  if (model_.erosion_per_body)
+    steps = body_stable_steps(mesh.tets, mesh.tet_body, mesh.bodies.size(), model_.element, state_);
+  std::vector<double> dt2;
+  for (double s : steps) dt2.push_back(std::pow(model_.erosion_step_ratio * s, 2));
+  elements_.set_erosion_limits(std::move(dt2), mesh.tet_body);
+}
+
+std::vector<double> Simulation::erosion_steps() const {
+  std::vector<double> steps;
+  for (double dt2 : elements_.erosion_limits()) steps.push_back(std::sqrt(dt2));
+  return steps;
+}
+
 void Simulation::elements_stage() {
   State& st = state_;
   try {
@@ -530,8 +549,7 @@ void Simulation::elements_stage() {
                               : elements_.forces(model_.mesh.tets, st);
     critical_tet_ = r.critical_tet;
     if (fragmentation_) {  // erosion: by the step, and by the plastic strain (per material)
-      if (st.step == 0 && model_.erosion_step_ratio > 0.0)  // a fraction of the first step
-        elements_.set_erosion_limit(std::pow(model_.erosion_step_ratio * r.dt_stable, 2));
+      if (st.step == 0 && model_.erosion_step_ratio > 0.0) set_erosion_limits(r.dt_stable);
       fragmentation_->erode(r.eroding);
     }
     // No step is shortened to land on end_time: an abrupt change of τ costs the leapfrog
@@ -675,9 +693,9 @@ void Simulation::persist(Archive& ar) {
         "written on another mesh (the same numbers of nodes and tets, other "
         "positions or cells: a mesh file changed since)");
   ar(state_);
-  double erosion = elements_.erosion_limit();
+  std::vector<double> erosion = elements_.erosion_limits();
   ar(erosion);
-  if (ar.loading()) elements_.set_erosion_limit(erosion);
+  if (ar.loading()) elements_.set_erosion_limits(std::move(erosion), model_.mesh.tet_body);
   if (candidates_) candidates_->persist(ar, state_.surfaces);
   if (contact_) contact_->persist(ar);
   if (fragmentation_) fragmentation_->persist(ar);

@@ -765,6 +765,23 @@ TEST(Case, ErosionRatioOutOfRangeOrWithoutParticlesIsRefused) {
   }
 }
 
+// fracture.erosion_reference: the model's first step by default, each body's on request, and
+// nothing else.
+TEST(Case, ErosionReferenceIsTheModelOrTheBody) {
+  const std::string file = test::source_path("data/cases/ball-plate.yaml");
+  EXPECT_FALSE(load_case(file).erosion_per_body);
+  EXPECT_TRUE(load_case(file, {"fracture.erosion_reference=body"}).erosion_per_body);
+  EXPECT_FALSE(load_case(file, {"fracture.erosion_reference=model"}).erosion_per_body);
+  try {
+    load_case(file, {"fracture.erosion_reference=cell"});
+    ADD_FAILURE() << "erosion_reference=cell was accepted";
+  } catch (const CaseError& e) {
+    EXPECT_NE(std::string(e.what()).find("fracture.erosion_reference"), std::string::npos)
+        << e.what();
+    EXPECT_NE(std::string(e.what()).find("must be model or body"), std::string::npos) << e.what();
+  }
+}
+
 // fracture.fragments: each cell its own particle by default, clusters on request, and nothing
 // else.
 TEST(Case, FragmentsAreCellsOrClusters) {

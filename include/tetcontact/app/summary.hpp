@@ -94,6 +94,7 @@ struct RunSummary {
     long particles = 0;
     double mass = 0.0;
     long ductile_failed = 0, ductile_failed_at_floor = 0;  // its cells, as the run's below
+    std::optional<double> erosion_step;  // s: its cells erode below it (erosion by the step)
   };
   struct Particles {
     ConversionLedger ledger;

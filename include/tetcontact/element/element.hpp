@@ -112,6 +112,13 @@ ForceResult update_material(const std::vector<Tet>& tets, const std::vector<Mate
 /// Sets the per-tet sound speed from the current state (needed before the first forces).
 void init_sound_speed(const std::vector<Material>& materials, State& st);
 
+/// Each body's stable step at the current state: the smallest over its cells (particles
+/// skipped) of the step compute_forces takes; infinite for a body without cells. Every tet's
+/// fields are read (on every rank: at the first step they are the setup's).
+std::vector<double> body_stable_steps(const std::vector<Tet>& tets,
+                                      const std::vector<Index>& tet_body, std::size_t bodies,
+                                      const ElementOptions& options, const State& st);
+
 /// The element stage of a run: the model's element options (with the erosion limit the first
 /// step sets) and the arrays it keeps between steps (ElementScratch), over the mesh's tets.
 class ElementStage {
@@ -126,9 +133,13 @@ class ElementStage {
   const std::vector<Index>* rank_tets() const {
     return scratch_.rank_tets.empty() ? nullptr : &scratch_.rank_tets[scratch_.rank];
   }
-  /// A cell whose stable step squared falls below `dt2` is listed eroding.
-  void set_erosion_limit(double dt2) { options_.erode_dt2 = dt2; }
-  double erosion_limit() const { return options_.erode_dt2; }
+  /// A cell of body b whose stable step squared falls below dt2[b] is listed eroding (empty:
+  /// none); tet_body is the mesh's, which outlives the stage.
+  void set_erosion_limits(std::vector<double> dt2, std::span<const Index> tet_body) {
+    options_.erode_dt2 = std::move(dt2);
+    options_.tet_body = tet_body;
+  }
+  const std::vector<double>& erosion_limits() const { return options_.erode_dt2; }
   /// The forces and stable step of the current state (compute_forces).
   ForceResult forces(const std::vector<Tet>& tets, State& st) {
     return compute_forces(tets, options_, st, scratch_);

@@ -209,6 +209,7 @@ struct Case {
   bool fracture = false;
   bool particles = true;  // fracture.particles: destroyed boundary cells become particles
   double erosion_step_ratio = 0.01;  // fracture.erosion_step_ratio (0: off)
+  bool erosion_per_body = false;     // fracture.erosion_reference: body (true) or model
   bool fragment_clusters = false;    // fracture.fragments: clusters (true) or cells
   bool sph_debris = false;           // fracture.debris: sph (true) or points
   SphSettings sph;                   // fracture.sph

@@ -6,6 +6,7 @@
 
 #include <array>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -116,9 +117,11 @@ struct ElementOptions {
   /// J its volume ratio, J̄ the mean of its nodes' (element.cpp, pass 3).
   double anp_stabilization = 0.02;
   bool fracture = false;  // spall damage and loosening (Dobritsa et al.)
-  /// Erosion (a safeguard, fracture.erosion_step_ratio): tets whose stable step squared falls
-  /// below this are listed in ForceResult::eroding (0: off).
-  double erode_dt2 = 0.0;
+  /// Erosion (a safeguard, fracture.erosion_step_ratio): a tet t whose stable step squared
+  /// falls below its body's limit, erode_dt2[tet_body[t]], is listed in ForceResult::eroding
+  /// (empty: off). tet_body is the mesh's (ElementStage::set_erosion_limits).
+  std::vector<double> erode_dt2;
+  std::span<const Index> tet_body;
 };
 
 /// Prescribed velocity components on a set of nodes (a fixed node prescribes zero).
@@ -155,6 +158,9 @@ struct Model {
   /// Erosion (with particles): a cell whose stable step falls below this fraction of the
   /// first step's becomes a particle wherever it is (fracture.erosion_step_ratio; 0: off).
   double erosion_step_ratio = 0.0;
+  /// fracture.erosion_reference: body — the first step is the cell's own body's (its
+  /// smallest cell's); false (model): the whole model's.
+  bool erosion_per_body = false;
   /// fracture.fragments: clusters — a converted cell joins the particle of a neighbour that
   /// coheres with it (fracture/particles.hpp); false: each cell its own particle.
   bool fragment_clusters = false;

@@ -115,6 +115,9 @@ class Simulation {
   double particle_min_dt() const { return particle_min_dt_; }
   /// The step after the first element pass, s.
   double first_dt() const { return first_dt_; }
+  /// Per body, the stable step below which its cells erode (fracture.erosion_step_ratio of
+  /// the first step, the model's or the body's); empty without erosion by the step.
+  std::vector<double> erosion_steps() const;
   /// The falls of the step to a tenth of the first, a hundredth, ... (StepCollapse).
   const std::vector<StepCollapse>& step_collapses() const { return step_collapses_; }
   /// The decomposition of a distributed run (ranks = 1 on one process): each rank
@@ -146,6 +149,7 @@ class Simulation {
   void sph_stage();
   sph::Candidates sph_candidates();
   void elements_stage();
+  void set_erosion_limits(double first);
   void fracture_stage();
   void heat_stage();
   bool corrects() const;  // walls, contact or particles: the step corrects U*
