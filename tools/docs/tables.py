@@ -77,6 +77,10 @@ NAME, the table:
                   table's SPH column met them by contact), and the same with crushed cells
                   converted at 50 % of the first step: verdicts, thickness left, the contact
                   work's share of the initial energy (~50 min on 2 cores)
+    whipple-erosion-reference the sixteen shots with SPH debris, crushed cells converted at
+                  half the model's first step and at half each body's own
+                  (fracture.erosion_reference): verdicts, thickness left, steps (~40 min on 2
+                  cores)
     whipple-tillotson the seven of those shots at 6 km/s and above with SPH debris, every body
                   with the library's Mie–Grüneisen EOS (shipped) and with Tillotson's:
                   verdicts, thickness left, the debris cloud's speed, steps and the largest
@@ -121,8 +125,8 @@ ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)
 NAMES = ["stability", "micro", "profile", "ccd", "verify", "verify-full", "threads", "mpi",
          "whipple", "whipple-mesh", "whipple-hole", "strength", "taylor-tests", "taylor-temper",
          "whipple-shots", "whipple-shots-sph", "whipple-refined", "whipple-refined-sph",
-         "whipple-defaults", "whipple-wall", "whipple-tear", "whipple-debris", "whipple-sph-faces", "whipple-tillotson",
-         "hugoniot"]
+         "whipple-defaults", "whipple-wall", "whipple-tear", "whipple-debris", "whipple-sph-faces",
+         "whipple-erosion-reference", "whipple-tillotson", "hugoniot"]
 
 
 def g(x):
@@ -1467,6 +1471,38 @@ def whipple_sph_faces(binary, work, opts):
                                      whipple_debris_cells, percent)
 
 
+# whipple-erosion-reference -----------------------------------------------------------------------
+# Crushed cells converted at half the first step, the whole model's (its smallest cell's: the
+# sphere's) or each body's own (fracture.erosion_reference: body; the wall's cells, three to seven
+# times the sphere's step, then convert at their own half): the sixteen shots with SPH debris.
+WHIPPLE_EROSION_REFERENCE = [  # (folder, label, --set)
+    ("model", "half the model's first step (the 66 shots' setting)",
+     ["fracture.debris=sph", "fracture.erosion_step_ratio=0.5"]),
+    ("body", "half each body's own first step",
+     ["fracture.debris=sph", "fracture.erosion_step_ratio=0.5", "fracture.erosion_reference=body"]),
+]
+WHIPPLE_EROSION_REFERENCE_HEADER = settings_header(
+    WHIPPLE_EROSION_REFERENCE, "verdict (mass through), thickness left, steps", "run time")
+
+
+def whipple_step_cells(prediction, s):
+    """(verdict, mass through the wall, wall thickness left, steps, run seconds) of one campaign
+    run."""
+    m = {x[K.NAME]: x[K.MEASURED] for x in get(s, K.REFERENCES)}
+    return (prediction["predicted:wall perforated"], m[K.MASS_THROUGH_WALL],
+            m[K.WALL_THICKNESS_LEFT], get(s, K.STEPS), float(prediction["wall_seconds"]))
+
+
+def whipple_erosion_reference(binary, work, opts):
+    """The shots of WHIPPLE_REFINED_ROWS with SPH debris, crushed cells converted at half the
+    model's or each body's first step: each verdict (and mass through), the wall's thickness left
+    and the steps beside the measured verdict and the equation's."""
+    yield from whipple_settings_rows(binary, work, "whipple-erosion-reference-",
+                                     WHIPPLE_REFINED_ROWS, WHIPPLE_EROSION_REFERENCE,
+                                     WHIPPLE_EROSION_REFERENCE_HEADER, whipple_step_cells,
+                                     lambda n: f"{n:,}")
+
+
 # whipple-tillotson -------------------------------------------------------------------------------
 # The equation of state of expanded and hot debris: the shots of the sixteen at 6 km/s and above,
 # with SPH debris, every body with its library entry's Mie–Grüneisen EOS (shipped) and with its
@@ -1621,6 +1657,7 @@ TABLES = {"stability": stability, "micro": micro, "profile": profile, "ccd": ccd
           "whipple-defaults": whipple_defaults,
           "whipple-wall": whipple_wall, "whipple-tear": whipple_tear,
           "whipple-debris": whipple_debris, "whipple-sph-faces": whipple_sph_faces,
+          "whipple-erosion-reference": whipple_erosion_reference,
           "whipple-tillotson": whipple_tillotson,
           "hugoniot": hugoniot}
 assert list(TABLES) == NAMES
