@@ -87,6 +87,23 @@ INSTANTIATE_TEST_SUITE_P(Broadphase, Methods,
                          ::testing::Values("sweep", "grid", "fcl_tree", "fcl_sap"),
                          [](const auto& info) { return info.param; });
 
+// More boxes than several blocks of the grid's build (4,096 boxes a block): each block
+// numbers its cubes apart, and the blocks' cubes are then joined. The pairs are the sweep's (held
+// to the brute force above; the brute force over 40,000 boxes a set would take seconds).
+TEST(Broadphase, GridBuiltInSeveralBlocksGivesTheSweepsPairs) {
+  const BroadphaseInput in = random_scene(5, 40000, false);
+  const Candidates sweep = make_broadphase("sweep")->find(in);
+  ASSERT_GT(sweep.node_face.size(), 100000u);
+  ASSERT_GT(sweep.edge_edge.size(), 100000u);
+  auto grid = make_broadphase("grid");
+  grid->keep_memory = true;
+  for (int call = 0; call < 2; ++call) {  // the second call on the kept blocks
+    const Candidates got = grid->find(in);
+    EXPECT_EQ(got.node_face, sweep.node_face) << "call " << call;
+    EXPECT_EQ(got.edge_edge, sweep.edge_edge) << "call " << call;
+  }
+}
+
 // A particle cloud: hundreds of point-like edges (each its own body) crowded into a few of the
 // grid's cubes (hundreds of entries a bucket), with exactly touching boxes and boxes sharing a
 // lower x.
