@@ -100,21 +100,20 @@ bool StepResolver::resolve(State& st, StepContacts& points, ContactCandidates& c
 // times the steps and 10 times the time), and so is a try that leaves more pairs failing than
 // the one before.
 bool StepResolver::helped_by_cut(const State& st, const Verification& v) {
-  std::vector<std::array<Index, 5>> failing;
-  for (const FailedPair& p : v.failed)
-    failing.push_back({p.edge_edge, p.nodes[0], p.nodes[1], p.nodes[2], p.nodes[3]});
-  std::sort(failing.begin(), failing.end());
+  const auto key = [](const FailedPair& p) {
+    return std::array<Index, 5>{p.edge_edge, p.nodes[0], p.nodes[1], p.nodes[2], p.nodes[3]};
+  };
   if (st.step == cut_at_step_) {  // a try of this step was cut before
-    if (failing.size() > cut_failing_.size()) return false;
+    if (v.failed.size() > cut_failing_.size()) return false;
     for (const FailedPair& p : v.failed)
       if ((p.touching_at_start || p.body_a < 0) &&
-          std::binary_search(
-              cut_failing_.begin(), cut_failing_.end(),
-              std::array<Index, 5>{p.edge_edge, p.nodes[0], p.nodes[1], p.nodes[2], p.nodes[3]}))
+          std::binary_search(cut_failing_.begin(), cut_failing_.end(), key(p)))
         return false;
   }
   cut_at_step_ = st.step;
-  cut_failing_ = std::move(failing);
+  cut_failing_.clear();
+  for (const FailedPair& p : v.failed) cut_failing_.push_back(key(p));
+  std::sort(cut_failing_.begin(), cut_failing_.end());
   return true;
 }
 

@@ -376,8 +376,8 @@ bool Simulation::resolve_stage(bool may_cut) {
 void Simulation::cut_step() {
   state_.dt *= 0.5;
   if (contact_) contact_->retake_step();
-  ++contact_totals_.step_cuts;
   ContactLedger& ct = contact_totals_;
+  ++ct.step_cuts;
   ct.cut_step_min = ct.cut_step_min > 0.0 ? std::min(ct.cut_step_min, state_.dt) : state_.dt;
 }
 
