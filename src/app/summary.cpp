@@ -100,7 +100,8 @@ std::optional<RunSummary::Particles> particles_of(const Simulation& sim) {
   p.sph_faces = model.sph_debris && model.sph.faces;
   const std::vector<double> erosion = sim.erosion_steps();
   for (std::size_t b = 0; b < model.mesh.bodies.size(); ++b) {  // where the particles came from
-    RunSummary::FromBody from{model.mesh.bodies[b].name, 0, 0.0};
+    RunSummary::FromBody from;
+    from.name = model.mesh.bodies[b].name;
     if (b < erosion.size()) from.erosion_step = erosion[b];
     for (Index i = 0; i < st.particle_count(); ++i)
       if (model.mesh.tet_body[st.particle_tet[i]] == static_cast<Index>(b))

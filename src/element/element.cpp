@@ -314,21 +314,24 @@ void copy_geometry(const LaneGeometry& g, int l, TetGeometry& out) {
   out.amax2 = g.amax2[l];
 }
 
+// The kinematics of kLanes cells as a structure of arrays: the geometry at mid-step and at the
+// end, and the rates of set_rates (D, the spin's axial vector, tr D).
+struct LaneKinematics {
+  LaneGeometry gm, ge;
+  double d[6][kLanes], w[3][kLanes], trace[kLanes];
+};
+
 // cell_kinematics for the cells tets[t[l]], l < count (lanes past count repeat the first).
-// Two copies, AVX2 (four doubles a lane group) where the processor has it, SSE2 otherwise:
-// neither contracts a product and a sum, so both give the scalar path's doubles.
-__attribute__((target_clones("avx2", "default"))) void lane_kinematics(const std::size_t* t,
-                                                                       int count,
-                                                                       const std::vector<Tet>& tets,
-                                                                       double tau, const State& st,
-                                                                       CellKinematics* c) {
+[[gnu::always_inline]] inline void kinematics_in_lanes(const std::size_t* t, int count,
+                                                       const std::vector<Tet>& tets, double tau,
+                                                       const State& st, LaneKinematics& k) {
   const double h = 0.5 * tau;
   double ee[3][3][kLanes], em[3][3][kLanes], du[3][3][kLanes];
   for (int l = 0; l < kLanes; ++l) {
-    const Tet& k = tets[t[l < count ? l : 0]];
-    const Vec3 &x0 = st.x[k[0]], &u0 = st.v[k[0]];
+    const Tet& tet = tets[t[l < count ? l : 0]];
+    const Vec3 &x0 = st.x[tet[0]], &u0 = st.v[tet[0]];
     for (int i = 0; i < 3; ++i) {
-      const Vec3 &xi = st.x[k[i + 1]], &ui = st.v[k[i + 1]];
+      const Vec3 &xi = st.x[tet[i + 1]], &ui = st.v[tet[i + 1]];
       for (int d = 0; d < 3; ++d) {
         ee[i][d][l] = xi[d] - x0[d];
         du[i][d][l] = ui[d] - u0[d];
@@ -338,29 +341,51 @@ __attribute__((target_clones("avx2", "default"))) void lane_kinematics(const std
   for (int i = 0; i < 3; ++i)
     for (int d = 0; d < 3; ++d)
       for (int l = 0; l < kLanes; ++l) em[i][d][l] = ee[i][d][l] - h * du[i][d][l];
-  LaneGeometry gm, ge;
-  lane_geometry(em, gm);
-  lane_geometry(ee, ge);
+  lane_geometry(em, k.gm);
+  lane_geometry(ee, k.ge);
   // L = Σ_i (U_i − U_0) ⊗ ∇N_i, ∇N_i = −a_i / (3V) at mid-step; then set_rates.
-  double L[3][3][kLanes];
   for (int l = 0; l < kLanes; ++l) {
-    const double inv3v = -1.0 / (3.0 * gm.vol[l]);
+    const double inv3v = -1.0 / (3.0 * k.gm.vol[l]);
+    double L[3][3];
     for (int r = 0; r < 3; ++r)
       for (int col = 0; col < 3; ++col)
-        L[r][col][l] = inv3v * (du[0][r][l] * gm.a[1][col][l] + du[1][r][l] * gm.a[2][col][l] +
-                                du[2][r][l] * gm.a[3][col][l]);
+        L[r][col] = inv3v * (du[0][r][l] * k.gm.a[1][col][l] + du[1][r][l] * k.gm.a[2][col][l] +
+                             du[2][r][l] * k.gm.a[3][col][l]);
+    k.d[0][l] = L[0][0];
+    k.d[1][l] = L[1][1];
+    k.d[2][l] = L[2][2];
+    k.d[3][l] = 0.5 * (L[0][1] + L[1][0]);
+    k.d[4][l] = 0.5 * (L[1][2] + L[2][1]);
+    k.d[5][l] = 0.5 * (L[0][2] + L[2][0]);
+    k.w[0][l] = 0.5 * (L[2][1] - L[1][2]);
+    k.w[1][l] = 0.5 * (L[0][2] - L[2][0]);
+    k.w[2][l] = 0.5 * (L[1][0] - L[0][1]);
+    k.trace[l] = k.d[0][l] + k.d[1][l] + k.d[2][l];
   }
-  for (int l = 0; l < count; ++l) {
-    CellKinematics& k = c[l];
-    copy_geometry(gm, l, k.gm);
-    copy_geometry(ge, l, k.ge);
-    double Ll[3][3];
-    for (int r = 0; r < 3; ++r)
-      for (int col = 0; col < 3; ++col) Ll[r][col] = L[r][col][l];
-    set_rates(Ll, k.m);
-    k.m.vol_mid = gm.vol[l];
-    k.m.vol_end = ge.vol[l];
-  }
+}
+
+// Lane l's kinematics as one cell's.
+void copy_kinematics(const LaneKinematics& k, int l, CellKinematics& c) {
+  copy_geometry(k.gm, l, c.gm);
+  copy_geometry(k.ge, l, c.ge);
+  for (int i = 0; i < 6; ++i) c.m.d[i] = k.d[i][l];
+  for (int i = 0; i < 3; ++i) c.m.w[i] = k.w[i][l];
+  c.m.trace = k.trace[l];
+  c.m.vol_mid = k.gm.vol[l];
+  c.m.vol_end = k.ge.vol[l];
+}
+
+// cell_kinematics for the cells tets[t[l]], l < count, into c[l]. Two copies, AVX2 (four
+// doubles a lane group) where the processor has it, SSE2 otherwise: neither contracts a product
+// and a sum, so both give the scalar path's doubles.
+__attribute__((target_clones("avx2", "default"))) void lane_kinematics(const std::size_t* t,
+                                                                       int count,
+                                                                       const std::vector<Tet>& tets,
+                                                                       double tau, const State& st,
+                                                                       CellKinematics* c) {
+  LaneKinematics k;
+  kinematics_in_lanes(t, count, tets, tau, st, k);
+  for (int l = 0; l < count; ++l) copy_kinematics(k, l, c[l]);
 }
 
 // Per-tet pressure (point_pressure: the EOS, the energy, failure, the sound speed) and the
@@ -475,6 +500,419 @@ void nodal_pressures(const std::vector<Material>& materials, const ElementOption
   tet_forces(ti, g, options, st, &scratch.tet_force[4 * t], block);
 }
 
+// Helpers of the lanes, each the scalar path's operations for one lane, inlined into the lane
+// loops that call them.
+
+// eos_terms of a linear or Mie–Grüneisen material at compression m: A, B and ∂A/∂μ.
+[[gnu::always_inline]] inline void eos_in_lane(const Material& mat, double m, double& a, double& b,
+                                               double& da) {
+  const double k0 = mat.density * mat.c0 * mat.c0;
+  const bool linear = mat.eos == EosKind::linear;
+  const double num = m * (1.0 + (1.0 - 0.5 * mat.gamma0) * m);
+  const double den = 1.0 - (mat.s - 1.0) * m;
+  const double dnum = 1.0 + 2.0 * (1.0 - 0.5 * mat.gamma0) * m;
+  const double a_mg = k0 * num / (den * den);
+  const double da_mg = k0 * (dnum * den + 2.0 * (mat.s - 1.0) * num) / (den * den * den);
+  a = linear ? mat.bulk_modulus * m : m <= 0.0 ? k0 * m : a_mg;
+  b = linear ? 0.0 : mat.gamma0;
+  da = linear ? mat.bulk_modulus : m <= 0.0 ? k0 : da_mg;
+}
+
+// sound_speed2 with bulk_stiffness (floored at 1e-3 K) and the shear modulus g of the state.
+[[gnu::always_inline]] inline double sound2_in_lane(const Material& mat, double mu, double p,
+                                                    double b, double da, double g) {
+  const double rho = mat.density * (1.0 + mu);
+  const double k = (1.0 + mu) * da + b * p / (1.0 + mu);
+  const double kf = 1e-3 * mat.bulk_modulus;
+  return ((k < kf ? kf : k) + 4.0 / 3.0 * g) / rho;
+}
+
+// tet_forces for lane l: f_i = (σ/3) a_i, f_0 = −(f_1 + f_2 + f_3), σ = s − pq I on the end
+// geometry g; and stable_step2, its step limit squared, from the sound speed c2 and tr D.
+[[gnu::always_inline]] inline void forces_in_lane(
+    int l, const LaneGeometry& g, const double (&s)[6][kLanes], double pq, double c2, double trace,
+    const ElementOptions& options, double (&f)[4][3][kLanes], double (&dt2)[kLanes]) {
+  constexpr double third = 1.0 / 3.0;
+  const double sxx = (s[0][l] - pq) * third, syy = (s[1][l] - pq) * third,
+               szz = (s[2][l] - pq) * third;
+  const double sxy = s[3][l] * third, syz = s[4][l] * third, sxz = s[5][l] * third;
+  double f0x = 0.0, f0y = 0.0, f0z = 0.0;
+  for (int i = 1; i < 4; ++i) {
+    const double ax = g.a[i][0][l], ay = g.a[i][1][l], az = g.a[i][2][l];
+    const double fx = sxx * ax + sxy * ay + sxz * az;
+    const double fy = sxy * ax + syy * ay + syz * az;
+    const double fz = sxz * ax + syz * ay + szz * az;
+    f[i][0][l] = fx;
+    f[i][1][l] = fy;
+    f[i][2][l] = fz;
+    f0x += fx;
+    f0y += fy;
+    f0z += fz;
+  }
+  f[0][0][l] = -f0x;
+  f[0][1][l] = -f0y;
+  f[0][2][l] = -f0z;
+  const double l2 = 9.0 * g.vol[l] * g.vol[l] / g.amax2[l];
+  const double c = std::sqrt(c2), len = std::sqrt(l2);
+  const double qs = options.viscosity_linear * c + options.viscosity_quadratic * len * -trace;
+  const double dt = len / (qs + std::sqrt(qs * qs + c2));
+  const double compressed = dt * dt, expanding = l2 / c2;
+  dt2[l] = trace < 0.0 ? compressed : expanding;
+}
+
+// Lane l's forces to cell tl's corners, and its step limit into the block's (tet_forces' own
+// bookkeeping); called in the cells' order.
+inline void store_forces(int l, std::size_t tl, const double (&f)[4][3][kLanes], double dt2,
+                         const ElementOptions& options, ElementScratch& scratch,
+                         ForceResult& block) {
+  Vec3* out = &scratch.tet_force[4 * tl];
+  for (int i = 0; i < 4; ++i) out[i] = Vec3(f[i][0][l], f[i][1][l], f[i][2][l]);
+  if (dt2 < block.dt_stable) {
+    block.dt_stable = dt2;
+    block.critical_tet = static_cast<Index>(tl);
+  }
+  if (!options.erode_dt2.empty() && dt2 < options.erode_dt2[options.tet_body[tl]])
+    block.eroding.push_back(static_cast<Index>(tl));
+}
+
+// Pass 1 in lanes: cell_kinematics, check_kinematics and update_cell for the cells
+// tets[t[l]], l < count, of one material. Their kinematics and state gathered into a structure
+// of arrays, computed lane by lane with exactly the operations, in the order, of the scalar path
+// (cell_kinematics; update_deviator6: the Jaumann rotation, the trial deviator, σ_eq, the
+// bilinear law's return; deviator_work, bulk_viscosity and viscous_work), so that each lane's
+// doubles are the scalar path's bit for bit, then scattered back. Run cell by cell as scalar
+// calls: Steinberg–Guinan's strength state, the return of Johnson–Cook and Steinberg–Guinan,
+// ductile failure, and, with per-tet pressure, cell_pressure; the eroding cells listed in the
+// cells' order, as the scalar path lists them. Lanes past count repeat the first cell.
+// Returns false, having written nothing, where a cell's kinematics fail check_kinematics: the
+// caller then takes the scalar path, which reports it (no exception leaves the lanes' clones).
+__attribute__((target_clones("avx2", "default"))) bool lane_cells(
+    const std::size_t* t, int count, const std::vector<Tet>& tets, const Material& mat,
+    const ElementOptions& options, double tau, State& st, ElementScratch& scratch,
+    ForceResult& block) {
+  LaneKinematics k;
+  kinematics_in_lanes(t, count, tets, tau, st, k);
+  for (int l = 0; l < count; ++l)
+    if (!(k.gm.vol[l] > 0.0) || !std::isfinite(k.ge.vol[l]) || !(k.ge.vol[l] > 0.0)) return false;
+  // Gather.
+  const auto& d = k.d;
+  const auto& w = k.w;
+  const auto& trace = k.trace;
+  const auto& vol_mid = k.gm.vol;
+  const auto& vol_end = k.ge.vol;
+  const auto& amax2 = k.gm.amax2;
+  double s_old[6][kLanes], vol0[kLanes], vol[kLanes], q_old[kLanes], sound2[kLanes], eps_p[kLanes],
+      w_plastic[kLanes], w_viscous[kLanes], temperature[kLanes], t_start[kLanes], e_int[kLanes],
+      p_old[kLanes], shear[kLanes], failed[kLanes];
+  for (int l = 0; l < kLanes; ++l) {
+    const std::size_t tl = t[l < count ? l : 0];
+    for (int i = 0; i < 6; ++i) s_old[i][l] = st.s[tl][i];
+    vol0[l] = st.vol0[tl];
+    vol[l] = st.vol[tl];
+    q_old[l] = st.q[tl];
+    sound2[l] = st.sound2[tl];
+    eps_p[l] = st.eps_p[tl];
+    w_plastic[l] = st.w_plastic[tl];
+    w_viscous[l] = st.w_viscous[tl];
+    temperature[l] = st.temperature[tl];
+    t_start[l] = temperature[l];
+    e_int[l] = st.e_int[tl];
+    p_old[l] = st.p[tl];
+    shear[l] = mat.shear_modulus;
+    failed[l] = options.fracture && st.damage[tl] != Damage::intact ? 1.0 : 0.0;
+  }
+  double rho_mid[kLanes];
+  for (int l = 0; l < kLanes; ++l) rho_mid[l] = mat.density * vol0[l] / vol_mid[l];
+  // Steinberg–Guinan's G(P, T) at the start of the step, cell by cell.
+  const bool sg = mat.strength == StrengthModel::steinberg_guinan;
+  StrengthState ss[kLanes];
+  if (sg)
+    for (int l = 0; l < count; ++l) {
+      const std::size_t tl = t[l];
+      ss[l] = strength_state(mat, st.p[tl], t_start[l],
+                             rho_mid[l] > 0.0 ? rho_mid[l] / mat.density : 1.0);
+      shear[l] = ss[l].g;
+    }
+  // update_deviator6: Q = (1 − c θ²) I + c A + c α αᵀ, α = τ w / 2; s* = Q s Qᵀ + 2G τ dev D;
+  // σ_eq; the bilinear law's return in lanes.
+  double s_new[6][kLanes], eq[kLanes], dplastic[kLanes], yield[kLanes];
+  const bool plastic = mat.plastic(), bilinear = mat.strength == StrengthModel::bilinear;
+  const double h_mod = mat.hardening_modulus;
+  for (int l = 0; l < kLanes; ++l) {
+    const double ax = 0.5 * tau * w[0][l], ay = 0.5 * tau * w[1][l], az = 0.5 * tau * w[2][l];
+    const double th2 = ax * ax + ay * ay + az * az, cc = 2.0 / (1.0 + th2), dg = 1.0 - cc * th2;
+    const double q00 = dg + cc * ax * ax, q11 = dg + cc * ay * ay, q22 = dg + cc * az * az;
+    const double q01 = cc * (ax * ay - az), q10 = cc * (ax * ay + az);
+    const double q02 = cc * (ax * az + ay), q20 = cc * (ax * az - ay);
+    const double q12 = cc * (ay * az - ax), q21 = cc * (ay * az + ax);
+    const double s00 = s_old[0][l], s11 = s_old[1][l], s22 = s_old[2][l], s01 = s_old[3][l],
+                 s12 = s_old[4][l], s02 = s_old[5][l];
+    const double m00 = q00 * s00 + q01 * s01 + q02 * s02, m01 = q00 * s01 + q01 * s11 + q02 * s12,
+                 m02 = q00 * s02 + q01 * s12 + q02 * s22;
+    const double m10 = q10 * s00 + q11 * s01 + q12 * s02, m11 = q10 * s01 + q11 * s11 + q12 * s12,
+                 m12 = q10 * s02 + q11 * s12 + q12 * s22;
+    const double m20 = q20 * s00 + q21 * s01 + q22 * s02, m21 = q20 * s01 + q21 * s11 + q22 * s12,
+                 m22 = q20 * s02 + q21 * s12 + q22 * s22;
+    const double g2 = 2.0 * shear[l] * tau, tr3 = (d[0][l] + d[1][l] + d[2][l]) / 3.0;
+    const double s0 = m00 * q00 + m01 * q01 + m02 * q02 + g2 * (d[0][l] - tr3);
+    const double s1 = m10 * q10 + m11 * q11 + m12 * q12 + g2 * (d[1][l] - tr3);
+    const double s2 = m20 * q20 + m21 * q21 + m22 * q22 + g2 * (d[2][l] - tr3);
+    const double s3 = m00 * q10 + m01 * q11 + m02 * q12 + g2 * d[3][l];
+    const double s4 = m10 * q20 + m11 * q21 + m12 * q22 + g2 * d[4][l];
+    const double s5 = m00 * q20 + m01 * q21 + m02 * q22 + g2 * d[5][l];
+    const double n2 = s0 * s0 + s1 * s1 + s2 * s2 + 2.0 * (s3 * s3 + s4 * s4 + s5 * s5);
+    eq[l] = std::sqrt(1.5 * n2);
+    // plastic_increment, bilinear: σy = σy0 + H ε̄p; Δε̄p = (σ_eq − σy) / (3G + H) above it.
+    const double y0 = mat.yield_stress + h_mod * (eps_p[l] + mat.initial_plastic_strain);
+    const double dp = (eq[l] - y0) / (3.0 * shear[l] + h_mod);
+    const bool yields = eq[l] > y0;
+    const double y = yields ? y0 + h_mod * dp : y0;
+    // An elastic material: no return, nothing scaled.
+    dplastic[l] = plastic && yields ? dp : 0.0;
+    yield[l] = plastic ? y : std::numeric_limits<double>::infinity();
+    s_new[0][l] = s0;
+    s_new[1][l] = s1;
+    s_new[2][l] = s2;
+    s_new[3][l] = s3;
+    s_new[4][l] = s4;
+    s_new[5][l] = s5;
+  }
+  // The other laws' return (plastic_increment, whose own bound on the yield clears an elastic
+  // cell before its solver), cell by cell; none for a failed cell.
+  if (plastic && !bilinear)
+    for (int l = 0; l < count; ++l) {
+      if (failed[l] != 0.0) continue;
+      const std::size_t tl = t[l];
+      const StrengthState ssl =
+          sg ? ss[l]
+             : strength_state(mat, st.p[tl], t_start[l],
+                              rho_mid[l] > 0.0 ? rho_mid[l] / mat.density : 1.0);
+      const PlasticIncrement inc =
+          plastic_increment(mat, ssl, eq[l], eps_p[l], tau, t_start[l], rho_mid[l]);
+      dplastic[l] = inc.dplastic;
+      yield[l] = inc.yield;
+    }
+  // The radial return's scaling, a failed cell's deviator kept; deviator_work; bulk_viscosity;
+  // viscous_work.
+  double w_dev[kLanes], w_p[kLanes], q_new[kLanes], w_q[kLanes], dvol[kLanes];
+  const double half_tau = 0.5 * tau, c1 = options.viscosity_linear,
+               c2 = options.viscosity_quadratic;
+  const bool thermal = mat.thermal();
+  const double density = mat.density, chi = mat.taylor_quinney;
+  for (int l = 0; l < kLanes; ++l) {
+    const bool fl = failed[l] != 0.0;
+    const double f = yield[l] < eq[l] ? yield[l] / eq[l] : 1.0;
+    double sd = 0.0;
+    for (int i = 0; i < 6; ++i) {
+      const double sn = fl ? s_old[i][l] : s_new[i][l] * f;
+      s_new[i][l] = sn;
+      sd += (i < 3 ? 1.0 : 2.0) * (s_old[i][l] + sn) * d[i][l];
+    }
+    w_dev[l] = half_tau * vol_mid[l] * sd;
+    const double dpl = fl ? 0.0 : dplastic[l];
+    dplastic[l] = dpl;
+    const double y = bilinear ? yield[l] - 0.5 * h_mod * dpl : yield[l];
+    const double wp = vol_mid[l] * y * dpl;
+    w_p[l] = dpl > 0.0 ? wp : 0.0;
+    w_plastic[l] = dpl > 0.0 ? w_plastic[l] + wp : w_plastic[l];
+    eps_p[l] = dpl > 0.0 ? eps_p[l] + dpl : eps_p[l];
+    // Viscosity from the mid-step strain rate, in compression only, over the smallest altitude.
+    const double len = 3.0 * vol_mid[l] / std::sqrt(amax2[l]);
+    const double qv =
+        rho_mid[l] * len * (c2 * len * trace[l] * trace[l] - c1 * std::sqrt(sound2[l]) * trace[l]);
+    const double qn = trace[l] < 0.0 ? qv : 0.0;
+    q_new[l] = qn;
+    dvol[l] = vol_end[l] - vol[l];
+    w_q[l] = -0.5 * (q_old[l] + qn) * dvol[l];
+    w_viscous[l] = w_viscous[l] + w_q[l];
+    const double heated =
+        temperature[l] + (chi * w_p[l] + w_q[l]) / (density * vol0[l] * mat.specific_heat);
+    temperature[l] = thermal ? heated : temperature[l];
+  }
+  // Scatter the deviator's and the viscosity's results; the cells' erosion by strain or damage.
+  const bool averaged = averages_pressure(options, st.tet_material[t[0]]);
+  bool eroding[kLanes];
+  for (int l = 0; l < count; ++l) {
+    const std::size_t tl = t[l];
+    const Index ti = static_cast<Index>(tl);
+    for (int i = 0; i < 6; ++i) st.s[tl][i] = s_new[i][l];
+    st.eps_p[tl] = eps_p[l];
+    st.w_plastic[tl] = w_plastic[l];
+    eroding[l] = false;
+    if (dplastic[l] > 0.0) {
+      if (mat.erosion_plastic_strain > 0.0 && eps_p[l] >= mat.erosion_plastic_strain)
+        eroding[l] = true;
+      if (mat.ductile_failure) {
+        const MaterialPoint pt = tet_point(st, ti);
+        const double eqn = von_mises(pt.s);
+        const double triax = eqn > 0.0 ? -pt.p / eqn : 0.0;
+        const double ef = johnson_cook_failure_strain(mat.johnson_cook_failure, triax,
+                                                      dplastic[l] / tau, t_start[l]);
+        const bool floored = ef <= mat.johnson_cook_failure.min_strain;
+        if (!floored || mat.ductile_failure_at_floor) {
+          pt.ductile += dplastic[l] / ef;
+          if (floored) pt.ductile_floor += dplastic[l] / ef;
+        }
+        if (pt.ductile >= 1.0) eroding[l] = true;
+      }
+    }
+    st.q[tl] = q_new[l];
+    st.trace_d[tl] = trace[l];
+    st.w_viscous[tl] = w_viscous[l];
+    st.vol[tl] = vol_end[l];
+    st.temperature[tl] = temperature[l];
+    if (averaged) {
+      scratch.tet_averaged[tl] = !options.fracture || st.damage[tl] == Damage::intact;
+      scratch.tet_energy[tl] = e_int[l];
+      st.e_int[tl] = e_int[l] + (w_dev[l] + w_q[l]);
+      scratch.tet_dvol[tl] = dvol[l];
+    }
+  }
+  if (averaged || mat.eos == EosKind::tillotson) {  // the pressure later, or cell by cell
+    for (int l = 0; l < count; ++l) {
+      const std::size_t tl = t[l];
+      if (eroding[l]) block.eroding.push_back(static_cast<Index>(tl));
+      if (averaged) continue;
+      CellKinematics c;
+      copy_kinematics(k, l, c);
+      cell_pressure(static_cast<Index>(tl), mat, c, w_dev[l], w_q[l], dvol[l], options, st,
+                    &scratch.tet_force[4 * tl], block);
+    }
+    return true;
+  }
+  // The cell's own pressure (point_pressure): E^{n+1} = E + W_dev − ½ (pⁿ + p^{n+1}) ΔV + W_q
+  // with p^{n+1} = A(μ) + B E^{n+1}/V0 (solve_energy, implicit_energy), at the end volume.
+  double mu[kLanes], eos_b[kLanes], eos_da[kLanes], e_new[kLanes], p_new[kLanes];
+  for (int l = 0; l < kLanes; ++l) {
+    const double m = vol0[l] / vol_end[l] - 1.0;
+    double a;
+    eos_in_lane(mat, m, a, eos_b[l], eos_da[l]);
+    const double e = e_int[l] + w_dev[l];
+    const double solved =
+        (e - 0.5 * (p_old[l] + a) * dvol[l] + w_q[l]) / (1.0 + 0.5 * eos_b[l] * dvol[l] / vol0[l]);
+    e_new[l] = solved;
+    p_new[l] = a + eos_b[l] * solved / vol0[l];
+    mu[l] = m;
+  }
+  // Failure (the pressure a failed cell carries, its energy with it) and the shear modulus of
+  // the new state, cell by cell.
+  double shear_end[kLanes];
+  for (int l = 0; l < kLanes; ++l) shear_end[l] = mat.shear_modulus;
+  for (int l = 0; l < count; ++l) {
+    const Index ti = static_cast<Index>(t[l]);
+    if (options.fracture) {
+      const double carried = fail(mat, vol_end[l], p_new[l], tet_point(st, ti));
+      if (carried != p_new[l]) {
+        p_new[l] = carried;
+        e_new[l] = e_int[l] + w_dev[l] - 0.5 * (p_old[l] + p_new[l]) * dvol[l] + w_q[l];
+      }
+    }
+    if (sg) shear_end[l] = shear_modulus_at(mat, p_new[l], temperature[l], 1.0 + mu[l]);
+  }
+  double s_end[6][kLanes];
+  for (int l = 0; l < kLanes; ++l) {
+    const Sym6& sl = st.s[t[l < count ? l : 0]];  // after failure, which may drop it
+    for (int i = 0; i < 6; ++i) s_end[i][l] = sl[i];
+  }
+  // The sound speed, the forces on the end geometry, the step limit.
+  double sound2_end[kLanes], f[4][3][kLanes], dt2[kLanes];
+  for (int l = 0; l < kLanes; ++l) {
+    sound2_end[l] = sound2_in_lane(mat, mu[l], p_new[l], eos_b[l], eos_da[l], shear_end[l]);
+    forces_in_lane(l, k.ge, s_end, p_new[l] + q_new[l], sound2_end[l], trace[l], options, f, dt2);
+  }
+  for (int l = 0; l < count; ++l) {
+    const std::size_t tl = t[l];
+    if (eroding[l]) block.eroding.push_back(static_cast<Index>(tl));
+    st.e_int[tl] = e_new[l];
+    st.p[tl] = p_new[l];
+    st.sound2[tl] = sound2_end[l];
+    store_forces(l, tl, f, dt2[l], options, scratch, block);
+  }
+  return true;
+}
+
+// Pass 3 in lanes: averaged_cell_pressure for the cells tets[t[l]], l < count, of one
+// material whose equation of state is linear or Mie–Grüneisen, none of them failed (those, and
+// Tillotson's, take averaged_cell_pressure). The cells' data are gathered into a structure of
+// arrays, every quantity is computed lane by lane with exactly the operations, in the order, of
+// the scalar path (eos_terms, the stabilization, sound_speed2, tet_geometry, tet_forces,
+// stable_step2), so that each lane's doubles are the scalar path's bit for bit, and the results
+// are scattered back. Failure (fail) and Steinberg–Guinan's shear modulus run cell by cell
+// between the lanes' stages, as scalar calls. The step limits are reduced in the cells' order:
+// the same limit, critical cell and eroding list as the scalar path. Lanes past count repeat
+// the first cell. Returns false, having written nothing, where a cell's end geometry is
+// inverted or not finite: the caller then takes the scalar path, which reports it.
+__attribute__((target_clones("avx2", "default"))) bool lane_averaged_pressure(
+    const std::size_t* t, int count, const std::vector<Tet>& tets, const Material& mat,
+    const ElementOptions& options, State& st, ElementScratch& scratch, ForceResult& block) {
+  // Gather.
+  double e[3][3][kLanes];
+  double vol0[kLanes], vol[kLanes], p_new[kLanes], jbar[kLanes], p_old[kLanes], dvol[kLanes],
+      e_int[kLanes], q[kLanes], trace[kLanes], s[6][kLanes], shear[kLanes];
+  for (int l = 0; l < kLanes; ++l) {
+    const std::size_t tl = t[l < count ? l : 0];
+    const Tet& k = tets[tl];
+    const Vec3& x0 = st.x[k[0]];
+    for (int i = 0; i < 3; ++i)
+      for (int d = 0; d < 3; ++d) e[i][d][l] = st.x[k[i + 1]][d] - x0[d];
+    p_new[l] = 0.25 * (scratch.pressure[k[0]] + scratch.pressure[k[1]] + scratch.pressure[k[2]] +
+                       scratch.pressure[k[3]]);
+    jbar[l] = 0.25 * (scratch.node_j[k[0]] + scratch.node_j[k[1]] + scratch.node_j[k[2]] +
+                      scratch.node_j[k[3]]);
+    vol0[l] = st.vol0[tl];
+    vol[l] = st.vol[tl];
+    p_old[l] = st.p[tl];
+    dvol[l] = scratch.tet_dvol[tl];
+    e_int[l] = st.e_int[tl];
+    q[l] = st.q[tl];
+    trace[l] = st.trace_d[tl];
+    shear[l] = mat.shear_modulus;
+  }
+  LaneGeometry g;
+  lane_geometry(e, g);
+  for (int l = 0; l < count; ++l)
+    if (!std::isfinite(g.vol[l]) || !(g.vol[l] > 0.0)) return false;
+  // The stabilization α K (J̄ − J) / J; eos_terms' B and ∂A/∂μ (the pressure is the nodes').
+  double mu[kLanes], eos_b[kLanes], eos_da[kLanes];
+  const double stab = options.anp_stabilization;
+  for (int l = 0; l < kLanes; ++l) {
+    const double m = vol0[l] / vol[l] - 1.0, j = vol[l] / vol0[l];
+    const double stabilized = p_new[l] + stab * mat.bulk_modulus * (jbar[l] - j) / j;
+    p_new[l] = stab > 0.0 ? stabilized : p_new[l];
+    double a;
+    eos_in_lane(mat, m, a, eos_b[l], eos_da[l]);
+    mu[l] = m;
+  }
+  // Failure, and the shear modulus of the new state (Steinberg–Guinan's G(P, T)), cell by cell.
+  for (int l = 0; l < count; ++l) {
+    const Index ti = static_cast<Index>(t[l]);
+    if (options.fracture) p_new[l] = fail(mat, vol[l], p_new[l], tet_point(st, ti));
+    if (mat.strength == StrengthModel::steinberg_guinan)
+      shear[l] = shear_modulus_at(mat, p_new[l], st.temperature[ti], 1.0 + mu[l]);
+  }
+  for (int l = 0; l < kLanes; ++l) {
+    const Sym6& sl = st.s[t[l < count ? l : 0]];  // after failure, which may drop it
+    for (int c = 0; c < 6; ++c) s[c][l] = sl[c];
+  }
+  // The energy, the sound speed (sound_speed2, bulk_stiffness), the stress the forces carry
+  // (σ/3), tet_forces' f_i = (σ/3) a_i, f_0 = −(f_1 + f_2 + f_3), and stable_step2.
+  double sound2[kLanes], f[4][3][kLanes], dt2[kLanes];
+  for (int l = 0; l < kLanes; ++l) {
+    e_int[l] = e_int[l] - 0.5 * (p_old[l] + p_new[l]) * dvol[l];
+    sound2[l] = sound2_in_lane(mat, mu[l], p_new[l], eos_b[l], eos_da[l], shear[l]);
+    forces_in_lane(l, g, s, p_new[l] + q[l], sound2[l], trace[l], options, f, dt2);
+  }
+  // Scatter, and the step limits in the cells' order.
+  for (int l = 0; l < count; ++l) {
+    const std::size_t tl = t[l];
+    st.e_int[tl] = e_int[l];
+    st.p[tl] = p_new[l];
+    st.sound2[tl] = sound2[l];
+    store_forces(l, tl, f, dt2[l], options, scratch, block);
+  }
+  return true;
+}
+
 }  // namespace
 
 namespace {
@@ -513,8 +951,8 @@ ForceResult update_material(const std::vector<Tet>& tets, const std::vector<Mate
         }
         return;
       }
-      // The cells kLanes at a time: their kinematics in lanes, then each cell's checks and
-      // material update in order.
+      // The cells kLanes at a time: their kinematics in lanes, each cell's checks, then their
+      // material update in lanes where they share a material (else cell by cell, in order).
       std::size_t lane_tet[kLanes];
       CellKinematics c[kLanes];
       for (std::size_t i = begin; i < end;) {
@@ -522,11 +960,16 @@ ForceResult update_material(const std::vector<Tet>& tets, const std::vector<Mate
         for (; i < end && count < kLanes; ++i)
           if (st.damage[mine[i]] != Damage::particle) lane_tet[count++] = mine[i];
         if (count == 0) continue;
+        const Index mi = st.tet_material[lane_tet[0]];
+        bool one_material = true;
+        for (int l = 1; l < count; ++l) one_material &= st.tet_material[lane_tet[l]] == mi;
+        if (one_material && lane_cells(lane_tet, count, tets, materials[mi], options, tau, st,
+                                       scratch, blocks[blk]))
+          continue;
         lane_kinematics(lane_tet, count, tets, tau, st, c);
         for (int l = 0; l < count; ++l) {
-          const std::size_t t = lane_tet[l];
-          check_kinematics(static_cast<Index>(t), st, c[l]);
-          update_cell(t, c[l], materials, options, tau, st, scratch, blocks[blk]);
+          check_kinematics(static_cast<Index>(lane_tet[l]), st, c[l]);
+          update_cell(lane_tet[l], c[l], materials, options, tau, st, scratch, blocks[blk]);
         }
       }
     });
@@ -542,12 +985,44 @@ ForceResult update_material(const std::vector<Tet>& tets, const std::vector<Mate
   blocks = block_results(mine.size());
   const ForceResult third = collective_pass(scratch, blocks, [&] {
     parallel::for_blocks(mine.size(), [&](std::size_t blk, std::size_t begin, std::size_t end) {
+      if (!element_lanes) {
+        for (std::size_t i = begin; i < end; ++i) {
+          const std::size_t t = mine[i];
+          const Index mi = st.tet_material[t];
+          if (!averages_pressure(options, mi) || st.damage[t] == Damage::particle) continue;
+          averaged_cell_pressure(t, tets[t], materials[mi], options, st, scratch, blocks[blk]);
+        }
+        return;
+      }
+      // Runs of up to kLanes cells of one material in lanes; a cell the lanes do not take
+      // (failed, or Tillotson's) alone, after the run before it: the cells keep their order.
+      std::size_t lane_tet[kLanes];
+      int count = 0;
+      Index lane_material = -1;
+      const auto flush = [&] {
+        if (count > 0 && !lane_averaged_pressure(lane_tet, count, tets, materials[lane_material],
+                                                 options, st, scratch, blocks[blk]))
+          for (int l = 0; l < count; ++l)  // reports the inverted cell
+            averaged_cell_pressure(lane_tet[l], tets[lane_tet[l]], materials[lane_material],
+                                   options, st, scratch, blocks[blk]);
+        count = 0;
+      };
       for (std::size_t i = begin; i < end; ++i) {
         const std::size_t t = mine[i];
         const Index mi = st.tet_material[t];
         if (!averages_pressure(options, mi) || st.damage[t] == Damage::particle) continue;
-        averaged_cell_pressure(t, tets[t], materials[mi], options, st, scratch, blocks[blk]);
+        const Material& mat = materials[mi];
+        const bool in_lanes =
+            mat.eos != EosKind::tillotson && !(options.fracture && st.damage[t] != Damage::intact);
+        if (!in_lanes || mi != lane_material || count == kLanes) flush();
+        if (!in_lanes) {
+          averaged_cell_pressure(t, tets[t], mat, options, st, scratch, blocks[blk]);
+          continue;
+        }
+        lane_material = mi;
+        lane_tet[count++] = t;
       }
+      flush();
     });
   });
   merge(forces, {third});

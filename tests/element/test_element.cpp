@@ -370,10 +370,12 @@ TEST(Element, DuctileDamageIsThePlasticStrainOverTheFailureStrain) {
   EXPECT_NEAR(within_fit.damage, al6061.damage - al6061.floor, 1e-12);
 }
 
-// The cells' kinematics in SIMD lanes give the scalar path's state bit for bit: every library
-// material with its default laws (each strength law and equation of state the library uses),
-// per-tet and averaged pressure, fracture on, a cell turned particle among the others, and a
-// mesh whose cell count is no multiple of the lanes.
+// The element stage in SIMD lanes (the cells' kinematics, their material update, the averaged
+// pressure's pass) gives the scalar path's state bit for bit: every library material with its
+// default laws (each strength law and equation of state the library uses), per-tet and averaged
+// pressure, fracture on, a cell turned particle and two failed cells among the others, every
+// cell listed eroding (the lists' order compared), and a mesh whose cell count is no multiple of
+// the lanes.
 TEST(Element, LanesGiveTheScalarPathsState) {
   std::vector<Material> lib = load_material_library(default_material_library());
   ASSERT_GE(lib.size(), 3u);
@@ -400,18 +402,29 @@ TEST(Element, LanesGiveTheScalarPathsState) {
         model.initial_velocity[i] = L * model.mesh.x[i];
       State lanes = initial_state(model);
       lanes.damage[5] = Damage::particle;
+      lanes.damage[2] = Damage::damaged;
+      lanes.damage[11] = Damage::destroyed;
       State scalar = lanes;
+      // Every cell below the erosion limit: each step lists them all, in the paths' order.
+      const std::vector<Index> tet_body(model.mesh.tets.size(), 0);
+      model.element.erode_dt2 = {1e30};
+      model.element.tet_body = tet_body;
       ElementScratch scratch_lanes, scratch_scalar;
       const double tau = 1e-3;
       for (int step = 0; step < 6; ++step) {
         for (State* st : {&lanes, &scalar})
           for (std::size_t i = 0; i < st->x.size(); ++i) st->x[i] += tau * st->v[i];
         const bool was = set_element_lanes(true);
-        update_material(model.mesh.tets, model.materials, model.element, tau, lanes, scratch_lanes);
+        const ForceResult a = update_material(model.mesh.tets, model.materials, model.element, tau,
+                                              lanes, scratch_lanes);
         set_element_lanes(false);
-        update_material(model.mesh.tets, model.materials, model.element, tau, scalar,
-                        scratch_scalar);
+        const ForceResult b = update_material(model.mesh.tets, model.materials, model.element, tau,
+                                              scalar, scratch_scalar);
         set_element_lanes(was);
+        ASSERT_EQ(a.dt_stable, b.dt_stable) << mat.name << ", step " << step;
+        ASSERT_EQ(a.critical_tet, b.critical_tet) << mat.name << ", step " << step;
+        ASSERT_EQ(a.eroding, b.eroding) << mat.name << ", step " << step;
+        ASSERT_GE(a.eroding.size(), model.mesh.tets.size() - 1);
       }
       const std::string what = mat.name + (anp ? ", averaged pressure" : ", per-tet pressure");
       ASSERT_EQ(lanes.s.size(), scalar.s.size());
@@ -422,6 +435,14 @@ TEST(Element, LanesGiveTheScalarPathsState) {
         ASSERT_EQ(lanes.eps_p[t], scalar.eps_p[t]) << what << ", tet " << t;
         ASSERT_EQ(lanes.sound2[t], scalar.sound2[t]) << what << ", tet " << t;
         ASSERT_EQ(lanes.trace_d[t], scalar.trace_d[t]) << what << ", tet " << t;
+        ASSERT_EQ(lanes.q[t], scalar.q[t]) << what << ", tet " << t;
+        ASSERT_EQ(lanes.vol[t], scalar.vol[t]) << what << ", tet " << t;
+        ASSERT_EQ(lanes.temperature[t], scalar.temperature[t]) << what << ", tet " << t;
+        ASSERT_EQ(lanes.w_plastic[t], scalar.w_plastic[t]) << what << ", tet " << t;
+        ASSERT_EQ(lanes.w_viscous[t], scalar.w_viscous[t]) << what << ", tet " << t;
+        ASSERT_EQ(lanes.ductile[t], scalar.ductile[t]) << what << ", tet " << t;
+        ASSERT_EQ(lanes.ductile_floor[t], scalar.ductile_floor[t]) << what << ", tet " << t;
+        ASSERT_EQ(lanes.damage[t], scalar.damage[t]) << what << ", tet " << t;
         plastic = plastic || lanes.eps_p[t] > 0.0;
       }
       for (std::size_t i = 0; i < lanes.f.size(); ++i)

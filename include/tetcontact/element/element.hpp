@@ -86,10 +86,9 @@ void share_whole_state(ElementScratch& scratch, State& st);
 ForceResult compute_forces(const std::vector<Tet>& tets, const ElementOptions& options, State& st,
                            ElementScratch& scratch);
 
-/// The cells' kinematics (geometry at mid-step and at the end, the velocity gradient's rates)
-/// in SIMD lanes, eight cells a block (on by default), or one cell at a time (the scalar
-/// reference). The two give the same doubles; the switch is for the test that says so. Returns
-/// the previous setting.
+/// The cells' kinematics and material update, and the averaged pressure's pass, in SIMD lanes,
+/// eight cells a block (on by default), or one cell at a time (the scalar reference). The two
+/// give the same doubles; the switch is for the test that says so. Returns the previous setting.
 bool set_element_lanes(bool on);
 
 /// Material update over the step from the committed velocities U^{n+1} (st.v):
