@@ -639,27 +639,11 @@ __attribute__((target_clones("avx2", "default"))) bool lane_cells(
   const bool plastic = mat.plastic(), bilinear = mat.strength == StrengthModel::bilinear;
   const double h_mod = mat.hardening_modulus;
   for (int l = 0; l < kLanes; ++l) {
-    const double ax = 0.5 * tau * w[0][l], ay = 0.5 * tau * w[1][l], az = 0.5 * tau * w[2][l];
-    const double th2 = ax * ax + ay * ay + az * az, cc = 2.0 / (1.0 + th2), dg = 1.0 - cc * th2;
-    const double q00 = dg + cc * ax * ax, q11 = dg + cc * ay * ay, q22 = dg + cc * az * az;
-    const double q01 = cc * (ax * ay - az), q10 = cc * (ax * ay + az);
-    const double q02 = cc * (ax * az + ay), q20 = cc * (ax * az - ay);
-    const double q12 = cc * (ay * az - ax), q21 = cc * (ay * az + ax);
-    const double s00 = s_old[0][l], s11 = s_old[1][l], s22 = s_old[2][l], s01 = s_old[3][l],
-                 s12 = s_old[4][l], s02 = s_old[5][l];
-    const double m00 = q00 * s00 + q01 * s01 + q02 * s02, m01 = q00 * s01 + q01 * s11 + q02 * s12,
-                 m02 = q00 * s02 + q01 * s12 + q02 * s22;
-    const double m10 = q10 * s00 + q11 * s01 + q12 * s02, m11 = q10 * s01 + q11 * s11 + q12 * s12,
-                 m12 = q10 * s02 + q11 * s12 + q12 * s22;
-    const double m20 = q20 * s00 + q21 * s01 + q22 * s02, m21 = q20 * s01 + q21 * s11 + q22 * s12,
-                 m22 = q20 * s02 + q21 * s12 + q22 * s22;
-    const double g2 = 2.0 * shear[l] * tau, tr3 = (d[0][l] + d[1][l] + d[2][l]) / 3.0;
-    const double s0 = m00 * q00 + m01 * q01 + m02 * q02 + g2 * (d[0][l] - tr3);
-    const double s1 = m10 * q10 + m11 * q11 + m12 * q12 + g2 * (d[1][l] - tr3);
-    const double s2 = m20 * q20 + m21 * q21 + m22 * q22 + g2 * (d[2][l] - tr3);
-    const double s3 = m00 * q10 + m01 * q11 + m02 * q12 + g2 * d[3][l];
-    const double s4 = m10 * q20 + m11 * q21 + m12 * q22 + g2 * d[4][l];
-    const double s5 = m00 * q20 + m01 * q21 + m02 * q22 + g2 * d[5][l];
+    const Sym6 s = jaumann_trial(
+        Sym6{s_old[0][l], s_old[1][l], s_old[2][l], s_old[3][l], s_old[4][l], s_old[5][l]},
+        Sym6{d[0][l], d[1][l], d[2][l], d[3][l], d[4][l], d[5][l]}, {w[0][l], w[1][l], w[2][l]},
+        tau, 2.0 * shear[l] * tau);
+    const double s0 = s[0], s1 = s[1], s2 = s[2], s3 = s[3], s4 = s[4], s5 = s[5];
     const double n2 = s0 * s0 + s1 * s1 + s2 * s2 + 2.0 * (s3 * s3 + s4 * s4 + s5 * s5);
     eq[l] = std::sqrt(1.5 * n2);
     // plastic_increment, bilinear: σy = σy0 + H ε̄p; Δε̄p = (σ_eq − σy) / (3G + H) above it.

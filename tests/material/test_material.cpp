@@ -669,6 +669,33 @@ TEST(Material, ReturnsLandOnTheLawsYieldToRoundOff) {
   EXPECT_EQ(plastic, 2 * 5 * 3 * 3 * 24);
 }
 
+// Johnson–Cook's return calls a step elastic exactly where the law's own σy(0) (its pows, by
+// johnson_cook_yield) is not exceeded, whatever its cheap lower bound of σy(0) decides: below
+// room temperature, up to half-way to melt (m ≥ 1: the bound A (1 − T*)), beyond (no bound),
+// with m < 1 (no bound above room temperature), at trial stresses a part in 1e9 either side of
+// σy(0) and far below it.
+TEST(Material, JohnsonCookElasticStepsAreThoseBelowTheLawsYield) {
+  int elastic = 0, plastic = 0;
+  for (const double m_exp : {1.34, 1.0, 0.8})
+    for (const double temperature : {200.0, 293.0, 400.0, 609.0, 610.0, 800.0}) {
+      Material jc = johnson_cook(324e6, 114e6, 0.42, 0.002, m_exp, 925.0);
+      jc.specific_heat = 896.0;
+      for (const double eps : {0.0, 1e-3, 0.5})
+        for (const double f : {0.3, 0.9, 1.0 - 1e-9, 1.0 + 1e-9, 1.5}) {
+          const double y0 = johnson_cook_yield(jc.johnson_cook, eps, 0.0, temperature);
+          const double eq = f * y0;
+          const PlasticIncrement r = plastic_increment(jc, eq, eps, 1e-8, temperature, jc.density);
+          const bool yields = eq > y0;
+          EXPECT_EQ(r.dplastic > 0.0, yields)
+              << "m " << m_exp << " T " << temperature << " eps " << eps << " f " << f;
+          if (!yields) EXPECT_GE(r.yield, eq);  // nothing is scaled
+          (yields ? plastic : elastic) += 1;
+        }
+    }
+  EXPECT_EQ(elastic, 3 * 6 * 3 * 3);
+  EXPECT_EQ(plastic, 3 * 6 * 3 * 2);
+}
+
 // Adiabatic heating, β = 0: dY/dε̄p = −Y0 B χ Y / (ρ c_v), so Y = Y0 exp(−k ε̄p) with
 // k = Y0 B χ / (ρ c_v) (the heat is solved within each step's return).
 TEST(Material, SteinbergGuinanAdiabaticSofteningFollowsTheExponential) {

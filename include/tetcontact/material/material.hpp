@@ -453,6 +453,17 @@ inline PlasticIncrement plastic_increment(const Material& m, const StrengthState
   const bool softens = jc.melt_temperature > jc.room_temperature;
   // σy = S(ε̄p + Δ) R(Δ/τ) Θ(T(Δ)).
   const double span = jc.melt_temperature - jc.room_temperature;
+  // Elastic below a lower bound of σy(0) = (A + B ε̄pⁿ) Θ(T) (R = 1 at Δ = 0) without its pows:
+  // A Θ_low with Θ_low = 1 up to room temperature and 1 − T* for T* ≤ 1/2 and m ≥ 1 (T*ᵐ ≤ T*,
+  // and Θ ≥ 1/2, so that round-off stays far below the 1e-9 taken off), none hotter; the
+  // solver, and the pows, only where the trial stress reaches it (A, B ≥ 0, as every library
+  // material has them).
+  if (jc.a >= 0.0 && jc.b >= 0.0) {
+    const double ts = softens ? (temperature - jc.room_temperature) / span : 0.0;
+    const double theta = ts <= 0.0 ? 1.0 : (ts <= 0.5 && jc.m >= 1.0 ? 1.0 - ts : 0.0);
+    r.yield = jc.a * theta * (1.0 - 1e-9);
+    if (!(eq > r.yield)) return r;  // r.yield ≥ eq: a bound, not σy (nothing is scaled)
+  }
   const auto yield = [&](double d, double& dy) {
     const double e = eps_p + d;
     const double pw = jc.b > 0.0 && e > 0.0 ? std::pow(e, jc.n) : 0.0;
@@ -539,10 +550,11 @@ struct DeviatorIncrement {
   double dplastic = 0.0;
   double yield = 0.0;
 };
-inline DeviatorIncrement update_deviator6(const Material& m, Sym6& s, const Sym6& d,
-                                          const std::array<double, 3>& w, double tau, double eps_p,
-                                          double temperature = 0.0, double rho = 0.0,
-                                          double pressure = 0.0) {
+/// Its rotation and elastic trial, s* = Q s Qᵀ + g2 dev D with g2 = 2 G τ, on values (the
+/// element stage's SIMD lanes call it lane by lane: the same operations, element.cpp).
+[[gnu::always_inline]] inline Sym6 jaumann_trial(const Sym6& s, const Sym6& d,
+                                                 const std::array<double, 3>& w, double tau,
+                                                 double g2) {
   // Q = (1 − c θ²) I + c A + c α αᵀ with α = τ w / 2, θ² = |α|², c = 2 / (1 + θ²).
   const double ax = 0.5 * tau * w[0], ay = 0.5 * tau * w[1], az = 0.5 * tau * w[2];
   const double th2 = ax * ax + ay * ay + az * az, c = 2.0 / (1.0 + th2), dg = 1.0 - c * th2;
@@ -558,15 +570,21 @@ inline DeviatorIncrement update_deviator6(const Material& m, Sym6& s, const Sym6
                m12 = q10 * s02 + q11 * s12 + q12 * s22;
   const double m20 = q20 * s00 + q21 * s01 + q22 * s02, m21 = q20 * s01 + q21 * s11 + q22 * s12,
                m22 = q20 * s02 + q21 * s12 + q22 * s22;
+  const double tr3 = (d[0] + d[1] + d[2]) / 3.0;
+  return Sym6{m00 * q00 + m01 * q01 + m02 * q02 + g2 * (d[0] - tr3),
+              m10 * q10 + m11 * q11 + m12 * q12 + g2 * (d[1] - tr3),
+              m20 * q20 + m21 * q21 + m22 * q22 + g2 * (d[2] - tr3),
+              m00 * q10 + m01 * q11 + m02 * q12 + g2 * d[3],
+              m10 * q20 + m11 * q21 + m12 * q22 + g2 * d[4],
+              m00 * q20 + m01 * q21 + m02 * q22 + g2 * d[5]};
+}
+inline DeviatorIncrement update_deviator6(const Material& m, Sym6& s, const Sym6& d,
+                                          const std::array<double, 3>& w, double tau, double eps_p,
+                                          double temperature = 0.0, double rho = 0.0,
+                                          double pressure = 0.0) {
   const StrengthState ss =
       strength_state(m, pressure, temperature, rho > 0.0 ? rho / m.density : 1.0);
-  const double g2 = 2.0 * ss.g * tau, tr3 = (d[0] + d[1] + d[2]) / 3.0;
-  s[0] = m00 * q00 + m01 * q01 + m02 * q02 + g2 * (d[0] - tr3);
-  s[1] = m10 * q10 + m11 * q11 + m12 * q12 + g2 * (d[1] - tr3);
-  s[2] = m20 * q20 + m21 * q21 + m22 * q22 + g2 * (d[2] - tr3);
-  s[3] = m00 * q10 + m01 * q11 + m02 * q12 + g2 * d[3];
-  s[4] = m10 * q20 + m11 * q21 + m12 * q22 + g2 * d[4];
-  s[5] = m00 * q20 + m01 * q21 + m02 * q22 + g2 * d[5];
+  s = jaumann_trial(s, d, w, tau, 2.0 * ss.g * tau);
   DeviatorIncrement r;
   if (!m.plastic()) return r;
   const double s2 =
