@@ -688,7 +688,9 @@ TEST(Material, JohnsonCookElasticStepsAreThoseBelowTheLawsYield) {
           const bool yields = eq > y0;
           EXPECT_EQ(r.dplastic > 0.0, yields)
               << "m " << m_exp << " T " << temperature << " eps " << eps << " f " << f;
-          if (!yields) EXPECT_GE(r.yield, eq);  // nothing is scaled
+          if (!yields) {
+            EXPECT_GE(r.yield, eq);  // nothing is scaled
+          }
           (yields ? plastic : elastic) += 1;
         }
     }
