@@ -271,8 +271,8 @@ inline void check_kinematics(Index ti, const State& st, const CellKinematics& c)
 // The same kinematics for a block of cells at once, in SIMD lanes: node data gathered into a
 // structure of arrays, every quantity computed lane by lane with exactly the operations, in the
 // order, of cell_kinematics (tet_geometry, the gradient, set_rates), so that each lane's doubles
-// are the scalar path's bit for bit (test `Element.LanesGiveTheScalarPathsState`). Both paths
-// leave the checks to check_kinematics, called cell by cell in order.
+// are the scalar path's bit for bit (test `Element.LanesGiveTheScalarPathsState`). The checks
+// stay check_kinematics', cell by cell in order (lane_cells hands an inverted cell's block to it).
 constexpr int kLanes = 8;
 
 struct LaneGeometry {
@@ -580,10 +580,12 @@ inline void store_forces(int l, std::size_t tl, const double (&f)[4][3][kLanes],
 // of arrays, computed lane by lane with exactly the operations, in the order, of the scalar path
 // (cell_kinematics; update_deviator6: the Jaumann rotation, the trial deviator, σ_eq, the
 // bilinear law's return; deviator_work, bulk_viscosity and viscous_work), so that each lane's
-// doubles are the scalar path's bit for bit, then scattered back. Run cell by cell as scalar
-// calls: Steinberg–Guinan's strength state, the return of Johnson–Cook and Steinberg–Guinan,
-// ductile failure, and, with per-tet pressure, cell_pressure; the eroding cells listed in the
-// cells' order, as the scalar path lists them. Lanes past count repeat the first cell.
+// doubles are the scalar path's bit for bit, then scattered back; with per-tet pressure and a
+// linear or Mie–Grüneisen EOS also point_pressure (solve_energy, sound_speed2) and tet_forces.
+// Run cell by cell as scalar calls: Steinberg–Guinan's strength state, the return of
+// Johnson–Cook and Steinberg–Guinan, ductile failure, failure (fail), and Tillotson's per-tet
+// pressure (cell_pressure); the eroding cells listed in the cells' order, as the scalar path
+// lists them. Lanes past count repeat the first cell.
 // Returns false, having written nothing, where a cell's kinematics fail check_kinematics: the
 // caller then takes the scalar path, which reports it (no exception leaves the lanes' clones).
 __attribute__((target_clones("avx2", "default"))) bool lane_cells(

@@ -515,7 +515,8 @@ inline PlasticIncrement plastic_increment(const Material& m, double eq, double e
 struct DeviatorUpdate {
   Mat3 s;                 // deviatoric stress at the end of the step
   double dplastic = 0.0;  // Δε̄p, equivalent plastic strain increment
-  double yield = 0.0;     // σy at the end of the step (0 for an elastic material)
+  double yield = 0.0;     // σy at the end of the step (0 for an elastic material; for an elastic
+                       // step of Johnson–Cook or Steinberg–Guinan a lower bound of it, ≥ σ_eq)
 };
 
 /// Hypoelastic-plastic deviator, one step:
