@@ -630,8 +630,7 @@ __attribute__((target_clones("avx2", "default"))) bool lane_cells(
   StrengthState ss[kLanes];
   if (sg)
     for (int l = 0; l < count; ++l) {
-      const std::size_t tl = t[l];
-      ss[l] = strength_state(mat, st.p[tl], t_start[l],
+      ss[l] = strength_state(mat, p_old[l], t_start[l],
                              rho_mid[l] > 0.0 ? rho_mid[l] / mat.density : 1.0);
       shear[l] = ss[l].g;
     }
@@ -668,10 +667,9 @@ __attribute__((target_clones("avx2", "default"))) bool lane_cells(
   if (plastic && !bilinear)
     for (int l = 0; l < count; ++l) {
       if (failed[l] != 0.0) continue;
-      const std::size_t tl = t[l];
       const StrengthState ssl =
           sg ? ss[l]
-             : strength_state(mat, st.p[tl], t_start[l],
+             : strength_state(mat, p_old[l], t_start[l],
                               rho_mid[l] > 0.0 ? rho_mid[l] / mat.density : 1.0);
       const PlasticIncrement inc =
           plastic_increment(mat, ssl, eq[l], eps_p[l], tau, t_start[l], rho_mid[l]);
@@ -724,24 +722,8 @@ __attribute__((target_clones("avx2", "default"))) bool lane_cells(
     for (int i = 0; i < 6; ++i) st.s[tl][i] = s_new[i][l];
     st.eps_p[tl] = eps_p[l];
     st.w_plastic[tl] = w_plastic[l];
-    eroding[l] = false;
-    if (dplastic[l] > 0.0) {
-      if (mat.erosion_plastic_strain > 0.0 && eps_p[l] >= mat.erosion_plastic_strain)
-        eroding[l] = true;
-      if (mat.ductile_failure) {
-        const MaterialPoint pt = tet_point(st, ti);
-        const double eqn = von_mises(pt.s);
-        const double triax = eqn > 0.0 ? -pt.p / eqn : 0.0;
-        const double ef = johnson_cook_failure_strain(mat.johnson_cook_failure, triax,
-                                                      dplastic[l] / tau, t_start[l]);
-        const bool floored = ef <= mat.johnson_cook_failure.min_strain;
-        if (!floored || mat.ductile_failure_at_floor) {
-          pt.ductile += dplastic[l] / ef;
-          if (floored) pt.ductile_floor += dplastic[l] / ef;
-        }
-        if (pt.ductile >= 1.0) eroding[l] = true;
-      }
-    }
+    // st.p and st.temperature are still the start's.
+    eroding[l] = dplastic[l] > 0.0 && plastic_failure(mat, dplastic[l], tau, tet_point(st, ti));
     st.q[tl] = q_new[l];
     st.trace_d[tl] = trace[l];
     st.w_viscous[tl] = w_viscous[l];

@@ -147,6 +147,29 @@ inline double sound_speed2(const Material& m, double mu, double p, const EosTerm
   return (bulk_stiffness(m, mu, p, t) + 4.0 / 3.0 * g) / rho;
 }
 
+/// A plastic step's failure, after its plastic strain Δε̄p > 0 is in pt.eps_p and its returned
+/// deviator in pt.s (pt.p and pt.temperature still the start's): true when the point reaches the
+/// strain limit or Johnson–Cook's ductile damage D = 1,
+///   D += Δε̄p / ε_f(σ*, ε̇p, T),  σ* = −p / σ_eq,
+/// the increments taken with ε_f at its floor also summed apart (`ductile_floor`), or left out
+/// where the material has no ductile failure at the floor.
+inline bool plastic_failure(const Material& mat, double dplastic, double tau, MaterialPoint pt) {
+  bool eroding = mat.erosion_plastic_strain > 0.0 && pt.eps_p >= mat.erosion_plastic_strain;
+  if (mat.ductile_failure) {
+    const double eq = von_mises(pt.s);
+    const double triax = eq > 0.0 ? -pt.p / eq : 0.0;
+    const double ef = johnson_cook_failure_strain(mat.johnson_cook_failure, triax, dplastic / tau,
+                                                  pt.temperature);
+    const bool floored = ef <= mat.johnson_cook_failure.min_strain;
+    if (!floored || mat.ductile_failure_at_floor) {
+      pt.ductile += dplastic / ef;
+      if (floored) pt.ductile_floor += dplastic / ef;
+    }
+    if (pt.ductile >= 1.0) eroding = true;
+  }
+  return eroding;
+}
+
 /// The deviator (Jaumann rate, radial return; none in a failed point) and its trapezoidal work
 /// τ V ½(sⁿ + sⁿ⁺¹) : D at mid-step volume V, returned; the plastic work V σy Δε̄p into `w_p`
 /// (bilinear with σy at mid-increment, exact for linear hardening; the other laws at the end of
@@ -178,19 +201,7 @@ inline double sound_speed2(const Material& m, double mu, double p, const EosTerm
     w_p = c.vol_mid * y * inc.dplastic;
     pt.w_plastic += w_p;
     pt.eps_p += inc.dplastic;
-    if (mat.erosion_plastic_strain > 0.0 && pt.eps_p >= mat.erosion_plastic_strain) eroding = true;
-    if (mat.ductile_failure) {
-      const double eq = von_mises(s_new);
-      const double triax = eq > 0.0 ? -pt.p / eq : 0.0;
-      const double ef = johnson_cook_failure_strain(mat.johnson_cook_failure, triax,
-                                                    inc.dplastic / tau, pt.temperature);
-      const bool floored = ef <= mat.johnson_cook_failure.min_strain;
-      if (!floored || mat.ductile_failure_at_floor) {
-        pt.ductile += inc.dplastic / ef;
-        if (floored) pt.ductile_floor += inc.dplastic / ef;
-      }
-      if (pt.ductile >= 1.0) eroding = true;
-    }
+    if (plastic_failure(mat, inc.dplastic, tau, pt)) eroding = true;
   }
   return w_dev;
 }
