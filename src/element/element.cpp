@@ -7,6 +7,7 @@
 #include <cstring>
 #include <limits>
 #include <sstream>
+#include <stdexcept>
 
 #include "tetcontact/element/distributed.hpp"
 #include "tetcontact/element/material_point.hpp"
@@ -375,14 +376,10 @@ void copy_kinematics(const LaneKinematics& k, int l, CellKinematics& c) {
   c.m.vol_end = k.ge.vol[l];
 }
 
-// cell_kinematics for the cells tets[t[l]], l < count, into c[l]. Two copies, AVX2 (four
-// doubles a lane group) where the processor has it, SSE2 otherwise: neither contracts a product
-// and a sum, so both give the scalar path's doubles.
-__attribute__((target_clones("avx2", "default"))) void lane_kinematics(const std::size_t* t,
-                                                                       int count,
-                                                                       const std::vector<Tet>& tets,
-                                                                       double tau, const State& st,
-                                                                       CellKinematics* c) {
+// cell_kinematics for the cells tets[t[l]], l < count, into c[l].
+[[gnu::always_inline]] inline void lane_kinematics_in(const std::size_t* t, int count,
+                                                      const std::vector<Tet>& tets, double tau,
+                                                      const State& st, CellKinematics* c) {
   LaneKinematics k;
   kinematics_in_lanes(t, count, tets, tau, st, k);
   for (int l = 0; l < count; ++l) copy_kinematics(k, l, c[l]);
@@ -588,10 +585,11 @@ inline void store_forces(int l, std::size_t tl, const double (&f)[4][3][kLanes],
 // lists them. Lanes past count repeat the first cell.
 // Returns false, having written nothing, where a cell's kinematics fail check_kinematics: the
 // caller then takes the scalar path, which reports it (no exception leaves the lanes' clones).
-__attribute__((target_clones("avx2", "default"))) bool lane_cells(
-    const std::size_t* t, int count, const std::vector<Tet>& tets, const Material& mat,
-    const ElementOptions& options, double tau, State& st, ElementScratch& scratch,
-    ForceResult& block) {
+[[gnu::always_inline]] inline bool lane_cells_in(const std::size_t* t, int count,
+                                                 const std::vector<Tet>& tets, const Material& mat,
+                                                 const ElementOptions& options, double tau,
+                                                 State& st, ElementScratch& scratch,
+                                                 ForceResult& block) {
   LaneKinematics k;
   kinematics_in_lanes(t, count, tets, tau, st, k);
   for (int l = 0; l < count; ++l)
@@ -810,7 +808,7 @@ __attribute__((target_clones("avx2", "default"))) bool lane_cells(
 // the same limit, critical cell and eroding list as the scalar path. Lanes past count repeat
 // the first cell. Returns false, having written nothing, where a cell's end geometry is
 // inverted or not finite: the caller then takes the scalar path, which reports it.
-__attribute__((target_clones("avx2", "default"))) bool lane_averaged_pressure(
+[[gnu::always_inline]] inline bool lane_averaged_pressure_in(
     const std::size_t* t, int count, const std::vector<Tet>& tets, const Material& mat,
     const ElementOptions& options, State& st, ElementScratch& scratch, ForceResult& block) {
   // Gather.
@@ -881,14 +879,82 @@ __attribute__((target_clones("avx2", "default"))) bool lane_averaged_pressure(
   return true;
 }
 
+// The lanes' copies, one per instruction set: the same always-inlined bodies compiled for
+// AVX-512 (the eight lanes in one register), AVX2 (four doubles a register) and SSE2 (two; every
+// x86-64; the generic copy elsewhere). None contracts a product and a sum (element.cpp is
+// compiled with -ffp-contract=off), so each gives the scalar path's doubles; the widest the
+// processor runs is chosen when the program starts, and a test runs each (set_element_lanes).
+struct LaneCopy {
+  void (*kinematics)(const std::size_t*, int, const std::vector<Tet>&, double, const State&,
+                     CellKinematics*);
+  bool (*cells)(const std::size_t*, int, const std::vector<Tet>&, const Material&,
+                const ElementOptions&, double, State&, ElementScratch&, ForceResult&);
+  bool (*averaged)(const std::size_t*, int, const std::vector<Tet>&, const Material&,
+                   const ElementOptions&, State&, ElementScratch&, ForceResult&);
+};
+
+#define TC_LANE_COPY(NAME, TARGET)                                                             \
+  TARGET void NAME##_kinematics(const std::size_t* t, int count, const std::vector<Tet>& tets, \
+                                double tau, const State& st, CellKinematics* c) {              \
+    lane_kinematics_in(t, count, tets, tau, st, c);                                            \
+  }                                                                                            \
+  TARGET bool NAME##_cells(const std::size_t* t, int count, const std::vector<Tet>& tets,      \
+                           const Material& mat, const ElementOptions& options, double tau,     \
+                           State& st, ElementScratch& scratch, ForceResult& block) {           \
+    return lane_cells_in(t, count, tets, mat, options, tau, st, scratch, block);               \
+  }                                                                                            \
+  TARGET bool NAME##_averaged(const std::size_t* t, int count, const std::vector<Tet>& tets,   \
+                              const Material& mat, const ElementOptions& options, State& st,   \
+                              ElementScratch& scratch, ForceResult& block) {                   \
+    return lane_averaged_pressure_in(t, count, tets, mat, options, st, scratch, block);        \
+  }                                                                                            \
+  constexpr LaneCopy NAME{NAME##_kinematics, NAME##_cells, NAME##_averaged};
+
+TC_LANE_COPY(sse2_lanes, )
+#if defined(__x86_64__) && defined(__GNUC__)
+TC_LANE_COPY(avx2_lanes, __attribute__((target("avx2"))))
+TC_LANE_COPY(avx512_lanes, __attribute__((target("avx512f"))))
+#endif
+#undef TC_LANE_COPY
+
+ElementLanes widest_lanes() {
+#if defined(__x86_64__) && defined(__GNUC__)
+  if (__builtin_cpu_supports("avx512f")) return ElementLanes::avx512;
+  if (__builtin_cpu_supports("avx2")) return ElementLanes::avx2;
+#endif
+  return ElementLanes::sse2;
+}
+
+std::atomic<ElementLanes> element_lanes{widest_lanes()};
+
+// The copy that runs, or nullptr for the scalar path.
+const LaneCopy* lane_copy(ElementLanes lanes) {
+  switch (lanes) {
+    case ElementLanes::scalar:
+      return nullptr;
+    case ElementLanes::sse2:
+      return &sse2_lanes;
+#if defined(__x86_64__) && defined(__GNUC__)
+    case ElementLanes::avx2:
+      return &avx2_lanes;
+    case ElementLanes::avx512:
+      return &avx512_lanes;
+#endif
+    default:
+      return &sse2_lanes;
+  }
+}
+
 }  // namespace
 
-namespace {
-std::atomic<bool> element_lanes{true};
-}  // namespace
+ElementLanes widest_element_lanes() {
+  return widest_lanes();
+}
 
-bool set_element_lanes(bool on) {
-  return element_lanes.exchange(on);
+ElementLanes set_element_lanes(ElementLanes lanes) {
+  if (static_cast<int>(lanes) > static_cast<int>(widest_lanes()))
+    throw std::invalid_argument("element lanes wider than this processor runs");
+  return element_lanes.exchange(lanes);
 }
 
 // The element stage: pass 1 over the cells (update_cell); without the average nodal pressure the
@@ -905,10 +971,11 @@ ForceResult update_material(const std::vector<Tet>& tets, const std::vector<Mate
   if (any_anp) prepare_averages(tets, options, st, scratch);
 
   const MyTets mine(scratch, tets.size());
+  const LaneCopy* lanes = lane_copy(element_lanes.load(std::memory_order_relaxed));
   std::vector<ForceResult> blocks = block_results(mine.size());
   ForceResult forces = collective_pass(scratch, blocks, [&] {
     parallel::for_blocks(mine.size(), [&](std::size_t blk, std::size_t begin, std::size_t end) {
-      if (!element_lanes) {
+      if (!lanes) {
         for (std::size_t i = begin; i < end; ++i) {
           const std::size_t t = mine[i];
           if (st.damage[t] == Damage::particle) continue;  // now a particle: no longer a cell
@@ -931,10 +998,10 @@ ForceResult update_material(const std::vector<Tet>& tets, const std::vector<Mate
         const Index mi = st.tet_material[lane_tet[0]];
         bool one_material = true;
         for (int l = 1; l < count; ++l) one_material &= st.tet_material[lane_tet[l]] == mi;
-        if (one_material && lane_cells(lane_tet, count, tets, materials[mi], options, tau, st,
-                                       scratch, blocks[blk]))
+        if (one_material && lanes->cells(lane_tet, count, tets, materials[mi], options, tau, st,
+                                         scratch, blocks[blk]))
           continue;
-        lane_kinematics(lane_tet, count, tets, tau, st, c);
+        lanes->kinematics(lane_tet, count, tets, tau, st, c);
         for (int l = 0; l < count; ++l) {
           check_kinematics(static_cast<Index>(lane_tet[l]), st, c[l]);
           update_cell(lane_tet[l], c[l], materials, options, tau, st, scratch, blocks[blk]);
@@ -953,7 +1020,7 @@ ForceResult update_material(const std::vector<Tet>& tets, const std::vector<Mate
   blocks = block_results(mine.size());
   const ForceResult third = collective_pass(scratch, blocks, [&] {
     parallel::for_blocks(mine.size(), [&](std::size_t blk, std::size_t begin, std::size_t end) {
-      if (!element_lanes) {
+      if (!lanes) {
         for (std::size_t i = begin; i < end; ++i) {
           const std::size_t t = mine[i];
           const Index mi = st.tet_material[t];
@@ -968,8 +1035,8 @@ ForceResult update_material(const std::vector<Tet>& tets, const std::vector<Mate
       int count = 0;
       Index lane_material = -1;
       const auto flush = [&] {
-        if (count > 0 && !lane_averaged_pressure(lane_tet, count, tets, materials[lane_material],
-                                                 options, st, scratch, blocks[blk]))
+        if (count > 0 && !lanes->averaged(lane_tet, count, tets, materials[lane_material], options,
+                                          st, scratch, blocks[blk]))
           for (int l = 0; l < count; ++l)  // reports the inverted cell
             averaged_cell_pressure(lane_tet[l], tets[lane_tet[l]], materials[lane_material],
                                    options, st, scratch, blocks[blk]);

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <array>
 #include <set>
+#include <stdexcept>
 #include <string>
 
 #include <Eigen/Eigenvalues>
@@ -371,11 +372,11 @@ TEST(Element, DuctileDamageIsThePlasticStrainOverTheFailureStrain) {
 }
 
 // The element stage in SIMD lanes (the cells' kinematics, their material update, the averaged
-// pressure's pass) gives the scalar path's state bit for bit: every library material with its
-// default laws (each strength law and equation of state the library uses), per-tet and averaged
-// pressure, fracture on, a cell turned particle and two failed cells among the others, every
-// cell listed eroding (the lists' order compared), and a mesh whose cell count is no multiple of
-// the lanes.
+// pressure's pass) gives the scalar path's state bit for bit, in each copy of the lanes this
+// processor runs (SSE2, AVX2, AVX-512): every library material with its default laws (each
+// strength law and equation of state the library uses), per-tet and averaged pressure, fracture
+// on, a cell turned particle and two failed cells among the others, every cell listed eroding
+// (the lists' order compared), and a mesh whose cell count is no multiple of the lanes.
 TEST(Element, LanesGiveTheScalarPathsState) {
   std::vector<Material> lib = load_material_library(default_material_library());
   ASSERT_GE(lib.size(), 3u);
@@ -389,70 +390,77 @@ TEST(Element, LanesGiveTheScalarPathsState) {
   lib.push_back(test::aluminium());
   std::set<int> laws, eoses;
   bool plastic = false;
-  for (const Material& mat : lib) {
-    laws.insert(static_cast<int>(mat.strength));
-    eoses.insert(static_cast<int>(mat.eos));
-    for (const bool anp : {false, true}) {
-      Model model = test::single_body_model(distorted_box(), mat);
-      model.element.average_nodal_pressure = {static_cast<char>(anp)};
-      model.element.fracture = true;
-      Mat3 L;  // compression, shear and spin: yields within the steps
-      L << -3.0, 1.5, 0.4, -0.7, 1.0, 0.8, 0.2, -0.6, 1.2;
-      for (std::size_t i = 0; i < model.mesh.x.size(); ++i)
-        model.initial_velocity[i] = L * model.mesh.x[i];
-      State lanes = initial_state(model);
-      lanes.damage[5] = Damage::particle;
-      lanes.damage[2] = Damage::damaged;
-      lanes.damage[11] = Damage::destroyed;
-      State scalar = lanes;
-      // Every cell below the erosion limit: each step lists them all, in the paths' order.
-      const std::vector<Index> tet_body(model.mesh.tets.size(), 0);
-      model.element.erode_dt2 = {1e30};
-      model.element.tet_body = tet_body;
-      ElementScratch scratch_lanes, scratch_scalar;
-      const double tau = 1e-3;
-      for (int step = 0; step < 6; ++step) {
-        for (State* st : {&lanes, &scalar})
-          for (std::size_t i = 0; i < st->x.size(); ++i) st->x[i] += tau * st->v[i];
-        const bool was = set_element_lanes(true);
-        const ForceResult a = update_material(model.mesh.tets, model.materials, model.element, tau,
-                                              lanes, scratch_lanes);
-        set_element_lanes(false);
-        const ForceResult b = update_material(model.mesh.tets, model.materials, model.element, tau,
-                                              scalar, scratch_scalar);
-        set_element_lanes(was);
-        ASSERT_EQ(a.dt_stable, b.dt_stable) << mat.name << ", step " << step;
-        ASSERT_EQ(a.critical_tet, b.critical_tet) << mat.name << ", step " << step;
-        ASSERT_EQ(a.eroding, b.eroding) << mat.name << ", step " << step;
-        ASSERT_GE(a.eroding.size(), model.mesh.tets.size() - 1);
+  const ElementLanes widest = widest_element_lanes();
+  EXPECT_EQ(set_element_lanes(widest), widest);  // the default
+  EXPECT_THROW(set_element_lanes(static_cast<ElementLanes>(static_cast<int>(widest) + 1)),
+               std::invalid_argument);
+  const char* names[] = {"scalar", "SSE2", "AVX2", "AVX-512"};
+  for (int copy = static_cast<int>(ElementLanes::sse2); copy <= static_cast<int>(widest); ++copy)
+    for (const Material& mat : lib) {
+      laws.insert(static_cast<int>(mat.strength));
+      eoses.insert(static_cast<int>(mat.eos));
+      for (const bool anp : {false, true}) {
+        Model model = test::single_body_model(distorted_box(), mat);
+        model.element.average_nodal_pressure = {static_cast<char>(anp)};
+        model.element.fracture = true;
+        Mat3 L;  // compression, shear and spin: yields within the steps
+        L << -3.0, 1.5, 0.4, -0.7, 1.0, 0.8, 0.2, -0.6, 1.2;
+        for (std::size_t i = 0; i < model.mesh.x.size(); ++i)
+          model.initial_velocity[i] = L * model.mesh.x[i];
+        State lanes = initial_state(model);
+        lanes.damage[5] = Damage::particle;
+        lanes.damage[2] = Damage::damaged;
+        lanes.damage[11] = Damage::destroyed;
+        State scalar = lanes;
+        // Every cell below the erosion limit: each step lists them all, in the paths' order.
+        const std::vector<Index> tet_body(model.mesh.tets.size(), 0);
+        model.element.erode_dt2 = {1e30};
+        model.element.tet_body = tet_body;
+        ElementScratch scratch_lanes, scratch_scalar;
+        const double tau = 1e-3;
+        for (int step = 0; step < 6; ++step) {
+          for (State* st : {&lanes, &scalar})
+            for (std::size_t i = 0; i < st->x.size(); ++i) st->x[i] += tau * st->v[i];
+          const ElementLanes was = set_element_lanes(static_cast<ElementLanes>(copy));
+          const ForceResult a = update_material(model.mesh.tets, model.materials, model.element,
+                                                tau, lanes, scratch_lanes);
+          set_element_lanes(ElementLanes::scalar);
+          const ForceResult b = update_material(model.mesh.tets, model.materials, model.element,
+                                                tau, scalar, scratch_scalar);
+          set_element_lanes(was);
+          ASSERT_EQ(a.dt_stable, b.dt_stable)
+              << names[copy] << ", " << mat.name << ", step " << step;
+          ASSERT_EQ(a.critical_tet, b.critical_tet)
+              << names[copy] << ", " << mat.name << ", step " << step;
+          ASSERT_EQ(a.eroding, b.eroding) << names[copy] << ", " << mat.name << ", step " << step;
+          ASSERT_GE(a.eroding.size(), model.mesh.tets.size() - 1);
+        }
+        const std::string what = std::string(names[copy]) + ", " + mat.name +
+                                 (anp ? ", averaged pressure" : ", per-tet pressure");
+        ASSERT_EQ(lanes.s.size(), scalar.s.size());
+        for (std::size_t t = 0; t < lanes.s.size(); ++t) {
+          ASSERT_EQ(lanes.s[t], scalar.s[t]) << what << ", tet " << t;
+          ASSERT_EQ(lanes.p[t], scalar.p[t]) << what << ", tet " << t;
+          ASSERT_EQ(lanes.e_int[t], scalar.e_int[t]) << what << ", tet " << t;
+          ASSERT_EQ(lanes.eps_p[t], scalar.eps_p[t]) << what << ", tet " << t;
+          ASSERT_EQ(lanes.sound2[t], scalar.sound2[t]) << what << ", tet " << t;
+          ASSERT_EQ(lanes.trace_d[t], scalar.trace_d[t]) << what << ", tet " << t;
+          ASSERT_EQ(lanes.q[t], scalar.q[t]) << what << ", tet " << t;
+          ASSERT_EQ(lanes.vol[t], scalar.vol[t]) << what << ", tet " << t;
+          ASSERT_EQ(lanes.temperature[t], scalar.temperature[t]) << what << ", tet " << t;
+          ASSERT_EQ(lanes.w_plastic[t], scalar.w_plastic[t]) << what << ", tet " << t;
+          ASSERT_EQ(lanes.w_viscous[t], scalar.w_viscous[t]) << what << ", tet " << t;
+          ASSERT_EQ(lanes.ductile[t], scalar.ductile[t]) << what << ", tet " << t;
+          ASSERT_EQ(lanes.ductile_floor[t], scalar.ductile_floor[t]) << what << ", tet " << t;
+          ASSERT_EQ(lanes.damage[t], scalar.damage[t]) << what << ", tet " << t;
+          plastic = plastic || lanes.eps_p[t] > 0.0;
+        }
+        for (std::size_t i = 0; i < lanes.f.size(); ++i)
+          ASSERT_TRUE(lanes.f[i] == scalar.f[i]) << what << ", node " << i;
       }
-      const std::string what = mat.name + (anp ? ", averaged pressure" : ", per-tet pressure");
-      ASSERT_EQ(lanes.s.size(), scalar.s.size());
-      for (std::size_t t = 0; t < lanes.s.size(); ++t) {
-        ASSERT_EQ(lanes.s[t], scalar.s[t]) << what << ", tet " << t;
-        ASSERT_EQ(lanes.p[t], scalar.p[t]) << what << ", tet " << t;
-        ASSERT_EQ(lanes.e_int[t], scalar.e_int[t]) << what << ", tet " << t;
-        ASSERT_EQ(lanes.eps_p[t], scalar.eps_p[t]) << what << ", tet " << t;
-        ASSERT_EQ(lanes.sound2[t], scalar.sound2[t]) << what << ", tet " << t;
-        ASSERT_EQ(lanes.trace_d[t], scalar.trace_d[t]) << what << ", tet " << t;
-        ASSERT_EQ(lanes.q[t], scalar.q[t]) << what << ", tet " << t;
-        ASSERT_EQ(lanes.vol[t], scalar.vol[t]) << what << ", tet " << t;
-        ASSERT_EQ(lanes.temperature[t], scalar.temperature[t]) << what << ", tet " << t;
-        ASSERT_EQ(lanes.w_plastic[t], scalar.w_plastic[t]) << what << ", tet " << t;
-        ASSERT_EQ(lanes.w_viscous[t], scalar.w_viscous[t]) << what << ", tet " << t;
-        ASSERT_EQ(lanes.ductile[t], scalar.ductile[t]) << what << ", tet " << t;
-        ASSERT_EQ(lanes.ductile_floor[t], scalar.ductile_floor[t]) << what << ", tet " << t;
-        ASSERT_EQ(lanes.damage[t], scalar.damage[t]) << what << ", tet " << t;
-        plastic = plastic || lanes.eps_p[t] > 0.0;
-      }
-      for (std::size_t i = 0; i < lanes.f.size(); ++i)
-        ASSERT_TRUE(lanes.f[i] == scalar.f[i]) << what << ", node " << i;
     }
-  }
-  EXPECT_TRUE(plastic);                             // the strength laws' returns ran
-  EXPECT_EQ(laws.size(), 3u);                       // bilinear, Johnson–Cook, Steinberg–Guinan
-  EXPECT_GE(eoses.size(), 2u);                      // Mie–Grüneisen and Tillotson at least
-  const bool by_default = set_element_lanes(true);  // the setting the other tests ran with
-  set_element_lanes(by_default);
-  EXPECT_TRUE(by_default);
+  EXPECT_TRUE(plastic);                          // the strength laws' returns ran
+  EXPECT_EQ(laws.size(), 3u);                    // bilinear, Johnson–Cook, Steinberg–Guinan
+  EXPECT_GE(eoses.size(), 2u);                   // Mie–Grüneisen and Tillotson at least
+  EXPECT_EQ(set_element_lanes(widest), widest);  // each run put the setting back
 }

@@ -86,10 +86,16 @@ void share_whole_state(ElementScratch& scratch, State& st);
 ForceResult compute_forces(const std::vector<Tet>& tets, const ElementOptions& options, State& st,
                            ElementScratch& scratch);
 
-/// The cells' kinematics and material update, and the averaged pressure's pass, in SIMD lanes,
-/// eight cells a block (on by default), or one cell at a time (the scalar reference). The two
-/// give the same doubles; the switch is for the test that says so. Returns the previous setting.
-bool set_element_lanes(bool on);
+/// How the element stage runs the cells' kinematics and material update and the averaged
+/// pressure's pass: one cell at a time (`scalar`, the reference), or eight cells a block in SIMD
+/// lanes compiled for SSE2 (every x86-64), AVX2 or AVX-512. Each gives the scalar path's doubles;
+/// the widest the processor runs is the default, and the choice is for the test that says so.
+enum class ElementLanes { scalar, sse2, avx2, avx512 };
+/// The widest lanes this processor runs.
+ElementLanes widest_element_lanes();
+/// Sets how the cells run; returns the previous setting. Lanes wider than widest_element_lanes()
+/// throw std::invalid_argument.
+ElementLanes set_element_lanes(ElementLanes lanes);
 
 /// Material update over the step from the committed velocities U^{n+1} (st.v):
 ///   L = Σ_i U_i ⊗ ∇N_i at the mid-step geometry x^{n+1/2} = x^{n+1} − τ/2 U^{n+1};
