@@ -6,12 +6,14 @@
 #include <bit>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <stdexcept>
 #include <string>
 
 #include "tetcontact/diagnostics/balance.hpp"
 #include "tetcontact/io/files.hpp"
 #include "tetcontact/material/material.hpp"
+#include "tetcontact/parallel/parallel.hpp"
 
 namespace tc {
 namespace {
@@ -34,14 +36,24 @@ void with_type(const char* type, Fn&& fn) {
     fn(std::uint8_t{});  // UInt8
 }
 
+// The uncompressed size of a compressed array's blocks (VTK's own writer takes 32 KiB): blocks
+// compressed each on its own, on the threads.
+constexpr std::size_t k_vtk_block = 64 * 1024;
+
 // One VTK XML UnstructuredGrid piece, its arrays written inline as text (ascii) or as raw
 // little-endian bytes in the file's appended section (binary: each array a UInt64 byte count,
-// then the bytes; compressed: each array zlib-compressed in one block behind VTK's header of
-// four UInt64 — blocks, block size, last block size, compressed size).
+// then the bytes; compressed: each array cut into blocks of k_vtk_block bytes, each
+// zlib-compressed on its own, behind VTK's header of UInt64s — blocks, block size, the last
+// block's size where it is shorter (else 0), each block's compressed size). The bytes are filled
+// and compressed on the threads; a block's compressed bytes depend on its bytes alone, so the
+// file is the same for any thread count.
 class Piece {
  public:
   Piece(VtuFormat format, std::size_t n, std::size_t m, const Model& model) : format_(format) {
     out_.reserve(format == VtuFormat::ascii ? 200 * (n + m + 1) : 4096);
+    // A frame's default arrays fill some 100 bytes a node or cell (pages are touched only as
+    // written).
+    if (format != VtuFormat::ascii) appended_.reserve(128 * (n + m + 1));
     out_ +=
         "<?xml version=\"1.0\"?>\n"
         "<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" "
@@ -142,29 +154,47 @@ class Piece {
 
   template <class T, class F>
   void append_raw(int per_line, std::size_t count, F&& value) {
-    std::string raw;
-    raw.reserve(count * per_line * sizeof(T));
-    for (std::size_t i = 0; i < count; ++i)
-      for (int c = 0; c < per_line; ++c) put(raw, static_cast<T>(value(i, c)));
-    if (format_ == VtuFormat::binary) {
-      put(appended_, static_cast<std::uint64_t>(raw.size()));
-      appended_ += raw;
+    static_assert(std::endian::native == std::endian::little,
+                  "VTK files are written little-endian");
+    const std::size_t tuple = per_line * sizeof(T), bytes = count * tuple;
+    const auto fill = [&](char* to) {
+      parallel::for_each(count, [&](std::size_t i) {
+        for (int c = 0; c < per_line; ++c) {
+          const T v = static_cast<T>(value(i, c));
+          std::memcpy(to + i * tuple + c * sizeof(T), &v, sizeof v);
+        }
+      });
+    };
+    if (format_ == VtuFormat::binary) {  // in place, behind its byte count
+      put(appended_, static_cast<std::uint64_t>(bytes));
+      const std::size_t at = appended_.size();
+      appended_.resize(at + bytes);
+      fill(appended_.data() + at);
       return;
     }
-    std::string packed = zlib_compress(raw);
-    const std::uint64_t blocks = raw.empty() ? 0 : 1;
-    put(appended_, blocks);
-    put(appended_, static_cast<std::uint64_t>(raw.size()));  // the block size
-    put(appended_, std::uint64_t{0});                        // the last block is full
-    if (blocks) put(appended_, static_cast<std::uint64_t>(packed.size()));
-    if (blocks) appended_ += packed;
+    std::string raw(bytes, '\0');
+    fill(raw.data());
+    const std::size_t blocks = (raw.size() + k_vtk_block - 1) / k_vtk_block;
+    std::vector<std::string> packed(blocks);
+    parallel::for_each(
+        blocks,
+        [&](std::size_t b) {
+          const std::size_t begin = b * k_vtk_block;
+          packed[b] = zlib_compress(raw.data() + begin, std::min(k_vtk_block, raw.size() - begin));
+        },
+        1);
+    put(appended_, static_cast<std::uint64_t>(blocks));
+    put(appended_, static_cast<std::uint64_t>(blocks > 1 ? k_vtk_block : raw.size()));
+    put(appended_, static_cast<std::uint64_t>(blocks > 1 ? raw.size() % k_vtk_block : 0));
+    for (const std::string& p : packed) put(appended_, static_cast<std::uint64_t>(p.size()));
+    for (const std::string& p : packed) appended_ += p;
   }
 
-  static std::string zlib_compress(const std::string& raw) {
-    uLongf size = compressBound(raw.size());
+  static std::string zlib_compress(const char* raw, std::size_t bytes) {
+    uLongf size = compressBound(bytes);
     std::string packed(size, '\0');
     if (compress2(reinterpret_cast<Bytef*>(packed.data()), &size,
-                  reinterpret_cast<const Bytef*>(raw.data()), raw.size(), 1) != Z_OK)
+                  reinterpret_cast<const Bytef*>(raw), bytes, 1) != Z_OK)
       throw std::runtime_error("zlib could not compress an output array");
     packed.resize(size);
     return packed;

@@ -92,8 +92,8 @@ struct OutputSpec {
   std::vector<GaugeSpec> gauges;
   double gauge_interval = 0.0;
   std::vector<std::string> fields;
-  long history_every = 1;                // steps between history rows
-  VtuFormat format = VtuFormat::binary;  // how the frames' arrays are stored
+  long history_every = 1;                    // steps between history rows
+  VtuFormat format = VtuFormat::compressed;  // how the frames' arrays are stored
   /// diagnostics.every_step: the penetration measured at every step (history columns
   /// nodes_inside, crossings), not only at the frames.
   bool penetration_every_step = false;

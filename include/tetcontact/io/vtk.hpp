@@ -12,8 +12,9 @@
 namespace tc {
 
 /// How the arrays of a .vtu are stored: text; raw little-endian bytes in the file's appended
-/// section; or those bytes zlib-compressed (VTK's vtkZLibDataCompressor). All three open in
-/// ParaView. The spall plate's frames: binary 57 % of the text's bytes, compressed 19 %.
+/// section; or those bytes zlib-compressed in VTK's blocks of 64 KiB (vtkZLibDataCompressor;
+/// the runs' default, `output.format`). All three open in ParaView. The spall plate's frames:
+/// binary 57 % of the text's bytes, compressed 19 %.
 enum class VtuFormat { ascii, binary, compressed };
 inline constexpr NameTable<VtuFormat, 3> k_vtu_format_names{
     {{VtuFormat::ascii, "ascii"},
