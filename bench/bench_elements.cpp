@@ -2,6 +2,10 @@
 // Not a test: `make bench` prints the figures; the README quotes them with machine and date.
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
+#include <stdexcept>
+
+#include "tetcontact/io/case.hpp"
 #include "tetcontact/mesh/generators.hpp"
 #include "tetcontact/solver/simulation.hpp"
 
@@ -10,8 +14,11 @@ using namespace tc;
 namespace {
 
 // The element kernel in full: elastic-plastic Al 6061-T6 (Steinberg's Y0, Mie–Grüneisen),
-// bulk viscosity and average nodal pressure on; or plain elasticity.
-Model bar_model(int cells, bool plastic = false) {
+// bulk viscosity and average nodal pressure on (law 1); or plain elasticity (law 0); or the
+// library's al6061-t6, the Whipple case's bumper and wall: Steinberg–Guinan's law with its melt,
+// Mie–Grüneisen, spall and ductile failure, fracture on (law 2).
+Model bar_model(int cells, int law = 0) {
+  const bool plastic = law != 0;
   Model model;
   add_body(model.mesh, "bar",
            make_box(Vec3(0.1, 0.01, 0.01), {10 * cells, cells, cells}, HexSplit::six));
@@ -27,6 +34,14 @@ Model bar_model(int cells, bool plastic = false) {
     al.gamma0 = 1.97;
     al.bulk_modulus = al.density * al.c0 * al.c0;
   }
+  if (law == 2) {
+    const std::vector<Material> library = load_material_library(default_material_library());
+    const auto it = std::find_if(library.begin(), library.end(),
+                                 [](const Material& m) { return m.name == "al6061-t6"; });
+    if (it == library.end()) throw std::runtime_error("the library has no al6061-t6");
+    al = *it;
+    model.element.fracture = true;
+  }
   model.materials = {al};
   model.element.average_nodal_pressure = {static_cast<char>(plastic)};
   model.body_material = {0};
@@ -38,7 +53,7 @@ Model bar_model(int cells, bool plastic = false) {
 
 // Whole steps of the elastic pipeline (predict, balance, commit, elements) per tet.
 void BM_Step(benchmark::State& state) {
-  Model model = bar_model(static_cast<int>(state.range(0)), state.range(1) != 0);
+  Model model = bar_model(static_cast<int>(state.range(0)), static_cast<int>(state.range(1)));
   const std::size_t tets = model.mesh.tets.size();
   SolverSettings settings;
   settings.end_time = 1.0;
@@ -54,7 +69,7 @@ void BM_Step(benchmark::State& state) {
 
 // The element stage alone: update_material + compute_forces.
 void BM_ElementStage(benchmark::State& state) {
-  Model model = bar_model(static_cast<int>(state.range(0)), state.range(1) != 0);
+  Model model = bar_model(static_cast<int>(state.range(0)), static_cast<int>(state.range(1)));
   const std::size_t tets = model.mesh.tets.size();
   SolverSettings settings;
   settings.end_time = 1.0;
@@ -75,9 +90,10 @@ void BM_ElementStage(benchmark::State& state) {
 
 }  // namespace
 
-// Args: cells (6 tets per hex: 4 → 3,840 tets; 12 → 103,680), plastic (0 elastic, 1 full),
-// threads. The bar's halves collide at ±200 m/s, so the plastic runs really yield. Wall time
-// (UseRealTime): with threads, CPU time of the main thread would flatter them.
+// Args: cells (6 tets per hex: 4 → 3,840 tets; 12 → 103,680), law (0 elastic, 1 full, 2
+// Steinberg–Guinan with fracture), threads. The bar's halves collide at ±200 m/s, so the plastic
+// runs really yield. Wall time (UseRealTime): with threads, CPU time of the main thread would
+// flatter them.
 BENCHMARK(BM_Step)
     ->Args({4, 0, 1})
     ->Args({12, 0, 1})
@@ -88,6 +104,7 @@ BENCHMARK(BM_Step)
 BENCHMARK(BM_ElementStage)
     ->Args({12, 0, 1})
     ->Args({12, 1, 1})
+    ->Args({12, 2, 1})
     ->Args({12, 0, 2})
     ->Args({12, 1, 2})
     ->UseRealTime()

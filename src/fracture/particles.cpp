@@ -38,8 +38,15 @@ void Fragmentation::erode(const std::vector<Index>& tets) {
   eroding_.insert(eroding_.end(), tets.begin(), tets.end());
 }
 
-std::vector<Surface> Fragmentation::surfaces(const Mesh& mesh) const {
-  return build_surfaces(mesh, neighbours_, removed_, lengths_);
+const std::vector<Surface>& Fragmentation::surfaces(const Mesh& mesh) {
+  if (surfaces_built_) {
+    update_surfaces(mesh, neighbours_, removed_, gone_, surfaces_);
+  } else {
+    surfaces_ = build_surfaces(mesh, neighbours_, removed_, lengths_);
+    surfaces_built_ = true;
+  }
+  gone_.clear();
+  return surfaces_;
 }
 
 Index add_particle(State& st, const Vec3& x, const Vec3& v, double m, double radius, double energy,
@@ -212,6 +219,7 @@ long Fragmentation::convert(const Mesh& mesh, const std::vector<Material>& mater
     st.p[t] = st.q[t] = 0.0;
     st.s[t] = Sym6{0, 0, 0, 0, 0, 0};
     removed_[t] = 1;
+    gone_.push_back(t);
   }
   return static_cast<long>(cells.size());
 }
@@ -219,6 +227,10 @@ long Fragmentation::convert(const Mesh& mesh, const std::vector<Material>& mater
 void Fragmentation::persist(Archive& ar) {
   ar.section("fracture");
   ar(removed_, eroding_, cells_at_node_, particle_of_, mirror_planes_, total_mass_, ledger_);
+  if (ar.loading()) {  // the surfaces built whole at the next call
+    gone_.clear();
+    surfaces_built_ = false;
+  }
 }
 
 }  // namespace tc

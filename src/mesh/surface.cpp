@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <sstream>
+#include <stdexcept>
 
 #include "tetcontact/mesh/symmetry.hpp"
 #include "tetcontact/parallel/parallel.hpp"
@@ -29,6 +30,56 @@ bool on_symmetry_plane(const Mesh& mesh, const Face& f) {
   return std::any_of(mesh.symmetry.begin(), mesh.symmetry.end(), [&](const SymmetryPlane& p) {
     return on_plane(mesh.x[f[0]], p) && on_plane(mesh.x[f[1]], p) && on_plane(mesh.x[f[2]], p);
   });
+}
+
+// A surface's boundary nodes, edges and node→faces adjacency from its faces (s.nodes and s.edges
+// empty). slot_of: −1 for every mesh node, and so again on return.
+void finish_surface(Surface& s, std::vector<Index>& slot_of) {
+  // Boundary nodes and edges, sorted and each once: nodes marked over the range the faces
+  // span, edges bucketed by their lower node (each bucket a few, sorted in place); no sort
+  // of the whole surface.
+  if (!s.faces.empty()) {
+    Index lo = s.faces[0][0], hi = lo;
+    for (const Face& f : s.faces)
+      for (const Index v : f) lo = std::min(lo, v), hi = std::max(hi, v);
+    const std::size_t span = static_cast<std::size_t>(hi - lo) + 1;
+    std::vector<Index> start(span + 1, 0);
+    for (const Face& f : s.faces)
+      for (int e = 0; e < 3; ++e) ++start[std::min(f[e], f[(e + 1) % 3]) - lo + 1];
+    for (std::size_t i = 0; i < span; ++i) start[i + 1] += start[i];
+    std::vector<Index> upper(start.back());
+    std::vector<Index> fill(start.begin(), start.end() - 1);
+    for (const Face& f : s.faces)
+      for (int e = 0; e < 3; ++e) {
+        const Index a = f[e], c = f[(e + 1) % 3];
+        upper[fill[std::min(a, c) - lo]++] = std::max(a, c);
+      }
+    std::vector<char> on(span, 0);
+    for (const Face& f : s.faces)
+      for (const Index v : f) on[v - lo] = 1;
+    for (std::size_t i = 0; i < span; ++i) {
+      if (on[i]) s.nodes.push_back(lo + static_cast<Index>(i));
+      const auto b = upper.begin() + start[i], e = upper.begin() + start[i + 1];
+      std::sort(b, e);
+      for (auto it = b; it != e; ++it)
+        if (it == b || *it != *(it - 1)) s.edges.push_back({lo + static_cast<Index>(i), *it});
+    }
+  }
+
+  // node→faces in CSR form (each node's slot in s.nodes looked up in `slot_of`, cleared
+  // at the end).
+  s.node_face_offsets.assign(s.nodes.size() + 1, 0);
+  for (std::size_t i = 0; i < s.nodes.size(); ++i) slot_of[s.nodes[i]] = static_cast<Index>(i);
+  const auto slot = [&](Index node) { return static_cast<std::size_t>(slot_of[node]); };
+  for (const Face& f : s.faces)
+    for (Index v : f) ++s.node_face_offsets[slot(v) + 1];
+  for (std::size_t i = 0; i < s.nodes.size(); ++i)
+    s.node_face_offsets[i + 1] += s.node_face_offsets[i];
+  s.node_faces.resize(s.node_face_offsets.back());
+  std::vector<Index> fill(s.node_face_offsets.begin(), s.node_face_offsets.end() - 1);
+  for (Index fi = 0; fi < static_cast<Index>(s.faces.size()); ++fi)
+    for (Index v : s.faces[fi]) s.node_faces[fill[slot(v)]++] = fi;
+  for (const Index n : s.nodes) slot_of[n] = -1;
 }
 
 }  // namespace
@@ -167,55 +218,64 @@ std::vector<Surface> build_surfaces(const Mesh& mesh, const TetNeighbours& neigh
       s.face_tet.push_back(key.tet);
     }
 
-    // Boundary nodes and edges, sorted and each once: nodes marked over the range the faces
-    // span, edges bucketed by their lower node (each bucket a few, sorted in place); no sort
-    // of the whole surface.
-    if (!s.faces.empty()) {
-      Index lo = s.faces[0][0], hi = lo;
-      for (const Face& f : s.faces)
-        for (const Index v : f) lo = std::min(lo, v), hi = std::max(hi, v);
-      const std::size_t span = static_cast<std::size_t>(hi - lo) + 1;
-      std::vector<Index> start(span + 1, 0);
-      for (const Face& f : s.faces)
-        for (int e = 0; e < 3; ++e) ++start[std::min(f[e], f[(e + 1) % 3]) - lo + 1];
-      for (std::size_t i = 0; i < span; ++i) start[i + 1] += start[i];
-      std::vector<Index> upper(start.back());
-      std::vector<Index> fill(start.begin(), start.end() - 1);
-      for (const Face& f : s.faces)
-        for (int e = 0; e < 3; ++e) {
-          const Index a = f[e], c = f[(e + 1) % 3];
-          upper[fill[std::min(a, c) - lo]++] = std::max(a, c);
-        }
-      std::vector<char> on(span, 0);
-      for (const Face& f : s.faces)
-        for (const Index v : f) on[v - lo] = 1;
-      for (std::size_t i = 0; i < span; ++i) {
-        if (on[i]) s.nodes.push_back(lo + static_cast<Index>(i));
-        const auto b = upper.begin() + start[i], e = upper.begin() + start[i + 1];
-        std::sort(b, e);
-        for (auto it = b; it != e; ++it)
-          if (it == b || *it != *(it - 1)) s.edges.push_back({lo + static_cast<Index>(i), *it});
-      }
-    }
-
-    // node→faces in CSR form (each node's slot in s.nodes looked up in `slot_of`, cleared
-    // after the body).
-    s.node_face_offsets.assign(s.nodes.size() + 1, 0);
-    for (std::size_t i = 0; i < s.nodes.size(); ++i) slot_of[s.nodes[i]] = static_cast<Index>(i);
-    const auto slot = [&](Index node) { return static_cast<std::size_t>(slot_of[node]); };
-    for (const Face& f : s.faces)
-      for (Index v : f) ++s.node_face_offsets[slot(v) + 1];
-    for (std::size_t i = 0; i < s.nodes.size(); ++i)
-      s.node_face_offsets[i + 1] += s.node_face_offsets[i];
-    s.node_faces.resize(s.node_face_offsets.back());
-    std::vector<Index> fill(s.node_face_offsets.begin(), s.node_face_offsets.end() - 1);
-    for (Index fi = 0; fi < static_cast<Index>(s.faces.size()); ++fi)
-      for (Index v : s.faces[fi]) s.node_faces[fill[slot(v)]++] = fi;
-    for (const Index n : s.nodes) slot_of[n] = -1;
-
+    finish_surface(s, slot_of);
     surfaces.push_back(std::move(s));
   }
   return surfaces;
+}
+
+// Per body that lost a tet: its faces whose tet is gone leave; each face of a present tet
+// toward a lost one joins (it was interior: no face listed it); the two, each in the order of
+// the sorted node triples (then the tet), merged in that order, which is build_surfaces' order.
+void update_surfaces(const Mesh& mesh, const TetNeighbours& neighbours,
+                     const std::vector<char>& removed, const std::vector<Index>& gone,
+                     std::vector<Surface>& surfaces) {
+  if (gone.empty()) return;
+  if (surfaces.size() != mesh.bodies.size())
+    throw std::logic_error("update_surfaces: one surface a body, in the bodies' order");
+  std::vector<std::vector<FaceKey>> exposed(mesh.bodies.size());
+  std::vector<char> touched(mesh.bodies.size(), 0);
+  for (const Index t : gone) {
+    touched[mesh.tet_body[t]] = 1;
+    for (int i = 0; i < 4; ++i) {
+      const Index o = neighbours[t][i];
+      if (o < 0 || removed[o]) continue;
+      const auto& across = neighbours[o];
+      const auto j = std::find(across.begin(), across.end(), t) - across.begin();
+      const Tet& k = mesh.tets[o];
+      const auto& lf = k_tet_faces[static_cast<std::size_t>(j)];
+      const Face f{k[lf[0]], k[lf[1]], k[lf[2]]};
+      exposed[mesh.tet_body[o]].push_back({sorted_face(f), f, o});
+    }
+  }
+  std::vector<Index> slot_of(mesh.x.size(), -1);
+  for (std::size_t b = 0; b < surfaces.size(); ++b) {
+    if (!touched[b]) continue;
+    Surface& s = surfaces[b];
+    std::vector<FaceKey>& joining = exposed[b];
+    std::sort(joining.begin(), joining.end());
+    std::vector<Face> faces;
+    std::vector<Index> face_tet;
+    faces.reserve(s.faces.size() + joining.size());
+    face_tet.reserve(s.faces.size() + joining.size());
+    const auto take = [&](const FaceKey& key) {
+      faces.push_back(key.oriented);
+      face_tet.push_back(key.tet);
+    };
+    std::size_t next = 0;
+    for (std::size_t f = 0; f < s.faces.size(); ++f) {
+      if (removed[s.face_tet[f]]) continue;
+      const FaceKey kept{sorted_face(s.faces[f]), s.faces[f], s.face_tet[f]};
+      while (next < joining.size() && joining[next] < kept) take(joining[next++]);
+      take(kept);
+    }
+    while (next < joining.size()) take(joining[next++]);
+    s.faces = std::move(faces);
+    s.face_tet = std::move(face_tet);
+    s.nodes.clear();
+    s.edges.clear();
+    finish_surface(s, slot_of);
+  }
 }
 
 double smallest_mean_edge(const std::vector<Surface>& surfaces) {

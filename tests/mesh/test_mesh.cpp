@@ -1,10 +1,12 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <random>
 
 #include "tetcontact/mesh/generators.hpp"
 #include "tetcontact/mesh/mesh.hpp"
 #include "tetcontact/mesh/surface.hpp"
+#include "tetcontact/mesh/symmetry.hpp"
 
 using namespace tc;
 
@@ -345,4 +347,63 @@ TEST(Generators, GradedSphereRefinesAtItsPoleWithoutSlivers) {
                std::invalid_argument);
   EXPECT_THROW(make_sphere(r, 8, HexSplit::six, Grading{Vec3(0, 0, -1), 0.0}),
                std::invalid_argument);
+}
+
+// The surfaces updated after each round of removed tets are the fresh build's, field for field:
+// two bodies (the second cut at a symmetry plane: faces on it belong to no surface), rounds of
+// scattered tets, of a tet with its neighbours (faces between two lost tets), a round touching
+// one body only, and at last every tet of the first body (its surface empty).
+TEST(Surface, UpdatedSurfacesAreTheFreshBuild) {
+  Mesh mesh;
+  add_body(mesh, "block", make_box({1.0, 1.0, 1.0}, {4, 4, 4}, HexSplit::six));
+  TetMesh half = make_box({2.0, 1.0, 1.0}, {6, 3, 3}, HexSplit::six);
+  const SymmetryPlane plane{0, 0.0};
+  cut_at_plane(half, plane, "half");
+  add_body(mesh, "half", std::move(half));
+  mesh.symmetry = {plane};
+  const TetNeighbours nb = tet_neighbours(mesh);
+  const std::vector<EdgeLengths> lengths = body_edge_lengths(mesh);
+  std::vector<char> removed(mesh.tets.size(), 0);
+  std::vector<Surface> surfaces = build_surfaces(mesh, nb, removed, lengths);
+  std::mt19937 rng(7);
+  const Index block_tets = mesh.bodies[0].tet_count();
+  std::size_t faces_seen = 0;
+  for (int round = 0; round < 12; ++round) {
+    std::vector<Index> gone;
+    const auto lose = [&](Index t) {
+      if (t < 0 || removed[t]) return;
+      removed[t] = 1;
+      gone.push_back(t);
+    };
+    if (round == 11) {
+      for (Index t = 0; t < block_tets; ++t) lose(t);
+    } else if (round % 3 == 1) {  // a tet and its neighbours
+      const Index t = static_cast<Index>(rng() % mesh.tets.size());
+      lose(t);
+      for (const Index o : nb[t]) lose(o);
+    } else {
+      const Index from = round == 5 ? block_tets : 0;  // round 5: the second body alone
+      for (int k = 0; k < 10; ++k)
+        lose(from + static_cast<Index>(rng() % (mesh.tets.size() - from)));
+    }
+    update_surfaces(mesh, nb, removed, gone, surfaces);
+    const std::vector<Surface> fresh = build_surfaces(mesh, nb, removed, lengths);
+    ASSERT_EQ(surfaces.size(), fresh.size());
+    for (std::size_t b = 0; b < fresh.size(); ++b) {
+      const Surface &u = surfaces[b], &f = fresh[b];
+      EXPECT_EQ(u.body, f.body);
+      EXPECT_EQ(u.faces, f.faces) << "round " << round << ", body " << b;
+      EXPECT_EQ(u.face_tet, f.face_tet) << "round " << round << ", body " << b;
+      EXPECT_EQ(u.edges, f.edges) << "round " << round << ", body " << b;
+      EXPECT_EQ(u.nodes, f.nodes) << "round " << round << ", body " << b;
+      EXPECT_EQ(u.node_face_offsets, f.node_face_offsets) << "round " << round << ", body " << b;
+      EXPECT_EQ(u.node_faces, f.node_faces) << "round " << round << ", body " << b;
+      EXPECT_EQ(u.mean_edge_length, f.mean_edge_length);
+      EXPECT_EQ(u.max_edge_length, f.max_edge_length);
+      faces_seen += f.faces.size();
+    }
+  }
+  EXPECT_TRUE(surfaces[0].faces.empty());
+  EXPECT_EQ(surfaces[0].node_face_offsets, std::vector<Index>{0});
+  EXPECT_GT(faces_seen, 1000u);
 }

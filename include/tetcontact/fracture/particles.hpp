@@ -89,7 +89,10 @@ class Fragmentation {
   void erode(const std::vector<Index>& tets);
 
   /// The bodies' surfaces without the converted cells: the faces they exposed are included.
-  std::vector<Surface> surfaces(const Mesh& mesh) const;
+  /// Built whole at the first call (and the first after a checkpoint is read), then updated for
+  /// the cells converted since the last call (update_surfaces: the same surfaces, without
+  /// reading every cell).
+  const std::vector<Surface>& surfaces(const Mesh& mesh);
   const ConversionLedger& ledger() const { return ledger_; }
   /// The node of the particle that holds this cell, or −1 while it is a cell.
   Index particle_of(Index tet) const { return particle_of_[tet]; }
@@ -107,8 +110,11 @@ class Fragmentation {
   TetNeighbours neighbours_;
   std::vector<EdgeLengths> lengths_;  // the bodies' tet edge lengths (the surfaces')
   std::vector<char> removed_;         // per tet: turned into a particle
-  std::vector<Index> eroding_;        // cells to convert at the next call, wherever they are
-  std::vector<int> cells_at_node_;    // remaining cells around each mesh node
+  std::vector<Index> gone_;           // the cells converted since the last surfaces()
+  std::vector<Surface> surfaces_;     // what surfaces() gave last
+  bool surfaces_built_ = false;
+  std::vector<Index> eroding_;      // cells to convert at the next call, wherever they are
+  std::vector<int> cells_at_node_;  // remaining cells around each mesh node
   Fragments fragments_ = Fragments::cells;
   double sph_smoothing_ = 0.0;           // > 0: SPH particles
   std::vector<Index> particle_of_;       // per tet: the node of the particle holding it, or −1

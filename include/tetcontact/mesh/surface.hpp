@@ -74,6 +74,15 @@ std::vector<Surface> build_surfaces(const Mesh& mesh, const TetNeighbours& neigh
                                     const std::vector<char>& removed,
                                     const std::vector<EdgeLengths>& lengths);
 
+/// The surfaces once more tets are gone: `surfaces` what build_surfaces gave (one a body, in
+/// the bodies' order) before the tets `gone` were removed, `removed` marking them now too. Only
+/// the bodies that lost a tet change, and in them only the faces of the lost tets and of their
+/// neighbours: the result is build_surfaces' for `removed`, field for field (test
+/// `Surface.UpdatedSurfacesAreTheFreshBuild`), without reading every tet.
+void update_surfaces(const Mesh& mesh, const TetNeighbours& neighbours,
+                     const std::vector<char>& removed, const std::vector<Index>& gone,
+                     std::vector<Surface>& surfaces);
+
 /// The smallest mean tet edge of the surfaces' bodies (0 when no surface has an edge): the
 /// length the binding lists' reach and the contact's separation are fractions of.
 double smallest_mean_edge(const std::vector<Surface>& surfaces);
