@@ -377,9 +377,9 @@ void copy_kinematics(const LaneKinematics& k, int l, CellKinematics& c) {
 }
 
 // cell_kinematics for the cells tets[t[l]], l < count, into c[l].
-[[gnu::always_inline]] inline void lane_kinematics_in(const std::size_t* t, int count,
-                                                      const std::vector<Tet>& tets, double tau,
-                                                      const State& st, CellKinematics* c) {
+[[gnu::always_inline]] inline void lane_kinematics(const std::size_t* t, int count,
+                                                   const std::vector<Tet>& tets, double tau,
+                                                   const State& st, CellKinematics* c) {
   LaneKinematics k;
   kinematics_in_lanes(t, count, tets, tau, st, k);
   for (int l = 0; l < count; ++l) copy_kinematics(k, l, c[l]);
@@ -584,12 +584,11 @@ inline void store_forces(int l, std::size_t tl, const double (&f)[4][3][kLanes],
 // pressure (cell_pressure); the eroding cells listed in the cells' order, as the scalar path
 // lists them. Lanes past count repeat the first cell.
 // Returns false, having written nothing, where a cell's kinematics fail check_kinematics: the
-// caller then takes the scalar path, which reports it (no exception leaves the lanes' clones).
-[[gnu::always_inline]] inline bool lane_cells_in(const std::size_t* t, int count,
-                                                 const std::vector<Tet>& tets, const Material& mat,
-                                                 const ElementOptions& options, double tau,
-                                                 State& st, ElementScratch& scratch,
-                                                 ForceResult& block) {
+// caller then takes the scalar path, which reports it (no exception leaves the lanes).
+[[gnu::always_inline]] inline bool lane_cells(const std::size_t* t, int count,
+                                              const std::vector<Tet>& tets, const Material& mat,
+                                              const ElementOptions& options, double tau, State& st,
+                                              ElementScratch& scratch, ForceResult& block) {
   LaneKinematics k;
   kinematics_in_lanes(t, count, tets, tau, st, k);
   for (int l = 0; l < count; ++l)
@@ -808,7 +807,7 @@ inline void store_forces(int l, std::size_t tl, const double (&f)[4][3][kLanes],
 // the same limit, critical cell and eroding list as the scalar path. Lanes past count repeat
 // the first cell. Returns false, having written nothing, where a cell's end geometry is
 // inverted or not finite: the caller then takes the scalar path, which reports it.
-[[gnu::always_inline]] inline bool lane_averaged_pressure_in(
+[[gnu::always_inline]] inline bool lane_averaged_pressure(
     const std::size_t* t, int count, const std::vector<Tet>& tets, const Material& mat,
     const ElementOptions& options, State& st, ElementScratch& scratch, ForceResult& block) {
   // Gather.
@@ -896,17 +895,17 @@ struct LaneCopy {
 #define TC_LANE_COPY(NAME, TARGET)                                                             \
   TARGET void NAME##_kinematics(const std::size_t* t, int count, const std::vector<Tet>& tets, \
                                 double tau, const State& st, CellKinematics* c) {              \
-    lane_kinematics_in(t, count, tets, tau, st, c);                                            \
+    lane_kinematics(t, count, tets, tau, st, c);                                               \
   }                                                                                            \
   TARGET bool NAME##_cells(const std::size_t* t, int count, const std::vector<Tet>& tets,      \
                            const Material& mat, const ElementOptions& options, double tau,     \
                            State& st, ElementScratch& scratch, ForceResult& block) {           \
-    return lane_cells_in(t, count, tets, mat, options, tau, st, scratch, block);               \
+    return lane_cells(t, count, tets, mat, options, tau, st, scratch, block);                  \
   }                                                                                            \
   TARGET bool NAME##_averaged(const std::size_t* t, int count, const std::vector<Tet>& tets,   \
                               const Material& mat, const ElementOptions& options, State& st,   \
                               ElementScratch& scratch, ForceResult& block) {                   \
-    return lane_averaged_pressure_in(t, count, tets, mat, options, st, scratch, block);        \
+    return lane_averaged_pressure(t, count, tets, mat, options, st, scratch, block);           \
   }                                                                                            \
   constexpr LaneCopy NAME{NAME##_kinematics, NAME##_cells, NAME##_averaged};
 

@@ -62,5 +62,12 @@ add_test(NAME vtk_reader_reads_all_formats
           --formats $<TARGET_FILE:tetcontact>
           ${PROJECT_SOURCE_DIR}/data/cases/spall-plate.yaml
           ${PROJECT_BINARY_DIR}/test-output/vtk-formats 2.0e-6)
+# The same on the elastic bar (3,840 cells): its larger arrays span several compressed blocks of
+# 64 KiB (the connectivity two), which VTK's reader must join to the same values.
+add_test(NAME vtk_reader_reads_compressed_blocks
+  COMMAND /usr/bin/python3 ${PROJECT_SOURCE_DIR}/tools/post/check_vtu.py
+          --formats $<TARGET_FILE:tetcontact>
+          ${PROJECT_SOURCE_DIR}/data/cases/elastic-vibration.yaml
+          ${PROJECT_BINARY_DIR}/test-output/vtk-blocks)
 set_tests_properties(vtk_reader_opens_output vtk_reader_opens_particles
-  vtk_reader_reads_all_formats PROPERTIES LABELS tools ENVIRONMENT "PYTHONDONTWRITEBYTECODE=1")
+  vtk_reader_reads_all_formats vtk_reader_reads_compressed_blocks PROPERTIES LABELS tools ENVIRONMENT "PYTHONDONTWRITEBYTECODE=1")

@@ -68,8 +68,8 @@ struct EdgeLengths {
 };
 std::vector<EdgeLengths> body_edge_lengths(const Mesh& mesh);
 
-/// The same with the bodies' edge lengths given (they never change: fracture, which rebuilds
-/// the surfaces after each conversion, computes them once).
+/// The same with the bodies' edge lengths given (they never change: fracture, which builds the
+/// surfaces at its first conversion and updates them after each one, computes them once).
 std::vector<Surface> build_surfaces(const Mesh& mesh, const TetNeighbours& neighbours,
                                     const std::vector<char>& removed,
                                     const std::vector<EdgeLengths>& lengths);
@@ -78,7 +78,8 @@ std::vector<Surface> build_surfaces(const Mesh& mesh, const TetNeighbours& neigh
 /// the bodies' order) before the tets `gone` were removed, `removed` marking them now too. Only
 /// the bodies that lost a tet change, and in them only the faces of the lost tets and of their
 /// neighbours: the result is build_surfaces' for `removed`, field for field (test
-/// `Surface.UpdatedSurfacesAreTheFreshBuild`), without reading every tet.
+/// `Surface.UpdatedSurfacesAreTheFreshBuild`), without reading every tet. Each tet of `gone` once,
+/// none of them removed when `surfaces` were built.
 void update_surfaces(const Mesh& mesh, const TetNeighbours& neighbours,
                      const std::vector<char>& removed, const std::vector<Index>& gone,
                      std::vector<Surface>& surfaces);

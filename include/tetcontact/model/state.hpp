@@ -89,7 +89,7 @@ struct State {
   ParticleMatter sph;  // SPH particles' material (empty: point masses)
 
   // The surfaces of the run: the model's, less the faces of cells turned into particles, plus
-  // the faces those exposed (fracture rebuilds them; everything else reads them).
+  // the faces those exposed (fracture updates them; everything else reads them).
   std::vector<Surface> surfaces;
 
   double t = 0.0;        // t^n
