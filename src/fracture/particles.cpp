@@ -38,15 +38,14 @@ void Fragmentation::erode(const std::vector<Index>& tets) {
   eroding_.insert(eroding_.end(), tets.begin(), tets.end());
 }
 
-const std::vector<Surface>& Fragmentation::surfaces(const Mesh& mesh) {
+void Fragmentation::update(const Mesh& mesh, std::vector<Surface>& surfaces) {
   if (surfaces_built_) {
-    update_surfaces(mesh, neighbours_, removed_, gone_, surfaces_);
+    update_surfaces(mesh, neighbours_, removed_, gone_, surfaces);
   } else {
-    surfaces_ = build_surfaces(mesh, neighbours_, removed_, lengths_);
+    surfaces = build_surfaces(mesh, neighbours_, removed_, lengths_);
     surfaces_built_ = true;
   }
   gone_.clear();
-  return surfaces_;
 }
 
 Index add_particle(State& st, const Vec3& x, const Vec3& v, double m, double radius, double energy,

@@ -515,7 +515,7 @@ void Simulation::heat_stage() {
 // modules keep their memory across the change.
 void Simulation::fracture_stage() {
   if (fragmentation_->convert(model_.mesh, model_.materials, state_) == 0) return;
-  state_.surfaces = fragmentation_->surfaces(model_.mesh);
+  fragmentation_->update(model_.mesh, state_.surfaces);
   const std::vector<Index> renamed = candidates_->surfaces_changed(state_.surfaces);
   if (!model_.walls.empty()) surface_nodes_ = all_surface_nodes(state_.surfaces);
   if (contact_) contact_->edges_renamed(renamed);

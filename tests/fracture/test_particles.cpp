@@ -106,7 +106,9 @@ TEST(Fragmentation, ConversionConservesMassMomentumEnergyAndExposesFaces) {
     EXPECT_EQ(got[0].edges, want[0].edges);
     EXPECT_EQ(got[0].nodes, want[0].nodes);
   };
-  expect_same(frag.surfaces(model.mesh));
+  std::vector<Surface> surfaces;
+  frag.update(model.mesh, surfaces);
+  expect_same(surfaces);
 
   // Destroy every cell: they convert a layer per call, from the outside in, the surfaces
   // following; the interior cell goes only once its neighbours have.
@@ -117,7 +119,8 @@ TEST(Fragmentation, ConversionConservesMassMomentumEnergyAndExposesFaces) {
     ++calls;
     for (Index t = 0; t < model.mesh.tet_count(); ++t)
       removed[t] = st.damage[t] == Damage::particle;
-    expect_same(frag.surfaces(model.mesh));
+    frag.update(model.mesh, surfaces);  // updated for the cells this call converted
+    expect_same(surfaces);
     if (calls == 1) {
       EXPECT_EQ(st.damage[interior], Damage::destroyed);
     }
@@ -146,7 +149,9 @@ TEST(Fragmentation, NodeLeftWithoutCellsKeepsNoMass) {
     EXPECT_EQ(st.m[n], 0.0);
     EXPECT_EQ(st.v[n], Vec3::Zero());
   }
-  EXPECT_TRUE(frag.surfaces(model.mesh)[0].faces.empty());
+  std::vector<Surface> surfaces;
+  frag.update(model.mesh, surfaces);
+  EXPECT_TRUE(surfaces[0].faces.empty());
   // The predictor leaves a massless node alone (no 0/0).
   st.dt = 1e-6;
   predict(st, {});
@@ -171,8 +176,9 @@ TEST(Fragmentation, ErodedInteriorCellLeavesAVoidInTheSurfaces) {
   EXPECT_EQ(st.damage[interior], Damage::particle);
   std::vector<char> removed(model.mesh.tets.size(), 0);
   removed[interior] = 1;
-  const std::vector<Surface> got = frag.surfaces(model.mesh),
-                             want = surfaces_without(model.mesh, removed);
+  std::vector<Surface> got;
+  frag.update(model.mesh, got);
+  const std::vector<Surface> want = surfaces_without(model.mesh, removed);
   EXPECT_EQ(got[0].faces, want[0].faces);
   EXPECT_EQ(got[0].faces.size(), model.surfaces[0].faces.size() + 4);  // the void's four faces
   EXPECT_NEAR(totals(st).mass, before.mass, 1e-14 * before.mass);
@@ -349,8 +355,8 @@ TEST(Fragmentation, AClusterCoheringWithItsMirrorImageSpansTheSymmetryPlane) {
     for (Vec3& v : c.st.v) v = Vec3(drift, 0, 0);
     Fragmentation frag(c.model.mesh, Fragments::clusters);
     ASSERT_EQ(frag.convert(c.model.mesh, c.model.materials, c.st), 2);
-    ASSERT_EQ(c.st.particle_count(), 1);          // the two cells move together
-    c.st.surfaces = frag.surfaces(c.model.mesh);  // none left: nothing shields the particle
+    ASSERT_EQ(c.st.particle_count(), 1);       // the two cells move together
+    frag.update(c.model.mesh, c.st.surfaces);  // none left: nothing shields the particle
     const bool spans = 2.0 * drift < v_c;
     EXPECT_EQ(c.st.particle_planes[0], spans ? 1u : 0u) << drift;
     const std::vector<ReferenceResult> r = evaluate_references({largest}, c.model, c.st);

@@ -68,7 +68,7 @@ class Fragmentation {
   ///   e = E_cell + ½ Σ_k ¼ m |U_k|² − ½ m |Ū|² (energy is exact),
   /// placed at the centre of the cell's inscribed sphere, r = 3V / Σ A_i. A node left without
   /// cells keeps no mass and no velocity. Returns the number converted; when it is not zero
-  /// the caller takes the new surfaces().
+  /// the caller brings the surfaces up to date with update().
   ///
   /// With Fragments::clusters a cell joins, instead, the particle P (mass M, velocity V) that
   /// holds a face neighbour of the same material when the two still cohere: their relative
@@ -88,11 +88,11 @@ class Fragmentation {
   /// (an interior one leaves a void whose faces join the surfaces).
   void erode(const std::vector<Index>& tets);
 
-  /// The bodies' surfaces without the converted cells: the faces they exposed are included.
-  /// Built whole at the first call (and the first after a checkpoint is read), then updated for
-  /// the cells converted since the last call (update_surfaces: the same surfaces, without
-  /// reading every cell).
-  const std::vector<Surface>& surfaces(const Mesh& mesh);
+  /// `surfaces` made the bodies' surfaces without the converted cells (the faces they exposed
+  /// included): built whole at the first call (and the first after a checkpoint is read), then
+  /// updated in place for the cells converted since the last call (update_surfaces: the same
+  /// surfaces, without reading every cell). Between calls nothing else may change them.
+  void update(const Mesh& mesh, std::vector<Surface>& surfaces);
   const ConversionLedger& ledger() const { return ledger_; }
   /// The node of the particle that holds this cell, or −1 while it is a cell.
   Index particle_of(Index tet) const { return particle_of_[tet]; }
@@ -110,11 +110,10 @@ class Fragmentation {
   TetNeighbours neighbours_;
   std::vector<EdgeLengths> lengths_;  // the bodies' tet edge lengths (the surfaces')
   std::vector<char> removed_;         // per tet: turned into a particle
-  std::vector<Index> gone_;           // the cells converted since the last surfaces()
-  std::vector<Surface> surfaces_;     // what surfaces() gave last
-  bool surfaces_built_ = false;
-  std::vector<Index> eroding_;      // cells to convert at the next call, wherever they are
-  std::vector<int> cells_at_node_;  // remaining cells around each mesh node
+  std::vector<Index> gone_;           // the cells converted since the last update()
+  bool surfaces_built_ = false;       // update() has built the surfaces it is given
+  std::vector<Index> eroding_;        // cells to convert at the next call, wherever they are
+  std::vector<int> cells_at_node_;    // remaining cells around each mesh node
   Fragments fragments_ = Fragments::cells;
   double sph_smoothing_ = 0.0;           // > 0: SPH particles
   std::vector<Index> particle_of_;       // per tet: the node of the particle holding it, or −1
