@@ -26,6 +26,11 @@ void BindingLists::set(Candidates lists, const std::vector<Index>& ids,
   have_ = true;
 }
 
+void BindingLists::reanchor(std::vector<Vec3> anchors) {
+  anchor_ = std::move(anchors);
+  have_ = true;
+}
+
 void BindingLists::persist(Archive& ar) {
   ar(lists_.node_face, lists_.edge_edge, anchor_, reach_, have_);
 }

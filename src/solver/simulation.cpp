@@ -516,7 +516,14 @@ void Simulation::heat_stage() {
 void Simulation::fracture_stage() {
   if (fragmentation_->convert(model_.mesh, model_.materials, state_) == 0) return;
   fragmentation_->update(model_.mesh, state_.surfaces);
-  const std::vector<Index> renamed = candidates_->surfaces_changed(state_.surfaces);
+  std::vector<Index> renamed;
+  double lists = 0.0;  // the detection's lists updated: counted in the broadphase stage
+  {
+    StageTimer t(lists);
+    renamed = candidates_->surfaces_changed(state_.surfaces, state_);
+  }
+  profile_[Stage::broadphase] += lists;
+  profile_[Stage::fracture] -= lists;
   if (!model_.walls.empty()) surface_nodes_ = all_surface_nodes(state_.surfaces);
   if (contact_) contact_->edges_renamed(renamed);
   if (resolver_) resolver_->surfaces_changed();

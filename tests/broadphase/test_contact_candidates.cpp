@@ -189,3 +189,82 @@ TEST(ContactCandidates, BindingListsHoldEveryPairOfTheStepUntilSomethingLeavesTh
   EXPECT_TRUE(contains(as_set(cand.particles().node_face), o.particle_face));
   EXPECT_TRUE(contains(as_set(cand.particles().edge_edge), o.particle_particle));
 }
+
+// Cells turned into particles: the lists that hold are updated, not found anew. The pairs of
+// the primitives that stay keep their place under their new numbers; the faces, edges and nodes
+// a removal exposes, the new particle and the joined one (grown and moved) are paired with the
+// rest. At every later step the lists hold every pair the boxes give, as after a search, and
+// the first steps search nothing.
+TEST(ContactCandidates, ListsUpdatedAcrossAConversionHoldEveryPairAFreshSearchFinds) {
+  Scene s;
+  const CandidateSettings c = both("grid", true);
+  ContactCandidates cand(s.mesh, s.surfaces, c);
+  EXPECT_TRUE(cand.update(s.st).rebuilt);
+  // Body b (x in [−0.2, 0.8], z in [0.55, 1.55]) loses its lower hexes at low x, exposing their
+  // neighbours' faces at x = 0.3 and z = 1.05 and its middle node; a new particle between them
+  // and a's top (z = 0.5), and particle 5 (far out) joined by a cell there too.
+  const TetNeighbours neighbours = tet_neighbours(s.mesh);
+  std::vector<char> removed(s.mesh.tets.size(), 0);
+  int lost = 0;
+  for (std::size_t t = 0; t < s.mesh.tets.size(); ++t) {
+    if (s.mesh.tet_body[t] != 1) continue;
+    removed[t] = 1;
+    for (const Index n : s.mesh.tets[t])
+      if (s.mesh.x[n].z() > 1.1 || s.mesh.x[n].x() > 0.35) removed[t] = 0;
+    lost += removed[t];
+  }
+  ASSERT_EQ(lost, 12);
+  const std::vector<Surface> after = build_surfaces(s.mesh, neighbours, removed);
+  add_particle(s.st, Vec3(0.1, 0.1, 0.52), Vec3::Zero(), 1e-3, 0.03, 0.0, 0);
+  const Index joined = s.st.first_particle + 5;
+  s.st.x[joined] = Vec3(-0.3, -0.2, 0.53);
+  s.st.particle_radius[5] = 0.04;
+  s.move(0.0);
+  const long version = cand.version();
+  cand.surfaces_changed(after, s.st);
+  EXPECT_GT(cand.version(), version);
+  const SurfacePrimitives fresh = surface_primitives(after, true);
+  ASSERT_EQ(cand.primitives().faces, fresh.faces);
+  ASSERT_EQ(cand.primitives().edges, fresh.edges);
+
+  const auto contains = [](const Pairs& big, const Pairs& small) {
+    return std::includes(big.begin(), big.end(), small.begin(), small.end());
+  };
+  // Pairs the update had to add: of an exposed face, of the new particle, of the joined one.
+  Pairs exposed_pairs, new_particle_pairs, joined_pairs;
+  int kept = 0;
+  for (int k = 1; k <= 30; ++k) {
+    s.move(0.002 * k);
+    const bool rebuilt = cand.update(s.st).rebuilt;
+    if (!rebuilt && kept == k - 1) ++kept;  // the run of steps kept from the conversion on
+    const Oracle o = brute_force(s, cand.primitives(), c, 0.0);
+    for (const char* part : {"bodies", "particles"}) {
+      const CandidateLists& l = std::string(part) == "bodies" ? cand.bodies() : cand.particles();
+      EXPECT_EQ(as_set(l.node_face).size(), l.node_face.size()) << part << ": a pair twice";
+      EXPECT_EQ(as_set(l.edge_edge).size(), l.edge_edge.size()) << part << ": a pair twice";
+      EXPECT_EQ(l.faces, listed_faces(l.node_face));
+    }
+    ASSERT_TRUE(contains(as_set(cand.bodies().node_face), o.node_face)) << "step " << k;
+    ASSERT_TRUE(contains(as_set(cand.bodies().edge_edge), o.edge_edge)) << "step " << k;
+    ASSERT_TRUE(contains(as_set(cand.particles().node_face), o.particle_face)) << "step " << k;
+    ASSERT_TRUE(contains(as_set(cand.particles().edge_edge), o.particle_particle)) << "step " << k;
+    for (const auto& [n, f] : o.node_face) {
+      const Index tet = cand.primitives().face_tet[f];
+      bool was = false;
+      for (const Surface& surf : s.surfaces)
+        for (std::size_t g = 0; g < surf.faces.size(); ++g)
+          was = was || (surf.face_tet[g] == tet && surf.faces[g] == cand.primitives().faces[f]);
+      if (!was) exposed_pairs.insert({n, f});
+    }
+    for (const auto& [i, f] : o.particle_face) {
+      if (i == 7) new_particle_pairs.insert({i, f});
+      if (i == 5) joined_pairs.insert({i, f});
+    }
+    for (const auto& [i, j] : o.particle_particle)
+      if (i == 5 || j == 5 || i == 7 || j == 7) joined_pairs.insert({i, j});
+  }
+  EXPECT_GT(kept, 3);
+  EXPECT_GT(exposed_pairs.size(), 0u);
+  EXPECT_GT(new_particle_pairs.size(), 0u);
+  EXPECT_GT(joined_pairs.size(), 0u);
+}

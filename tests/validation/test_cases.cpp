@@ -318,10 +318,10 @@ TEST(Validation, BindingListsGiveIdenticalResults) {
 }
 
 // Fracture with edge–edge contact and the verification (the model stays as set up; the contact
-// module keeps its edge pairs across each conversion and rebuilds its binding lists): the
-// hypervelocity sphere at 7 km/s to 0.5 µs, with binding lists on and off, gives the same
-// frames and particles bit for bit. Measured: 49 particles, 162,904 edge–edge contacts, 72
-// impact zones; the lists ran the broadphase 67 times instead of 826.
+// module keeps its edge pairs across each conversion and the detection updates its binding
+// lists): the hypervelocity sphere at 7 km/s to 0.5 µs, with binding lists on and off, gives the
+// same frames and particles bit for bit. Measured: 99 particles, 180,671 edge–edge contacts, 63
+// impact zones; the lists ran the broadphase 35 times instead of 1,067.
 TEST(Validation, FractureWithEdgeEdgeBindingListsGiveIdenticalResults) {
   test::TempDir dir("fracture-edge-lists");
   const std::string base = "run '" + test::source_path("data/cases/stability/hypervelocity.yaml") +

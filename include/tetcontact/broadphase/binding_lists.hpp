@@ -45,8 +45,13 @@ class BindingLists {
   void set(Candidates lists, const std::vector<Index>& ids, const std::vector<Vec3>& x0);
   /// The same where the caller keeps the lists itself: only where the points were.
   void anchor(const std::vector<Index>& ids, const std::vector<Vec3>& x0) { set({}, ids, x0); }
-  /// The lists are found anew at the next use (the surfaces changed).
+  /// The lists are found anew at the next use (the surfaces changed beyond an update).
   void reset() { have_ = false; }
+  /// Where each point was when the lists were found.
+  const std::vector<Vec3>& anchors() const { return anchor_; }
+  /// The lists kept for a changed set of points (their caller renamed them): each point's
+  /// anchor, its own for a point that stays.
+  void reanchor(std::vector<Vec3> anchors);
   /// What a checkpoint holds of them: the lists, the anchors, whether they are set.
   void persist(Archive& ar);
 

@@ -1,6 +1,7 @@
 // The detection stage's one broadphase update: the surface nodes, faces and edges of every body
 // and the particles, boxed over the step xⁿ → x*, on binding lists (the bodies' and the
-// particles', each found anew when its points have moved past the reach). The narrow phases
+// particles', each found anew when its points have moved past the reach, and updated across a
+// conversion). The narrow phases
 // (node–face and edge–edge between bodies, particle–face and particle–particle) then test the
 // pairs it lists for them.
 #pragma once
@@ -79,9 +80,13 @@ class ContactCandidates {
   ContactCandidates(const Mesh& mesh, const std::vector<Surface>& surfaces,
                     const CandidateSettings& settings);
 
-  /// The surfaces changed (cells turned into particles): primitives rebuilt, lists found anew
-  /// at the next update. Returns the new index of each former edge (−1: no longer a surface edge).
-  std::vector<Index> surfaces_changed(const std::vector<Surface>& surfaces);
+  /// The surfaces changed (cells turned into particles), at the positions st.x: primitives
+  /// rebuilt. Each part's lists that hold at st.x are updated: the pairs of the primitives that
+  /// stay renamed, the new primitives and the new or joined particles (whose radius changed)
+  /// paired with the rest and anchored at st.x; the others, and SPH particles' lists, are found
+  /// anew at the next update. Returns the new index of each former edge (−1: no longer a surface
+  /// edge).
+  std::vector<Index> surfaces_changed(const std::vector<Surface>& surfaces, const State& st);
 
   /// The step's update from xⁿ (st.x) and x* (st.x_star). The bodies' lists are kept while
   /// every surface node is within the reach of where it was at their search (at both ends of the
@@ -132,6 +137,8 @@ class ContactCandidates {
                const std::vector<Index>* moved) const;
   // The step x0 = st.x → x1.
   void search(const State& st, bool bodies, bool particles, const std::vector<Vec3>& x1);
+  // Each particle's radius as the particles' lists know it (a join changes it).
+  void set_listed_sizes(const State& st);
   const Mesh& mesh_;
   CandidateSettings settings_;
   std::unique_ptr<Broadphase> broadphase_;
@@ -142,6 +149,7 @@ class ContactCandidates {
   std::vector<Index> particle_anchored_;
   std::vector<Index> node_slot_;  // each mesh node's index in prims_.nodes (−1: not on a surface)
   Index particles_listed_ = 0;
+  std::vector<double> listed_radius_;
   long version_ = 0;
   CandidateLists bodies_, particles_;
 };
