@@ -206,9 +206,11 @@ Pairs overlapping(const std::vector<Box>& many, const std::vector<Box>& few) {
   while (count(size) > cubes) size *= 1.5;
   std::array<int, 3> dims{};
   for (int k = 0; k < 3; ++k)
-    dims[k] = std::clamp(static_cast<int>(std::floor(extent[k] / size)) + 1, 1, 64);
+    dims[k] = static_cast<int>(std::clamp(std::floor(extent[k] / size) + 1.0, 1.0, 64.0));
+  // Clamped as doubles: a spread of many cubes would overflow an int.
   const auto cell = [&](double v, int k) {
-    return std::clamp(static_cast<int>(std::floor((v - all.lo[k]) / size)), 0, dims[k] - 1);
+    return static_cast<int>(
+        std::clamp(std::floor((v - all.lo[k]) / size), 0.0, static_cast<double>(dims[k] - 1)));
   };
   const auto cell_index = [&](int a, int b, int c) { return (a * dims[1] + b) * dims[2] + c; };
   const auto range = [&](const Box& b) {

@@ -260,8 +260,8 @@ void Simulation::step() {
   timed(Stage::balance, [&] { sample_stage(); });  // energy, momentum at tⁿ
   timed(Stage::output, [&] { output_stage(); });   // observers see tⁿ
   if (model_.contact_heat && corrects()) timed(Stage::commit, [&] { heat_stage(); });
-  timed(Stage::commit, [&] { commit_stage(); });  // Uⁿ⁺¹, xⁿ⁺¹ (eq. 1)
-  if (fragmentation_) timed(Stage::fracture, [&] { fracture_stage(); });  // cells → particles
+  timed(Stage::commit, [&] { commit_stage(); });      // Uⁿ⁺¹, xⁿ⁺¹ (eq. 1)
+  if (fragmentation_) fracture_stage();               // cells → particles
   timed(Stage::elements, [&] { elements_stage(); });  // σⁿ⁺¹, Fⁿ⁺¹, next τ
   if (sph_) timed(Stage::sph, [&] { sph_stage(); });  // the SPH particles' σⁿ⁺¹, Fⁿ⁺¹, τ
 }
@@ -513,17 +513,17 @@ void Simulation::heat_stage() {
 // then no longer sees them; the surfaces they exposed join the contact search at once. The
 // model stays as set up: the surfaces of the run are the state's (State::surfaces), and the contact
 // modules keep their memory across the change.
+// Timed by itself: the detection's lists updated count in the broadphase stage.
 void Simulation::fracture_stage() {
-  if (fragmentation_->convert(model_.mesh, model_.materials, state_) == 0) return;
-  fragmentation_->update(model_.mesh, state_.surfaces);
-  std::vector<Index> renamed;
-  double lists = 0.0;  // the detection's lists updated: counted in the broadphase stage
   {
-    StageTimer t(lists);
-    renamed = candidates_->surfaces_changed(state_.surfaces, state_);
+    StageTimer t(profile_[Stage::fracture]);
+    if (fragmentation_->convert(model_.mesh, model_.materials, state_) == 0) return;
+    fragmentation_->update(model_.mesh, state_.surfaces);
   }
-  profile_[Stage::broadphase] += lists;
-  profile_[Stage::fracture] -= lists;
+  std::vector<Index> renamed;
+  timed(Stage::broadphase,
+        [&] { renamed = candidates_->surfaces_changed(state_.surfaces, state_); });
+  StageTimer t(profile_[Stage::fracture]);
   if (!model_.walls.empty()) surface_nodes_ = all_surface_nodes(state_.surfaces);
   if (contact_) contact_->edges_renamed(renamed);
   if (resolver_) resolver_->surfaces_changed();
