@@ -313,10 +313,10 @@ std::vector<Index> ContactCandidates::surfaces_changed(const std::vector<Surface
     if (f >= 0) new_face[f] = 0;
   for (const Index e : renamed)
     if (e >= 0) new_edge[e] = 0;
-  const std::vector<Index> faces_added = flagged(new_face);
+  const std::vector<Index> faces_added = flagged(new_face), edges_added = flagged(new_edge);
   std::size_t nodes_added = 0;
   for (const Index o : old_node) nodes_added += o < 0;
-  const std::size_t added = nodes_added + faces_added.size() + flagged(new_edge).size();
+  const std::size_t added = nodes_added + faces_added.size() + edges_added.size();
   const std::size_t all = fresh.nodes.size() + fresh.faces.size() + fresh.edges.size();
   const bool few = 4 * added <= all;
 
@@ -396,7 +396,6 @@ std::vector<Index> ContactCandidates::surfaces_changed(const std::vector<Surface
       if (old_node[n] >= 0 && fresh.node_body[n] != fresh.face_body[f])
         added.node_face.emplace_back(n, f);
     }
-    const std::vector<Index> edges_added = flagged(new_edge);
     for (const auto& [e, j] : overlapping(edge_box, boxes_of(edge_box, edges_added))) {
       const Index g = edges_added[j];
       if (fresh.edge_body[e] == fresh.edge_body[g] || (new_edge[e] && e >= g)) continue;
@@ -456,7 +455,7 @@ std::vector<Index> ContactCandidates::surfaces_changed(const std::vector<Surface
     particle_anchored_.insert(particle_anchored_.end(), fresh.nodes.begin(), fresh.nodes.end());
     particle_lists_.reanchor(std::move(at));
     particles_listed_ = count;
-    set_listed_sizes(st);
+    listed_radius_ = st.particle_radius;
   } else {
     particle_lists_.reset();
   }
@@ -464,10 +463,6 @@ std::vector<Index> ContactCandidates::surfaces_changed(const std::vector<Surface
   node_slot_ = std::move(fresh_slot);
   ++version_;
   return renamed;
-}
-
-void ContactCandidates::set_listed_sizes(const State& st) {
-  listed_radius_ = st.particle_radius;
 }
 
 bool ContactCandidates::bodies_hold(const State& st) const {
@@ -606,7 +601,7 @@ void ContactCandidates::search(const State& st, bool bodies, bool particles,
     particle_anchored_.insert(particle_anchored_.end(), prims_.nodes.begin(), prims_.nodes.end());
     particles_listed_ = count;
     particle_lists_.anchor(particle_anchored_, x0);
-    set_listed_sizes(st);
+    listed_radius_ = st.particle_radius;
   }
 }
 

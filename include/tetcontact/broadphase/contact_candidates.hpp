@@ -1,9 +1,8 @@
 // The detection stage's one broadphase update: the surface nodes, faces and edges of every body
 // and the particles, boxed over the step xⁿ → x*, on binding lists (the bodies' and the
 // particles', each found anew when its points have moved past the reach, and updated across a
-// conversion). The narrow phases
-// (node–face and edge–edge between bodies, particle–face and particle–particle) then test the
-// pairs it lists for them.
+// conversion). The narrow phases (node–face and edge–edge between bodies, particle–face and
+// particle–particle) then test the pairs it lists for them.
 #pragma once
 
 #include <array>
@@ -137,8 +136,6 @@ class ContactCandidates {
                const std::vector<Index>* moved) const;
   // The step x0 = st.x → x1.
   void search(const State& st, bool bodies, bool particles, const std::vector<Vec3>& x1);
-  // Each particle's radius as the particles' lists know it (a join changes it).
-  void set_listed_sizes(const State& st);
   const Mesh& mesh_;
   CandidateSettings settings_;
   std::unique_ptr<Broadphase> broadphase_;
@@ -149,6 +146,7 @@ class ContactCandidates {
   std::vector<Index> particle_anchored_;
   std::vector<Index> node_slot_;  // each mesh node's index in prims_.nodes (−1: not on a surface)
   Index particles_listed_ = 0;
+  // Each particle's radius as the particles' lists know it (a join changes it).
   std::vector<double> listed_radius_;
   long version_ = 0;
   CandidateLists bodies_, particles_;
