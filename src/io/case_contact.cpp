@@ -135,7 +135,8 @@ void read_fracture(const Reader& r, const YAML::Node& root, Case& c) {
                "(fracture.fragments: cells)");
     }
     if (const YAML::Node p = s["sph"]) {
-      r.keys(p, "fracture.sph", {"smoothing", "alpha", "beta", "artificial_stress", "faces"});
+      r.keys(p, "fracture.sph",
+             {"smoothing", "alpha", "beta", "artificial_stress", "step_factor", "faces"});
       if (!c.sph_debris)
         r.fail(p, "fracture.sph", "settings of SPH debris: needs fracture.debris: sph");
       const auto within = [&](const char* key, double& value, double lo, double hi,
@@ -150,6 +151,7 @@ void read_fracture(const Reader& r, const YAML::Node& root, Case& c) {
       within("alpha", c.sph.alpha, 0.0, 10.0, "[0, 10]");
       within("beta", c.sph.beta, 0.0, 10.0, "[0, 10]");
       within("artificial_stress", c.sph.artificial_stress, 0.0, 1.0, "[0, 1]");
+      within("step_factor", c.sph.step_factor, 0.1, 2.0, "[0.1, 2]");
       if (const YAML::Node f = p["faces"]) {
         const std::string v = r.string(f, "fracture.sph.faces");
         if (v != "kernel" && v != "contact")

@@ -128,6 +128,7 @@ Simulation::Simulation(Model model, SolverSettings settings)
       o.alpha = model_.sph.alpha;
       o.beta = model_.sph.beta;
       o.artificial_stress = model_.sph.artificial_stress;
+      o.step_factor = model_.sph.step_factor;
       o.faces = model_.sph.faces;
       o.fracture = model_.element.fracture;
       sph_ = std::make_unique<sph::Stage>(o, std::move(planes));

@@ -83,22 +83,48 @@ FaceKernel face_kernel(const Vec3& x, const Vec3& a, const Vec3& b, const Vec3& 
 // them to about 1e-5 (a foot on an edge's line is no singularity: the integrand is bounded and
 // p_e = 0). The weights follow from the first moment, the barycentric coordinates being
 // affine: ∫ W λ_v dS = λ_v(p) Φ + ∇λ_v · ∫ (y − p) W dS.
+FaceShape face_shape(const Vec3& a, const Vec3& b, const Vec3& c) {
+  FaceShape f;
+  f.corner = {a, b, c};
+  f.lo = a.cwiseMin(b).cwiseMin(c);
+  f.hi = a.cwiseMax(b).cwiseMax(c);
+  f.normal = (b - a).cross(c - a);
+  f.twice_area = f.normal.norm();
+  f.normal /= f.twice_area;
+  for (int e = 0; e < 3; ++e) {
+    Vec3 dir = f.corner[(e + 1) % 3] - f.corner[e];
+    f.length[e] = dir.norm();
+    dir /= f.length[e];
+    f.dir[e] = dir;
+    f.nu[e] = dir.cross(f.normal);
+  }
+  for (int v = 0; v < 3; ++v) {
+    const Vec3& q0 = f.corner[(v + 1) % 3];
+    const Vec3& q1 = f.corner[(v + 2) % 3];
+    f.grad[v] = f.normal.cross(q1 - q0) / f.twice_area;
+  }
+  return f;
+}
+
 FaceKernel face_kernel(const Vec3& x, const Vec3& a, const Vec3& b, const Vec3& c, double h) {
+  return face_kernel(x, face_shape(a, b, c), h);
+}
+
+FaceKernel face_kernel(const Vec3& x, const FaceShape& face, double h) {
   FaceKernel out;
   const double reach = k_support * h;
   // A face whose box lies beyond reach: nothing (what the edges' sums give, without them).
-  const Vec3 gap = (a.cwiseMin(b).cwiseMin(c) - x).cwiseMax(x - a.cwiseMax(b).cwiseMax(c));
+  const Vec3 gap = (face.lo - x).cwiseMax(x - face.hi);
   if (gap.cwiseMax(0.0).squaredNorm() >= reach * reach) return out;
-  Vec3 nrm = (b - a).cross(c - a);
-  const double twice_area = nrm.norm();
+  const double twice_area = face.twice_area;
   if (!(twice_area > 0.0) || !(h > 0.0)) return out;
-  nrm /= twice_area;
-  const double d = (x - a).dot(nrm);
+  const Vec3& nrm = face.normal;
+  const std::array<Vec3, 3>& corner = face.corner;
+  const double d = (x - corner[0]).dot(nrm);
   if (!(std::abs(d) < reach)) return out;
   const Vec3 p = x - d * nrm;
   const double d2 = d * d, h2 = h * h, inv_h = 1.0 / h;
   const double f_d = radial(std::abs(d) * inv_h), f_reach = radial(k_support);
-  const std::array<Vec3, 3> corner{a, b, c};
   // Each edge in the plane: its outward normal ν, the foot's distance p_e from its line, its
   // ends t0, t1 along it; the line within reach where |t| < t_reach.
   struct Edge {
@@ -110,13 +136,10 @@ FaceKernel face_kernel(const Vec3& x, const Vec3& a, const Vec3& b, const Vec3& 
   for (int e = 0; e < 3; ++e) {
     Edge& g = edges[e];
     const Vec3& s0 = corner[e];
-    Vec3 dir = corner[(e + 1) % 3] - s0;
-    const double length = dir.norm();
-    dir /= length;
-    g.nu = dir.cross(nrm);
+    g.nu = face.nu[e];
     g.pe = (s0 - p).dot(g.nu);
-    g.t0 = (s0 - p).dot(dir);
-    g.t1 = g.t0 + length;
+    g.t0 = (s0 - p).dot(face.dir[e]);
+    g.t1 = g.t0 + face.length[e];
     g.c2 = g.pe * g.pe + d2;
     g.t_reach = g.c2 < 4.0 * h2 ? std::sqrt(4.0 * h2 - g.c2) : 0.0;
     inside = inside && g.pe >= 0.0;
@@ -166,9 +189,8 @@ FaceKernel face_kernel(const Vec3& x, const Vec3& a, const Vec3& b, const Vec3& 
   for (int v = 0; v < 3; ++v) {
     const Vec3& q0 = corner[(v + 1) % 3];
     const Vec3& q1 = corner[(v + 2) % 3];
-    const Vec3 grad = nrm.cross(q1 - q0) / twice_area;  // ∇λ_v
     const double at_foot = (q1 - q0).cross(p - q0).dot(nrm) / twice_area;
-    out.w[v] = std::clamp(at_foot + grad.dot(moment) / phi, 0.0, 1.0);
+    out.w[v] = std::clamp(at_foot + face.grad[v].dot(moment) / phi, 0.0, 1.0);
   }
   // The weights lie in [0, 1] (W ≥ 0 and λ_v ∈ [0, 1] on the face); on a needle of a face the
   // barycentric gradient is large and the edges' sums cancel, so they are held there and

@@ -809,6 +809,10 @@ TEST(Case, DebrisIsPointsOrSph) {
   EXPECT_TRUE(sph.sph_debris);
   EXPECT_EQ(sph.sph.smoothing, 1.5);
   EXPECT_EQ(sph.sph.alpha, 1.0);
+  EXPECT_EQ(sph.sph.step_factor, 0.6);
+  EXPECT_EQ(
+      load_case(file, {"fracture.debris=sph", "fracture.sph.step_factor=1.2"}).sph.step_factor,
+      1.2);
   EXPECT_TRUE(sph.sph.faces);  // the faces met through the kernel by default
   EXPECT_FALSE(load_case(file, {"fracture.debris=sph", "fracture.sph.faces=contact"}).sph.faces);
   EXPECT_FALSE(load_case(file, {"fracture.debris=points"}).sph_debris);
@@ -822,6 +826,9 @@ TEST(Case, DebrisIsPointsOrSph) {
            {{"fracture.debris=sph", "fracture.sph.artificial_stress=-1"},
             "fracture.sph.artificial_stress",
             "[0, 1]"},
+           {{"fracture.debris=sph", "fracture.sph.step_factor=0"},
+            "fracture.sph.step_factor",
+            "[0.1, 2]"},
            {{"fracture.debris=sph", "fracture.sph.kernel=1"}, "fracture.sph.kernel", "unknown"},
            {{"fracture.debris=sph", "fracture.sph.faces=glue"},
             "fracture.sph.faces",

@@ -148,6 +148,23 @@ TEST(Sph, UniformStressInAMirrorBoxExertsNoForce) {
   }
 }
 
+// The particles' stable step at rest (no pair approaching, so μ = 0): k h / (c + 1.2 α c), with
+// k the step factor (fracture.sph.step_factor) and c the material's sound speed at rest.
+TEST(Sph, StableStepAtRestIsTheStepFactorsCourantLimit) {
+  for (double factor : {0.6, 1.3}) {
+    sph::Options o;
+    o.step_factor = factor;
+    test::ParticleRun run({test::library_material("al6061-t6")}, o, {});
+    const double dx = 1e-3;
+    run.lattice(Vec3::Zero(), 4, 4, 4, dx, Vec3::Zero());
+    const sph::StepLimit limit = run.forces();
+    const double c = std::sqrt(run.st.sph.sound2[0]), h = 1.3 * dx;
+    EXPECT_GT(c, 4000.0);  // aluminium's bulk sound speed, about 5.2 km/s
+    EXPECT_NEAR(limit.dt_stable, factor * h / (c + 1.2 * o.alpha * c), 1e-12 * limit.dt_stable)
+        << "step factor " << factor;
+  }
+}
+
 // Two aluminium blocks meet at 1 km/s: momentum kept to round-off; energy (kinetic at the
 // whole step, U^{n+1/2} + ½ τ F/m, plus internal, plus the pair heat of that half kick, which the
 // next update books) to 5e-4 of the kinetic energy at every step (measured 4.0e-5). Without the

@@ -94,5 +94,25 @@ TEST(SphTaylor, AluminiumRodOfParticlesKeepsItsTetTwinsAndTheMeasuredLength) {
   EXPECT_LT(rod.balance_error_max, 1e-3);
 }
 
+// fracture.sph.step_factor reaches the particles' stable step: the rod made particles before
+// its first step, every particle at the rod's velocity (no pair approaches), steps at k h /
+// (c + 1.2 α c) times the cfl; twice the factor, twice the step.
+TEST(SphTaylor, TheStepFactorSetsTheParticlesStep) {
+  std::vector<double> steps;
+  for (const char* factor : {"0.6", "1.2"}) {
+    std::vector<std::string> sets =
+        row({"fracture={enabled: true, debris: sph, erosion_step_ratio: 0}",
+             std::string("fracture.sph.step_factor=") + factor});
+    const Case c = load_case(test::source_path("data/cases/taylor.yaml"), sets);
+    Simulation sim(build_model(c), solver_settings(c));
+    std::vector<Index> cells(static_cast<std::size_t>(sim.model().mesh.tet_count()));
+    for (std::size_t t = 0; t < cells.size(); ++t) cells[t] = static_cast<Index>(t);
+    sim.convert_cells(cells);
+    steps.push_back(sim.state().dt);
+  }
+  EXPECT_GT(steps[0], 0.0);
+  EXPECT_NEAR(steps[1] / steps[0], 2.0, 1e-12);
+}
+
 }  // namespace
 }  // namespace tc

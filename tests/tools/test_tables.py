@@ -104,7 +104,8 @@ def test_every_table_has_a_command():
                        "mpi", "whipple", "whipple-mesh", "whipple-hole", "strength", "taylor-tests",
                        "taylor-temper", "whipple-shots", "whipple-shots-sph", "whipple-refined",
                        "whipple-refined-sph", "whipple-defaults", "whipple-wall", "whipple-tear", "whipple-debris",
-                       "whipple-sph-faces", "whipple-erosion-reference", "whipple-tillotson",
+                       "whipple-sph-faces", "whipple-erosion-reference", "whipple-sph-step",
+                       "whipple-tillotson",
                        "hugoniot"]
     assert list(T.TABLES) == T.NAMES
 

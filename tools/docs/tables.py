@@ -81,6 +81,10 @@ NAME, the table:
                   half the model's first step and at half each body's own
                   (fracture.erosion_reference): verdicts, thickness left, steps (~40 min on 2
                   cores)
+    whipple-sph-step the sixteen shots with SPH debris, crushed cells converted at half the
+                  first step, the particles' stable step at the shipped factor and at twice it
+                  (fracture.sph.step_factor 0.6 and 1.2): verdicts, thickness left, steps and
+                  the largest balance error (~35 min on 2 cores)
     whipple-tillotson the seven of those shots at 6 km/s and above with SPH debris, every body
                   with the library's Mie–Grüneisen EOS (shipped) and with Tillotson's:
                   verdicts, thickness left, the debris cloud's speed, steps and the largest
@@ -126,7 +130,7 @@ NAMES = ["stability", "micro", "profile", "ccd", "verify", "verify-full", "threa
          "whipple", "whipple-mesh", "whipple-hole", "strength", "taylor-tests", "taylor-temper",
          "whipple-shots", "whipple-shots-sph", "whipple-refined", "whipple-refined-sph",
          "whipple-defaults", "whipple-wall", "whipple-tear", "whipple-debris", "whipple-sph-faces",
-         "whipple-erosion-reference", "whipple-tillotson", "hugoniot"]
+         "whipple-erosion-reference", "whipple-sph-step", "whipple-tillotson", "hugoniot"]
 
 
 def g(x):
@@ -1503,6 +1507,43 @@ def whipple_erosion_reference(binary, work, opts):
                                      lambda n: f"{n:,}")
 
 
+# whipple-sph-step --------------------------------------------------------------------------------
+# The SPH particles' own stable step, k h / (c + 1.2 (α c + β max μ)) times the cfl, sets nearly
+# every step of a shot with SPH debris: the sixteen shots with crushed cells converted at half the
+# first step (the 66 shots' setting), at the shipped k = 0.6 (0.14 h/c at rest) and at twice it.
+WHIPPLE_SPH_STEP = [  # (folder, label, --set)
+    ("factor-0.6", "step factor 0.6 (shipped)",
+     ["fracture.debris=sph", "fracture.erosion_step_ratio=0.5"]),
+    ("factor-1.2", "step factor 1.2",
+     ["fracture.debris=sph", "fracture.erosion_step_ratio=0.5", "fracture.sph.step_factor=1.2"]),
+]
+WHIPPLE_SPH_STEP_HEADER = settings_header(
+    WHIPPLE_SPH_STEP, "verdict (mass through), thickness left, steps, largest balance error",
+    "run time")
+
+
+def whipple_sph_step_cells(prediction, s):
+    """(verdict, mass through the wall, wall thickness left, (steps, largest balance error), run
+    seconds) of one campaign run."""
+    m = {x[K.NAME]: x[K.MEASURED] for x in get(s, K.REFERENCES)}
+    return (prediction["predicted:wall perforated"], m[K.MASS_THROUGH_WALL],
+            m[K.WALL_THICKNESS_LEFT], (get(s, K.STEPS), get(s, K.ENERGY_BALANCE_ERROR_MAX)),
+            float(prediction["wall_seconds"]))
+
+
+def steps_and_balance(x):
+    return f"{x[0]:,}, {x[1]:.1e}"
+
+
+def whipple_sph_step(binary, work, opts):
+    """The shots of WHIPPLE_REFINED_ROWS with SPH debris at each step factor of WHIPPLE_SPH_STEP:
+    each verdict (and mass through), the wall's thickness left, the steps and the largest balance
+    error beside the measured verdict and the equation's."""
+    yield from whipple_settings_rows(binary, work, "whipple-sph-step-", WHIPPLE_REFINED_ROWS,
+                                     WHIPPLE_SPH_STEP, WHIPPLE_SPH_STEP_HEADER,
+                                     whipple_sph_step_cells, steps_and_balance)
+
+
 # whipple-tillotson -------------------------------------------------------------------------------
 # The equation of state of expanded and hot debris: the shots of the sixteen at 6 km/s and above,
 # with SPH debris, every body with its library entry's Mie–Grüneisen EOS (shipped) and with its
@@ -1658,6 +1699,7 @@ TABLES = {"stability": stability, "micro": micro, "profile": profile, "ccd": ccd
           "whipple-wall": whipple_wall, "whipple-tear": whipple_tear,
           "whipple-debris": whipple_debris, "whipple-sph-faces": whipple_sph_faces,
           "whipple-erosion-reference": whipple_erosion_reference,
+          "whipple-sph-step": whipple_sph_step,
           "whipple-tillotson": whipple_tillotson,
           "hugoniot": hugoniot}
 assert list(TABLES) == NAMES

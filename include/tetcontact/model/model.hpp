@@ -135,12 +135,14 @@ struct VelocityConstraint {
 
 /// SPH debris (fracture.debris: sph; sph/sph.hpp): the smoothing length h of a particle made
 /// from a cell is `smoothing` times the cell's size V0^(1/3); Monaghan's viscosity (α, β) and
-/// artificial stress (ε).
+/// artificial stress (ε); the particles' stable step is `step_factor` h / (c + 1.2 (α c + β μ)),
+/// times the solver's cfl (sph::Options::step_factor).
 struct SphSettings {
   double smoothing = 1.3;
   double alpha = 1.0;
   double beta = 2.0;
   double artificial_stress = 0.3;
+  double step_factor = 0.6;
   bool faces = true;  // particles meet the bodies' faces through their kernel (else by contact)
 };
 

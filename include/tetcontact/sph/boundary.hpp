@@ -22,11 +22,27 @@ struct FaceKernel {
   std::array<double, 3> w{0.0, 0.0, 0.0};  // Σ w_v = 1 when Φ > 0
 };
 
+/// What of a triangle (a, b, c) does not depend on the particle: its box, unit normal n (right
+/// hand), twice its area, its edges' unit directions, lengths and in-plane outward normals
+/// ν = dir × n, and the barycentric coordinates' gradients. A stage that meets one face from
+/// many particles computes it once per face.
+struct FaceShape {
+  std::array<Vec3, 3> corner;
+  Vec3 lo, hi;
+  Vec3 normal;                        // n (when twice_area > 0)
+  double twice_area;                  // |(b − a) × (c − a)|
+  std::array<Vec3, 3> dir, nu, grad;  // edge e from corner e to e + 1; grad: ∇λ_v
+  std::array<double, 3> length;
+};
+FaceShape face_shape(const Vec3& a, const Vec3& b, const Vec3& c);
+
 /// Φ and the weights of the triangle (a, b, c) for a particle at x with smoothing length h, as
 /// sums over the triangle's edges (the divergence theorem in the face's plane): the kernel's
 /// radial integral in closed form, along each edge six Gauss points per piece between the
 /// kernel's knees; zero out of reach.
 FaceKernel face_kernel(const Vec3& x, const Vec3& a, const Vec3& b, const Vec3& c, double h);
+/// The same of the face's shape (face_shape(a, b, c)): the same doubles.
+FaceKernel face_kernel(const Vec3& x, const FaceShape& face, double h);
 
 /// By the centroid rule on n × n sub-triangles (the edges' sums' check).
 FaceKernel face_kernel(const Vec3& x, const Vec3& a, const Vec3& b, const Vec3& c, double h, int n);

@@ -199,13 +199,15 @@ class Stage {
   std::vector<MirrorPlane> planes_;
   std::vector<SymmetryPlane> symmetry_;  // the same planes, to reflect across
   Neighbours neighbours_;
-  std::vector<Vec3> x_, v_;           // the points: the particles, then the ghosts
-  std::vector<Sym6> stress_, art_;    // per point: σ/ρ², and R (the artificial stress)
-  std::vector<double> heat_rate_;     // per particle: −½ Σ_j m_i m_j v_ij·A_ij ∇W, J/s
-  std::vector<Vec3> plane_force_;     // per particle: the mirror images' part of the force
-  std::vector<FaceTerm> face_terms_;  // the last forces' face terms, by particle
-  std::vector<Index> term_begin_;     // per particle: its terms [begin, end)
-  std::vector<Index> ghost_begin_;    // per particle: its images n + [begin, end)
+  std::vector<Vec3> x_, v_;                // the points: the particles, then the ghosts
+  std::vector<Sym6> stress_, art_;         // per point: σ/ρ², and R (the artificial stress)
+  std::vector<double> heat_rate_;          // per particle: −½ Σ_j m_i m_j v_ij·A_ij ∇W, J/s
+  std::vector<Vec3> plane_force_;          // per particle: the mirror images' part of the force
+  std::vector<Vec3> pair_ag_;              // per neighbour entry: the last forces' A_ij ∇_i W_ij
+  std::vector<unsigned char> pair_extra_;  // … where A_ij ≠ 0
+  std::vector<FaceTerm> face_terms_;       // the last forces' face terms, by particle
+  std::vector<Index> term_begin_;          // per particle: its terms [begin, end)
+  std::vector<Index> ghost_begin_;         // per particle: its images n + [begin, end)
   std::vector<Index> face_begin_, face_list_;  // per point: the faces within its reach
   bool fresh_ = false;                         // the lists are of the current positions (update's)
 };
