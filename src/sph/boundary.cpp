@@ -68,21 +68,7 @@ FaceKernel face_kernel(const Vec3& x, const Vec3& a, const Vec3& b, const Vec3& 
   return out;
 }
 
-// On the face's plane, with p the particle's foot, d its distance, ρ = |y − p| and s² = ρ² + d²:
-// W = ∇·((y − p) (F0(s) − F0(d)) / ρ²) and (y − p) W = ∇(F0(s) − F0(2h)), so by the divergence
-// theorem in the plane each is a sum over the triangle's edges e (outward normal ν_e, the foot
-// at signed distance p_e = (y − p)·ν_e from its line, t the position along it):
-//
-//   Φ = Σ_e p_e ∫_e (F0(s) − F0(d)) / (t² + p_e²) dt,
-//   ∫ (y − p) W dS = Σ_e ν_e ∫_e (F0(s) − F0(2h)) dt.
-//
-// Beyond the kernel's reach F0(s) = F0(2h): there the first is (F0(2h) − F0(d)) times the angle
-// the piece of edge subtends at the foot, in closed form, and the second nothing; within reach
-// the integrands are smooth between the points where s = h and s = 2h but for a fifth-power
-// point where the particle lies on the edge's line, and six Gauss points per piece integrate
-// them to about 1e-5 (a foot on an edge's line is no singularity: the integrand is bounded and
-// p_e = 0). The weights follow from the first moment, the barycentric coordinates being
-// affine: ∫ W λ_v dS = λ_v(p) Φ + ∇λ_v · ∫ (y − p) W dS.
+// What of the face does not depend on the particle.
 FaceShape face_shape(const Vec3& a, const Vec3& b, const Vec3& c) {
   FaceShape f;
   f.corner = {a, b, c};
@@ -110,6 +96,21 @@ FaceKernel face_kernel(const Vec3& x, const Vec3& a, const Vec3& b, const Vec3& 
   return face_kernel(x, face_shape(a, b, c), h);
 }
 
+// On the face's plane, with p the particle's foot, d its distance, ρ = |y − p| and s² = ρ² + d²:
+// W = ∇·((y − p) (F0(s) − F0(d)) / ρ²) and (y − p) W = ∇(F0(s) − F0(2h)), so by the divergence
+// theorem in the plane each is a sum over the triangle's edges e (outward normal ν_e, the foot
+// at signed distance p_e = (y − p)·ν_e from its line, t the position along it):
+//
+//   Φ = Σ_e p_e ∫_e (F0(s) − F0(d)) / (t² + p_e²) dt,
+//   ∫ (y − p) W dS = Σ_e ν_e ∫_e (F0(s) − F0(2h)) dt.
+//
+// Beyond the kernel's reach F0(s) = F0(2h): there the first is (F0(2h) − F0(d)) times the angle
+// the piece of edge subtends at the foot, in closed form, and the second nothing; within reach
+// the integrands are smooth between the points where s = h and s = 2h but for a fifth-power
+// point where the particle lies on the edge's line, and six Gauss points per piece integrate
+// them to about 1e-5 (a foot on an edge's line is no singularity: the integrand is bounded and
+// p_e = 0). The weights follow from the first moment, the barycentric coordinates being
+// affine: ∫ W λ_v dS = λ_v(p) Φ + ∇λ_v · ∫ (y − p) W dS.
 FaceKernel face_kernel(const Vec3& x, const FaceShape& face, double h) {
   FaceKernel out;
   const double reach = k_support * h;
