@@ -910,50 +910,21 @@ struct LaneCopy {
   constexpr LaneCopy NAME{NAME##_kinematics, NAME##_cells, NAME##_averaged};
 
 TC_LANE_COPY(sse2_lanes, )
-#if defined(__x86_64__) && defined(__GNUC__)
-TC_LANE_COPY(avx2_lanes, __attribute__((target("avx2"))))
-TC_LANE_COPY(avx512_lanes, __attribute__((target("avx512f"))))
-#endif
+TC_LANE_COPY(avx2_lanes, TC_TARGET_AVX2)
+TC_LANE_COPY(avx512_lanes, TC_TARGET_AVX512)
 #undef TC_LANE_COPY
 
-ElementLanes widest_lanes() {
-#if defined(__x86_64__) && defined(__GNUC__)
-  if (__builtin_cpu_supports("avx512f")) return ElementLanes::avx512;
-  if (__builtin_cpu_supports("avx2")) return ElementLanes::avx2;
-#endif
-  return ElementLanes::sse2;
-}
-
-std::atomic<ElementLanes> element_lanes{widest_lanes()};
+std::atomic<Lanes> element_lanes{widest_lanes()};
 
 // The copy that runs, or nullptr for the scalar path.
-const LaneCopy* lane_copy(ElementLanes lanes) {
-  switch (lanes) {
-    case ElementLanes::scalar:
-      return nullptr;
-    case ElementLanes::sse2:
-      return &sse2_lanes;
-#if defined(__x86_64__) && defined(__GNUC__)
-    case ElementLanes::avx2:
-      return &avx2_lanes;
-    case ElementLanes::avx512:
-      return &avx512_lanes;
-#endif
-    default:
-      return &sse2_lanes;
-  }
+const LaneCopy* lane_copy(Lanes lanes) {
+  return copy_for<const LaneCopy*>(lanes, nullptr, &sse2_lanes, &avx2_lanes, &avx512_lanes);
 }
 
 }  // namespace
 
-ElementLanes widest_element_lanes() {
-  return widest_lanes();
-}
-
-ElementLanes set_element_lanes(ElementLanes lanes) {
-  if (static_cast<int>(lanes) > static_cast<int>(widest_lanes()))
-    throw std::invalid_argument("element lanes wider than this processor runs");
-  return element_lanes.exchange(lanes);
+Lanes set_element_lanes(Lanes lanes) {
+  return element_lanes.exchange(runnable_lanes(lanes, "element"));
 }
 
 // The element stage: pass 1 over the cells (update_cell); without the average nodal pressure the

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cmath>
 #include <numbers>
 
@@ -18,16 +19,15 @@ namespace {
 //   F(q) = q²/2 − 3/8 q⁴ + 3/20 q⁵                         0 ≤ q < 1
 //        = 7/20 − 1/8 (2 − q)⁴ + 1/20 (2 − q)⁵             1 ≤ q < 2
 //        = 7/20                                            q ≥ 2
-double radial(double q) {
-  if (q < 1.0) {
-    const double q2 = q * q;
-    return q2 * (0.5 - 0.375 * q2 + 0.15 * q2 * q);
-  }
-  if (q < 2.0) {
-    const double v = 2.0 - q, v4 = v * v * v * v;
-    return 0.35 - 0.125 * v4 + 0.05 * v4 * v;
-  }
-  return 0.35;
+//
+// Both pieces are computed and one chosen (a select, which the lanes below run as a blend): the
+// chosen piece's doubles are those of the branches it stands for.
+[[gnu::always_inline]] inline double radial(double q) {
+  const double q2 = q * q;
+  const double inner = q2 * (0.5 - 0.375 * q2 + 0.15 * q2 * q);
+  const double v = 2.0 - q, v4 = v * v * v * v;
+  const double outer = 0.35 - 0.125 * v4 + 0.05 * v4 * v;
+  return q < 1.0 ? inner : (q < 2.0 ? outer : 0.35);
 }
 
 // Gauss–Legendre, six points on [−1, 1].
@@ -37,7 +37,70 @@ constexpr std::array<double, 6> k_gauss_x{-0.932469514203152, -0.661209386466265
 constexpr std::array<double, 6> k_gauss_w{0.171324492379170, 0.360761573048139, 0.467913934572691,
                                           0.467913934572691, 0.360761573048139, 0.171324492379170};
 
+// The edges' Gauss points of one particle and face: at most three edges, three pieces an edge
+// (between the kernel's knees), six points a piece. Each point's position t along its edge, its
+// edge's p_e and its weight (half the piece times the rule's weight) in; the integrands
+// (F(s) − F(d)) / ρ² and F(s) out.
+struct GaussPoints {
+  static constexpr int k_max = 3 * 3 * 6;
+  int count = 0;
+  alignas(64) double t[k_max];
+  alignas(64) double pe[k_max];
+  alignas(64) double weight[k_max];
+  alignas(64) double ratio[k_max];
+  alignas(64) double f[k_max];
+};
+
+// The integrands at every point, one point a lane: s = √(ρ² + d²), ρ² = t² + p_e²; where ρ → 0
+// (the foot on the edge) the ratio's limit w(d/h) / (2 h²) in F's units, `at_foot`. No step
+// depends on another point, so the loop runs in the widest lanes its copy is compiled for; no
+// product and sum are fused (boundary.cpp is compiled with -ffp-contract=off), so every copy
+// gives the one-point-at-a-time doubles.
+[[gnu::always_inline]] inline void integrands(GaussPoints& g, double d2, double inv_h, double f_d,
+                                              double near2, double at_foot) {
+  const int count = g.count;
+  for (int i = 0; i < count; ++i) {
+    const double rho2 = g.t[i] * g.t[i] + g.pe[i] * g.pe[i];
+    const double f = radial(std::sqrt(rho2 + d2) * inv_h);
+    g.f[i] = f;
+    g.ratio[i] = rho2 > near2 ? (f - f_d) / rho2 : at_foot;
+  }
+}
+
+using Integrands = void (*)(GaussPoints&, double, double, double, double, double);
+
+// One point at a time: the reference.
+__attribute__((optimize("no-tree-vectorize"))) void scalar_integrands(GaussPoints& g, double d2,
+                                                                      double inv_h, double f_d,
+                                                                      double near2,
+                                                                      double at_foot) {
+  integrands(g, d2, inv_h, f_d, near2, at_foot);
+}
+
+#define TC_LANE_COPY(NAME, TARGET)                                                    \
+  TARGET void NAME(GaussPoints& g, double d2, double inv_h, double f_d, double near2, \
+                   double at_foot) {                                                  \
+    integrands(g, d2, inv_h, f_d, near2, at_foot);                                    \
+  }
+TC_LANE_COPY(sse2_integrands, )
+TC_LANE_COPY(avx2_integrands, TC_TARGET_AVX2)
+TC_LANE_COPY(avx512_integrands, TC_TARGET_AVX512)
+#undef TC_LANE_COPY
+
+Integrands copy_of(Lanes lanes) {
+  return copy_for<Integrands>(lanes, &scalar_integrands, &sse2_integrands, &avx2_integrands,
+                              &avx512_integrands);
+}
+
+std::atomic<Lanes> face_lanes{widest_lanes()};
+std::atomic<Integrands> integrands_copy{copy_of(widest_lanes())};
+
 }  // namespace
+
+Lanes set_face_lanes(Lanes lanes) {
+  integrands_copy.store(copy_of(runnable_lanes(lanes, "face")));
+  return face_lanes.exchange(lanes);
+}
 
 // The triangle cut into n² sub-triangles of area A/n² by the lines λ_a = i/n, λ_b = j/n: the
 // "upright" ones have their centroids at barycentric ((i + 1/3)/n, (j + 1/3)/n) for i + j < n,
@@ -148,38 +211,52 @@ FaceKernel face_kernel(const Vec3& x, const FaceShape& face, double h) {
   }
   // Wholly out of reach: nothing (not the angles' round-off).
   if (!inside && !in_reach) return out;
-  double phi = 0.0;
-  Vec3 moment = Vec3::Zero();
-  for (const Edge& g : edges) {
-    const Vec3& nu = g.nu;
-    const double pe = g.pe, t0 = g.t0, t1 = g.t1, c2 = g.c2, t_reach = g.t_reach;
+  // The pieces within reach, and their Gauss points, edge by edge.
+  GaussPoints points;
+  std::array<int, 4> first{0, 0, 0, 0};  // edge e's points: [first[e], first[e + 1])
+  for (int e = 0; e < 3; ++e) {
+    const Edge& g = edges[e];
+    first[e] = points.count;
+    const double t0 = g.t0, t1 = g.t1, c2 = g.c2, t_reach = g.t_reach;
+    if (!(t_reach > 0.0) || t1 <= -t_reach || t0 >= t_reach) continue;
     // The kernel's knee at |t| = t_knee.
     const double t_knee = c2 < h2 ? std::sqrt(h2 - c2) : 0.0;
+    const std::array<double, 4> cuts{-t_reach, -t_knee, t_knee, t_reach};
+    for (int k = 0; k < 3; ++k) {
+      const double ta = std::max(t0, cuts[k]), tb = std::min(t1, cuts[k + 1]);
+      if (!(tb > ta)) continue;
+      const double mid = 0.5 * (ta + tb), half = 0.5 * (tb - ta);
+      for (int q = 0; q < 6; ++q) {
+        const int at = points.count++;
+        points.t[at] = mid + half * k_gauss_x[q];
+        points.pe[at] = g.pe;
+        points.weight[at] = half * k_gauss_w[q];
+      }
+    }
+  }
+  first[3] = points.count;
+  // (F(s) − F(d)) / ρ² → w(d/h) / (2 h²) as ρ → 0.
+  const double at_foot = 0.5 * kernel(std::abs(d), h) * std::numbers::pi * h;
+  if (points.count > 0)
+    integrands_copy.load(std::memory_order_relaxed)(points, d2, inv_h, f_d, 1e-24 * h2, at_foot);
+  double phi = 0.0;
+  Vec3 moment = Vec3::Zero();
+  for (int e = 0; e < 3; ++e) {
+    const Edge& g = edges[e];
+    const double pe = g.pe, t0 = g.t0, t1 = g.t1, t_reach = g.t_reach;
     // The angle [ta, tb] subtends at the foot, signed as p_e.
     const auto angle = [&](double ta, double tb) {
       return tb > ta ? std::atan2(pe * (tb - ta), pe * pe + ta * tb) : 0.0;
     };
     phi += (f_reach - f_d) * (angle(t0, std::min(t1, -t_reach)) + angle(std::max(t0, t_reach), t1));
     if (!(t_reach > 0.0) || t1 <= -t_reach || t0 >= t_reach) continue;
-    const std::array<double, 4> cuts{-t_reach, -t_knee, t_knee, t_reach};
     double along_phi = 0.0, along_moment = 0.0;
-    for (int k = 0; k < 3; ++k) {
-      const double ta = std::max(t0, cuts[k]), tb = std::min(t1, cuts[k + 1]);
-      if (!(tb > ta)) continue;
-      const double mid = 0.5 * (ta + tb), half = 0.5 * (tb - ta);
-      for (int q = 0; q < 6; ++q) {
-        const double t = mid + half * k_gauss_x[q], rho2 = t * t + pe * pe;
-        const double f = radial(std::sqrt(rho2 + d2) * inv_h);
-        // (F(s) − F(d)) / ρ² → w(d/h) / (2 h²) as ρ → 0.
-        const double ratio = rho2 > 1e-24 * h2
-                                 ? (f - f_d) / rho2
-                                 : 0.5 * kernel(std::abs(d), h) * std::numbers::pi * h;
-        along_phi += half * k_gauss_w[q] * ratio;
-        along_moment += half * k_gauss_w[q] * (f - f_reach);
-      }
+    for (int i = first[e]; i < first[e + 1]; ++i) {
+      along_phi += points.weight[i] * points.ratio[i];
+      along_moment += points.weight[i] * (points.f[i] - f_reach);
     }
     phi += pe * along_phi;
-    moment += along_moment * nu;
+    moment += along_moment * g.nu;
   }
   // F0 = F / (π h): back to the kernel's units.
   const double scale = inv_h / std::numbers::pi;

@@ -390,12 +390,12 @@ TEST(Element, LanesGiveTheScalarPathsState) {
   lib.push_back(test::aluminium());
   std::set<int> laws, eoses;
   bool plastic = false;
-  const ElementLanes widest = widest_element_lanes();
+  const Lanes widest = widest_lanes();
   EXPECT_EQ(set_element_lanes(widest), widest);  // the default
-  EXPECT_THROW(set_element_lanes(static_cast<ElementLanes>(static_cast<int>(widest) + 1)),
+  EXPECT_THROW(set_element_lanes(static_cast<Lanes>(static_cast<int>(widest) + 1)),
                std::invalid_argument);
   const char* names[] = {"scalar", "SSE2", "AVX2", "AVX-512"};
-  for (int copy = static_cast<int>(ElementLanes::sse2); copy <= static_cast<int>(widest); ++copy)
+  for (int copy = static_cast<int>(Lanes::sse2); copy <= static_cast<int>(widest); ++copy)
     for (const Material& mat : lib) {
       laws.insert(static_cast<int>(mat.strength));
       eoses.insert(static_cast<int>(mat.eos));
@@ -421,10 +421,10 @@ TEST(Element, LanesGiveTheScalarPathsState) {
         for (int step = 0; step < 6; ++step) {
           for (State* st : {&lanes, &scalar})
             for (std::size_t i = 0; i < st->x.size(); ++i) st->x[i] += tau * st->v[i];
-          const ElementLanes was = set_element_lanes(static_cast<ElementLanes>(copy));
+          const Lanes was = set_element_lanes(static_cast<Lanes>(copy));
           const ForceResult a = update_material(model.mesh.tets, model.materials, model.element,
                                                 tau, lanes, scratch_lanes);
-          set_element_lanes(ElementLanes::scalar);
+          set_element_lanes(Lanes::scalar);
           const ForceResult b = update_material(model.mesh.tets, model.materials, model.element,
                                                 tau, scalar, scratch_scalar);
           set_element_lanes(was);

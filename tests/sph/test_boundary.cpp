@@ -1,15 +1,19 @@
 // SPH particles and the bodies' faces (sph/boundary.hpp, the faces' terms of sph.hpp): the
 // kernel's integral over a face against a fine quadrature and over a plane against its radial
-// integral; a block of particles under uniform stress on a body's face feels no force and
-// presses on the face with its traction; a block of cells compressed uniformly keeps its uniform
-// state when its middle cells become particles (the coupling's patch test), and not without it.
+// integral, the same doubles in every lane copy of its Gauss points; a block of particles under
+// uniform stress on a body's face feels no force and presses on the face with its traction; a block
+// of cells compressed uniformly keeps its uniform state when its middle cells become particles (the
+// coupling's patch test), and not without it.
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <numbers>
 #include <random>
+#include <stdexcept>
 
 #include "../solver/solver_fixture.hpp"
 #include "sph_run.hpp"
@@ -105,6 +109,49 @@ TEST(SphBoundary, FaceIntegralIsTheFineQuadratures) {
   EXPECT_EQ(
       sph::face_kernel(Vec3(0, 0, 2.01), Vec3(-1, -1, 0), Vec3(1, -1, 0), Vec3(0, 1, 0), h).phi,
       0.0);
+}
+
+// The edges' Gauss points in every lane copy the processor runs (SSE2, AVX2, AVX-512) against
+// one point at a time: the same doubles, bit for bit, on random triangles near the particle and
+// on the particle at a corner, on an edge's line (ρ → 0 at a Gauss point's reach), in the face's
+// plane and at the knees' distance. A copy that fused a product and a sum would fail it.
+TEST(SphBoundary, EveryLaneCopyGivesTheScalarDoubles) {
+  const Lanes widest = widest_lanes();
+  EXPECT_EQ(sph::set_face_lanes(widest), widest);  // the default
+  EXPECT_THROW(sph::set_face_lanes(static_cast<Lanes>(static_cast<int>(widest) + 1)),
+               std::invalid_argument);
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(-1.5, 1.5);
+  std::vector<std::array<Vec3, 4>> cases;  // particle, a, b, c
+  for (int trial = 0; trial < 400; ++trial)
+    cases.push_back({Vec3(u(rng), u(rng), u(rng)) * 0.3, Vec3(u(rng), u(rng), u(rng)),
+                     Vec3(u(rng), u(rng), u(rng)), Vec3(u(rng), u(rng), u(rng))});
+  const Vec3 a(-1, -1, 0), b(1, -1, 0), c(0, 1, 0);
+  for (const Vec3& x :
+       {Vec3(0, -1, 0), Vec3(-1, -1, 0), Vec3(0, -1, 1e-9), Vec3(0, -1 + 1e-12, 0),
+        Vec3(0.2, 0.1, 0), Vec3(0, -2, 0.5), Vec3(0, -1, std::sqrt(3.0)), Vec3(0.3, -1, 0.4)})
+    cases.push_back({x, a, b, c});
+  const auto bits = [](double v) { return std::bit_cast<std::uint64_t>(v); };
+  const double h = 1.0;
+  sph::set_face_lanes(Lanes::scalar);
+  std::vector<sph::FaceKernel> reference;
+  int met = 0;
+  for (const auto& k : cases) {
+    reference.push_back(sph::face_kernel(k[0], k[1], k[2], k[3], h));
+    met += reference.back().phi > 0.0;
+  }
+  EXPECT_GT(met, 300);
+  for (int copy = static_cast<int>(Lanes::sse2); copy <= static_cast<int>(widest); ++copy) {
+    sph::set_face_lanes(static_cast<Lanes>(copy));
+    for (std::size_t i = 0; i < cases.size(); ++i) {
+      const auto& k = cases[i];
+      const sph::FaceKernel got = sph::face_kernel(k[0], k[1], k[2], k[3], h);
+      EXPECT_EQ(bits(got.phi), bits(reference[i].phi)) << "copy " << copy << ", case " << i;
+      for (int v = 0; v < 3; ++v)
+        EXPECT_EQ(bits(got.w[v]), bits(reference[i].w[v])) << "copy " << copy << ", case " << i;
+    }
+  }
+  sph::set_face_lanes(widest);
 }
 
 // A plane tiled by faces, met at distance d: Σ Φ is the kernel's integral over the plane, and

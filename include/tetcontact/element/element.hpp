@@ -7,6 +7,7 @@
 
 #include "tetcontact/model/model.hpp"
 #include "tetcontact/model/state.hpp"
+#include "tetcontact/parallel/lanes.hpp"
 
 namespace tc {
 
@@ -87,15 +88,10 @@ ForceResult compute_forces(const std::vector<Tet>& tets, const ElementOptions& o
                            ElementScratch& scratch);
 
 /// How the element stage runs the cells' kinematics and material update and the averaged
-/// pressure's pass: one cell at a time (`scalar`, the reference), or eight cells a block in SIMD
-/// lanes compiled for SSE2 (every x86-64), AVX2 or AVX-512. Each gives the scalar path's doubles;
-/// the widest the processor runs is the default, and the choice is for the test that says so.
-enum class ElementLanes { scalar, sse2, avx2, avx512 };
-/// The widest lanes this processor runs.
-ElementLanes widest_element_lanes();
-/// Sets how the cells run; returns the previous setting. Lanes wider than widest_element_lanes()
-/// throw std::invalid_argument.
-ElementLanes set_element_lanes(ElementLanes lanes);
+/// pressure's pass (parallel/lanes.hpp): one cell at a time (`Lanes::scalar`, the reference), or
+/// eight cells a block in SIMD lanes. Sets it; returns the previous setting. Lanes wider than
+/// widest_lanes() throw std::invalid_argument.
+Lanes set_element_lanes(Lanes lanes);
 
 /// Material update over the step from the committed velocities U^{n+1} (st.v):
 ///   L = Σ_i U_i ⊗ ∇N_i at the mid-step geometry x^{n+1/2} = x^{n+1} − τ/2 U^{n+1};

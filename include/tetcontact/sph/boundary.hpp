@@ -14,6 +14,7 @@
 #include <array>
 
 #include "tetcontact/mesh/mesh.hpp"
+#include "tetcontact/parallel/lanes.hpp"
 
 namespace tc::sph {
 
@@ -43,6 +44,11 @@ FaceShape face_shape(const Vec3& a, const Vec3& b, const Vec3& c);
 FaceKernel face_kernel(const Vec3& x, const Vec3& a, const Vec3& b, const Vec3& c, double h);
 /// The same of the face's shape (face_shape(a, b, c)): the same doubles.
 FaceKernel face_kernel(const Vec3& x, const FaceShape& face, double h);
+
+/// How face_kernel evaluates its edges' Gauss points (parallel/lanes.hpp): one at a time
+/// (`Lanes::scalar`, the reference), or in SIMD lanes. Sets it; returns the previous setting.
+/// Lanes wider than widest_lanes() throw std::invalid_argument.
+Lanes set_face_lanes(Lanes lanes);
 
 /// By the centroid rule on n × n sub-triangles (the edges' sums' check).
 FaceKernel face_kernel(const Vec3& x, const Vec3& a, const Vec3& b, const Vec3& c, double h, int n);
