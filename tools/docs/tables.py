@@ -1525,10 +1525,8 @@ WHIPPLE_SPH_STEP_HEADER = settings_header(
 def whipple_sph_step_cells(prediction, s):
     """(verdict, mass through the wall, wall thickness left, (steps, largest balance error), run
     seconds) of one campaign run."""
-    m = {x[K.NAME]: x[K.MEASURED] for x in get(s, K.REFERENCES)}
-    return (prediction["predicted:wall perforated"], m[K.MASS_THROUGH_WALL],
-            m[K.WALL_THICKNESS_LEFT], (get(s, K.STEPS), get(s, K.ENERGY_BALANCE_ERROR_MAX)),
-            float(prediction["wall_seconds"]))
+    verdict, through, left, steps, seconds = whipple_step_cells(prediction, s)
+    return verdict, through, left, (steps, get(s, K.ENERGY_BALANCE_ERROR_MAX)), seconds
 
 
 def steps_and_balance(x):
