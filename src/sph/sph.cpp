@@ -645,7 +645,7 @@ StepLimit Stage::forces(State& st, const std::vector<Face>& faces, const Candida
   heat_rate_.assign(n, 0.0);
   plane_force_.assign(n, Vec3::Zero());
   pair_ag_.resize(nb.list.size());
-  pair_extra_.assign(nb.list.size(), 0);
+  pair_extra_.resize(nb.list.size());  // each entry written by the pass below
   const double alpha = options_.alpha, beta = options_.beta;
   std::vector<StepLimit> blocks(parallel::block_count(n, k_particle_block),
                                 StepLimit{std::numeric_limits<double>::infinity(), -1});

@@ -1480,10 +1480,9 @@ def whipple_sph_faces(binary, work, opts):
 # sphere's) or each body's own (fracture.erosion_reference: body; the wall's cells, three to seven
 # times the sphere's step, then convert at their own half): the sixteen shots with SPH debris.
 WHIPPLE_EROSION_REFERENCE = [  # (folder, label, --set)
-    ("model", "half the model's first step (the 66 shots' setting)",
-     ["fracture.debris=sph", "fracture.erosion_step_ratio=0.5"]),
+    ("model", "half the model's first step (the 66 shots' setting)", WHIPPLE_SHOTS_SPH_SETS),
     ("body", "half each body's own first step",
-     ["fracture.debris=sph", "fracture.erosion_step_ratio=0.5", "fracture.erosion_reference=body"]),
+     WHIPPLE_SHOTS_SPH_SETS + ["fracture.erosion_reference=body"]),
 ]
 WHIPPLE_EROSION_REFERENCE_HEADER = settings_header(
     WHIPPLE_EROSION_REFERENCE, "verdict (mass through), thickness left, steps", "run time")
@@ -1512,10 +1511,8 @@ def whipple_erosion_reference(binary, work, opts):
 # every step of a shot with SPH debris: the sixteen shots with crushed cells converted at half the
 # first step (the 66 shots' setting), at the shipped k = 0.6 (0.14 h/c at rest) and at twice it.
 WHIPPLE_SPH_STEP = [  # (folder, label, --set)
-    ("factor-0.6", "step factor 0.6 (shipped)",
-     ["fracture.debris=sph", "fracture.erosion_step_ratio=0.5"]),
-    ("factor-1.2", "step factor 1.2",
-     ["fracture.debris=sph", "fracture.erosion_step_ratio=0.5", "fracture.sph.step_factor=1.2"]),
+    ("factor-0.6", "step factor 0.6 (shipped)", WHIPPLE_SHOTS_SPH_SETS),
+    ("factor-1.2", "step factor 1.2", WHIPPLE_SHOTS_SPH_SETS + ["fracture.sph.step_factor=1.2"]),
 ]
 WHIPPLE_SPH_STEP_HEADER = settings_header(
     WHIPPLE_SPH_STEP, "verdict (mass through), thickness left, steps, largest balance error",
