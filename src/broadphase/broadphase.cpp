@@ -10,19 +10,6 @@
 
 namespace tc {
 
-Box swept_box(std::initializer_list<const Vec3*> points, double margin) {
-  Box b;
-  b.lo = **points.begin();
-  b.hi = b.lo;
-  for (const Vec3* p : points) {
-    b.lo = b.lo.cwiseMin(*p);
-    b.hi = b.hi.cwiseMax(*p);
-  }
-  b.lo.array() -= margin;
-  b.hi.array() += margin;
-  return b;
-}
-
 bool admissible_node_face(const BroadphaseInput& in, Index node, Index face) {
   if (in.node_body[node] != in.face_body[face]) return true;
   if (!in.self_pairs) return false;

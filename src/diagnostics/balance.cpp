@@ -6,13 +6,14 @@ namespace tc {
 
 namespace {
 
-// impulse[i] acts on node first + i.
+// impulse[i] acts on node first + i. A zero impulse adds only zeros: skipped (the same sums).
 void account(const std::vector<Vec3>& impulse, const State& st, double f,
              const ImpulseLedger* previous, ImpulseLedger& out, std::size_t first = 0) {
   double work_behind = 0.0;
   Vec3 impulse_behind = Vec3::Zero();
   for (std::size_t i = 0; i < impulse.size(); ++i) {
     const Vec3& j = impulse[i];
+    if (j.x() == 0.0 && j.y() == 0.0 && j.z() == 0.0) continue;
     const double ju = j.dot(st.v[first + i]);
     work_behind += f * ju;
     out.work_ahead += 0.5 * j.dot(st.v_star[first + i]) + (0.5 - f) * ju;
@@ -33,12 +34,21 @@ TetSums tet_sums(const State& st, const std::vector<Index>* tets) {
   std::vector<TetSums> blocks(parallel::block_count(n));
   parallel::for_blocks(n, [&](std::size_t b, std::size_t begin, std::size_t end) {
     TetSums& s = blocks[b];
-    for (std::size_t i = begin; i < end; ++i) {
-      const std::size_t t = tets ? static_cast<std::size_t>((*tets)[i]) : i;
-      s.internal.add(st.e_int[t]);
-      s.plastic_work.add(st.w_plastic[t]);
-      s.viscous_work.add(st.w_viscous[t]);
+    const std::size_t m = end - begin;
+    if (!tets) {
+      s.internal.add_all(&st.e_int[begin], m);
+      s.plastic_work.add_all(&st.w_plastic[begin], m);
+      s.viscous_work.add_all(&st.w_viscous[begin], m);
+      return;
     }
+    std::vector<double> field(m);
+    const auto add = [&](const std::vector<double>& of, ExactSum& sum) {
+      for (std::size_t i = 0; i < m; ++i) field[i] = of[(*tets)[begin + i]];
+      sum.add_all(field.data(), m);
+    };
+    add(st.e_int, s.internal);
+    add(st.w_plastic, s.plastic_work);
+    add(st.w_viscous, s.viscous_work);
   });
   TetSums sums;
   for (const TetSums& b : blocks) {

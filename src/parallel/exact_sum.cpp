@@ -1,7 +1,9 @@
 #include "tetcontact/parallel/exact_sum.hpp"
 
+#include <algorithm>
 #include <bit>
 #include <cmath>
+#include <cstring>
 
 namespace tc {
 
@@ -12,7 +14,143 @@ __extension__ using U128 = unsigned __int128;
 
 constexpr std::int64_t k_base = std::int64_t{1} << 32;
 
+// add_all's chunk: each lane's sums hold at most k_chunk / 2 values.
+constexpr std::size_t k_chunk = 1024;
+
+// W doubles, elementwise (GCC's vector extension; W the copy's register: 2 SSE2, 4 AVX2,
+// 8 AVX-512), and a mask of as many lanes.
+template <int W>
+struct Lanes8 {
+  using V __attribute__((vector_size(8 * W))) = double;
+  using M __attribute__((vector_size(8 * W))) = std::int64_t;
+};
+
+// v = x[0 .. min(n, W)), zeros after (by reference: a vector return would change the ABI).
+template <int W, class V>
+[[gnu::always_inline]] inline void load(V& v, const double* x, std::size_t n) {
+  v = V{};
+  if (n >= W)
+    std::memcpy(&v, x, sizeof(V));  // a plain load
+  else
+    std::memcpy(&v, x, n * sizeof(double));
+}
+
+// The chunk's largest magnitude and Σ (x − x): 0 when every x is finite, NaN otherwise.
+struct Scan {
+  double big = 0.0, nan = 0.0;
+};
+template <int W>
+[[gnu::always_inline]] inline Scan scan_body(const double* x, std::size_t n) {
+  using V = typename Lanes8<W>::V;
+  V big{}, nan{};
+  for (std::size_t i = 0; i < n; i += W) {
+    V p;
+    load<W>(p, x + i, n - i);
+    const V a = p < 0.0 ? -p : p;
+    big = a > big ? a : big;
+    nan += p - p;
+  }
+  Scan s;
+  for (int l = 0; l < W; ++l) s.big = std::max(s.big, big[l]), s.nan += nan[l];
+  return s;
+}
+
+// x[0 .. n), n ≤ k_chunk, finite, with max |x| ≤ 2^e and −890 ≤ e ≤ 1000, split without error
+// into three parts (Rump, Ogita and Oishi, "Accurate floating-point summation part I", SIAM J.
+// Sci. Comput. 31 (2008), Lemma 3.2): for σ = 2^k and |p| ≤ σ,
+//   q = fl(fl(σ + p) − σ),  p' = fl(p − q)  give  p = q + p',  q ∈ 2^-53 σ Z,  |p'| ≤ 2^-53 σ.
+// With σ1 = 2^11 2^e ≥ 2^11 max |x| (2^11 > k_chunk / 2 + 2), each lane's sum of the q's is
+// exact (every partial sum a multiple of 2^-53 σ1 below σ1 in magnitude); the p' go on to
+// σ2 = 2^-42 σ1 ≥ 2^11 max |p'|, and their remainders to σ3 = 2^-42 σ2. The lanes' sums of the
+// three parts go into `parts` (3 W values); what the parts leave (nonzero only for a value
+// below 2^-52 max |x|) into left[0 .. n), returning whether any is nonzero.
+template <int W>
+[[gnu::always_inline]] inline bool split_body(const double* x, std::size_t n, int e, double* parts,
+                                              double* left) {
+  using V = typename Lanes8<W>::V;
+  const double s1 = std::ldexp(1.0, e + 11), s2 = std::ldexp(s1, -42), s3 = std::ldexp(s2, -42);
+  V a1{}, a2{}, a3{};
+  typename Lanes8<W>::M any{};
+  for (std::size_t i = 0; i < n; i += W) {
+    V p;
+    load<W>(p, x + i, n - i);
+    const V q1 = (s1 + p) - s1, r1 = p - q1;
+    const V q2 = (s2 + r1) - s2, r2 = r1 - q2;
+    const V q3 = (s3 + r2) - s3, r3 = r2 - q3;
+    a1 += q1;
+    a2 += q2;
+    a3 += q3;
+    any |= r3 != 0.0;
+    if (n - i >= W)
+      std::memcpy(left + i, &r3, sizeof(V));  // a plain store
+    else
+      std::memcpy(left + i, &r3, (n - i) * sizeof(double));
+  }
+  std::memcpy(parts, &a1, sizeof(V));
+  std::memcpy(parts + W, &a2, sizeof(V));
+  std::memcpy(parts + 2 * W, &a3, sizeof(V));
+  bool left_any = false;
+  for (int l = 0; l < W; ++l) left_any |= any[l] != 0;
+  return left_any;
+}
+
+struct Copy {
+  Scan (*scan)(const double*, std::size_t);
+  bool (*split)(const double*, std::size_t, int, double*, double*);
+  int width;
+};
+Scan scan_sse2(const double* x, std::size_t n) {
+  return scan_body<2>(x, n);
+}
+TC_TARGET_AVX2 Scan scan_avx2(const double* x, std::size_t n) {
+  return scan_body<4>(x, n);
+}
+TC_TARGET_AVX512 Scan scan_avx512(const double* x, std::size_t n) {
+  return scan_body<8>(x, n);
+}
+bool split_sse2(const double* x, std::size_t n, int e, double* parts, double* left) {
+  return split_body<2>(x, n, e, parts, left);
+}
+TC_TARGET_AVX2 bool split_avx2(const double* x, std::size_t n, int e, double* parts, double* left) {
+  return split_body<4>(x, n, e, parts, left);
+}
+TC_TARGET_AVX512 bool split_avx512(const double* x, std::size_t n, int e, double* parts,
+                                   double* left) {
+  return split_body<8>(x, n, e, parts, left);
+}
+
 }  // namespace
+
+void ExactSum::add_all(const double* x, std::size_t n) {
+  add_all(x, n, widest_lanes());
+}
+
+void ExactSum::add_all(const double* x, std::size_t n, Lanes lanes) {
+  if (lanes == Lanes::scalar) {
+    for (std::size_t i = 0; i < n; ++i) add(x[i]);
+    return;
+  }
+  const Copy copy = copy_for(lanes, Copy{scan_sse2, split_sse2, 2}, Copy{scan_sse2, split_sse2, 2},
+                             Copy{scan_avx2, split_avx2, 4}, Copy{scan_avx512, split_avx512, 8});
+  for (std::size_t begin = 0; begin < n; begin += k_chunk) {
+    const std::size_t m = std::min(k_chunk, n - begin);
+    const double* c = x + begin;
+    const Scan sc = copy.scan(c, m);
+    if (sc.big == 0.0 && sc.nan == 0.0) continue;  // zeros only
+    int e = 0;
+    std::frexp(sc.big, &e);                       // max |x| < 2^e
+    if (sc.nan != 0.0 || e < -890 || e > 1000) {  // a non-finite value, or beyond the parts
+      for (std::size_t j = 0; j < m; ++j) add(c[j]);
+      continue;
+    }
+    double parts[24], left[k_chunk];
+    const bool any_left = copy.split(c, m, e, parts, left);
+    for (int k = 0; k < 3 * copy.width; ++k) add(parts[k]);
+    if (any_left)
+      for (std::size_t j = 0; j < m; ++j)
+        if (left[j] != 0.0) add(left[j]);
+  }
+}
 
 // Every limb but the top into [0, 2^32), the carries upward (floor division: negative limbs
 // borrow); the top limb keeps the sign.

@@ -125,3 +125,80 @@ TEST(ExactSum, SameBitsForAnyOrderAndAnySplitIntoMergedPartials) {
   for (const double x : xs) reordered += x;
   EXPECT_NE(std::bit_cast<std::uint64_t>(naive), std::bit_cast<std::uint64_t>(reordered));
 }
+
+// add_all splits each chunk's values into three parts summed in doubles without error; what the
+// parts leave goes one by one. Its sum must be the one-by-one sum exactly: the two cancel to 0,
+// in every copy of its lanes the processor runs.
+TEST(ExactSum, AddAllIsTheOneByOneSumExactly) {
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  const auto energies = [&](std::size_t n) {  // a run's cells: some decades, some zeros
+    std::vector<double> xs(n);
+    for (double& x : xs) x = unit(rng) < 0.1 ? 0.0 : std::ldexp(unit(rng), -(int)(unit(rng) * 40));
+    return xs;
+  };
+  const auto wide = [&](std::size_t n) {
+    std::vector<double> xs(n);
+    for (double& x : xs) x = term(rng);
+    return xs;
+  };
+  const auto near_one = [&](std::size_t n) {  // cancellation, the maximum a power of two
+    std::vector<double> xs(n);
+    for (std::size_t i = 0; i < n; ++i)
+      xs[i] = (i % 2 ? -1.0 : 1.0) * (i % 5 == 0 ? 1.0 : 1.0 - std::ldexp(unit(rng), -30));
+    return xs;
+  };
+  const auto scaled = [&](std::vector<double> xs, double f) {
+    for (double& x : xs) x *= f;
+    return xs;
+  };
+  std::vector<std::vector<double>> sets;
+  for (const std::size_t n : {1u, 7u, 8u, 9u, 1023u, 1024u, 1025u, 5000u}) {
+    sets.push_back(energies(n));
+    sets.push_back(wide(n));
+    sets.push_back(near_one(n));
+    sets.push_back(scaled(energies(n), 0x1p-880));   // the parts near underflow
+    sets.push_back(scaled(energies(n), 0x1p-1000));  // too small for the parts: one by one
+    sets.push_back(scaled(energies(n), 0x1p+1000));  // too large for them
+  }
+  std::size_t split_exercised = 0;
+  const tc::Lanes widest = tc::widest_lanes();
+  EXPECT_NE(widest, tc::Lanes::scalar);
+  for (std::size_t k = 0; k < sets.size(); ++k) {
+    const std::vector<double>& xs = sets[k];
+    mpq_class sum = 0;
+    ExactSum one;
+    for (const double x : xs) one.add(x), sum += exact(x);
+    for (const tc::Lanes lanes :
+         {tc::Lanes::scalar, tc::Lanes::sse2, tc::Lanes::avx2, tc::Lanes::avx512}) {
+      if (lanes > widest) continue;
+      ExactSum all, diff;
+      all.add_all(xs.data(), xs.size(), lanes);
+      diff.add_all(xs.data(), xs.size(), lanes);
+      for (const double x : xs) diff.add(-x);
+      EXPECT_EQ(std::bit_cast<std::uint64_t>(diff.value()), 0u)
+          << "set " << k << ", lanes " << static_cast<int>(lanes);
+      EXPECT_EQ(std::bit_cast<std::uint64_t>(all.value()),
+                std::bit_cast<std::uint64_t>(one.value()))
+          << "set " << k << ", lanes " << static_cast<int>(lanes);
+    }
+    ExactSum all;
+    all.add_all(xs.data(), xs.size());
+    EXPECT_TRUE(rounds_correctly(sum, all.value())) << "set " << k;
+    // Naive summation differs from the exact sum on most of these: the check can fail.
+    double naive = 0.0;
+    for (const double x : xs) naive += x;
+    split_exercised += naive != all.value();
+  }
+  EXPECT_GT(split_exercised, sets.size() / 4);
+  // Non-finite values: their IEEE sum, as add gives.
+  std::vector<double> xs = energies(100);
+  xs[40] = INFINITY;
+  ExactSum inf;
+  inf.add_all(xs.data(), xs.size());
+  EXPECT_EQ(inf.value(), INFINITY);
+  xs[60] = std::numeric_limits<double>::quiet_NaN();
+  ExactSum nan;
+  nan.add_all(xs.data(), xs.size());
+  EXPECT_TRUE(std::isnan(nan.value()));
+}

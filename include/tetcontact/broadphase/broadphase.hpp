@@ -8,6 +8,7 @@
 #pragma once
 
 #include <array>
+#include <initializer_list>
 #include <memory>
 #include <string>
 #include <utility>
@@ -28,8 +29,20 @@ inline bool boxes_overlap(const Box& a, const Box& b) {
          b.lo.y() <= a.hi.y() && a.lo.z() <= b.hi.z() && b.lo.z() <= a.hi.z();
 }
 
-/// The box of points p (at both ends of the step), inflated by `margin`.
-Box swept_box(std::initializer_list<const Vec3*> points, double margin);
+/// The box of points p (at both ends of the step), inflated by `margin`. Inline: the stages box
+/// every surface primitive every step.
+inline Box swept_box(std::initializer_list<const Vec3*> points, double margin) {
+  Box b;
+  b.lo = **points.begin();
+  b.hi = b.lo;
+  for (const Vec3* p : points) {
+    b.lo = b.lo.cwiseMin(*p);
+    b.hi = b.hi.cwiseMax(*p);
+  }
+  b.lo.array() -= margin;
+  b.hi.array() += margin;
+  return b;
+}
 
 struct BroadphaseInput {
   // Vertices (node primitives), faces and edges, each with a box and an owning body.

@@ -10,7 +10,10 @@
 
 #include <array>
 #include <bit>
+#include <cstddef>
 #include <cstdint>
+
+#include "tetcontact/parallel/lanes.hpp"
 
 namespace tc {
 
@@ -22,6 +25,11 @@ class ExactSum {
   static constexpr int k_low = -1088;
 
   inline void add(double x);
+  /// Adds x[0 .. n): the same sum as n calls of add, faster on values within some fifteen
+  /// decades of each other (their parts summed in SIMD lanes without error: exact_sum.cpp), in
+  /// the widest lanes the processor runs or in `lanes` (scalar: add, one value at a time).
+  void add_all(const double* x, std::size_t n);
+  void add_all(const double* x, std::size_t n, Lanes lanes);
   /// Adds another sum's value exactly.
   void merge(const ExactSum& other);
   /// The sum rounded to the nearest double (ties to even); NaN or ±inf when a non-finite value

@@ -1,10 +1,11 @@
 // SIMD lanes: the instruction sets a stage's lane copies are compiled for.
 //
-// A stage that runs in lanes (the element kernel's cells, the SPH faces' Gauss points) writes its
-// body once, as plain loops over arrays, and inlines it into one function per instruction set
-// (GCC's `target` attribute: one binary for every x86-64, no -march flag). Each copy gives the
-// scalar path's doubles (its file is compiled with -ffp-contract=off); the widest the processor
-// runs is chosen when the program starts, and a test runs every copy against the scalar path.
+// A stage that runs in lanes (the element kernel's cells, the SPH faces' Gauss points, the exact
+// sums' parts) writes its body once, as plain loops over arrays, and inlines it into one function
+// per instruction set (GCC's `target` attribute: one binary for every x86-64, no -march flag).
+// Each copy gives the scalar path's doubles (the kernel's and the faces' files are compiled with
+// -ffp-contract=off; the exact sums are exact in any copy); the widest the processor runs is
+// chosen when the program starts, and a test runs every copy against the scalar path.
 #pragma once
 
 // The targets of the AVX2 and AVX-512 copies (plain functions where GCC's x86 targets do not
