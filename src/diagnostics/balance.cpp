@@ -6,24 +6,57 @@ namespace tc {
 
 namespace {
 
-// impulse[i] acts on node first + i. A zero impulse adds only zeros: skipped (the same sums).
+// The ledger's sums over impulses: the share of their work and momentum due at t^n (behind)
+// and at t^{n+1} (ahead).
+struct ImpulseSums {
+  double work_behind = 0.0, work_ahead = 0.0;
+  Vec3 impulse_behind = Vec3::Zero(), impulse_ahead = Vec3::Zero();
+  ImpulseSums& operator+=(const ImpulseSums& o) {
+    work_behind += o.work_behind;
+    work_ahead += o.work_ahead;
+    impulse_behind += o.impulse_behind;
+    impulse_ahead += o.impulse_ahead;
+    return *this;
+  }
+};
+
+// impulse[i] acts on node first + i; summed on the threads in fixed blocks, added in block
+// order (the same bits for any thread count). A zero impulse adds only zeros: skipped.
 void account(const std::vector<Vec3>& impulse, const State& st, double f,
              const ImpulseLedger* previous, ImpulseLedger& out, std::size_t first = 0) {
-  double work_behind = 0.0;
-  Vec3 impulse_behind = Vec3::Zero();
-  for (std::size_t i = 0; i < impulse.size(); ++i) {
-    const Vec3& j = impulse[i];
-    if (j.x() == 0.0 && j.y() == 0.0 && j.z() == 0.0) continue;
-    const double ju = j.dot(st.v[first + i]);
-    work_behind += f * ju;
-    out.work_ahead += 0.5 * j.dot(st.v_star[first + i]) + (0.5 - f) * ju;
-    impulse_behind += f * j;
-    out.impulse_ahead += (1.0 - f) * j;
-  }
-  out.work = work_behind + (previous ? previous->work + previous->work_ahead : 0.0);
-  out.impulse = impulse_behind +
+  const ImpulseSums sums =
+      parallel::sum_blocks<ImpulseSums>(impulse.size(), [&](std::size_t begin, std::size_t end) {
+        ImpulseSums b;
+        for (std::size_t i = begin; i < end; ++i) {
+          const Vec3& j = impulse[i];
+          if (j.x() == 0.0 && j.y() == 0.0 && j.z() == 0.0) continue;
+          const double ju = j.dot(st.v[first + i]);
+          b.work_behind += f * ju;
+          b.work_ahead += 0.5 * j.dot(st.v_star[first + i]) + (0.5 - f) * ju;
+          b.impulse_behind += f * j;
+          b.impulse_ahead += (1.0 - f) * j;
+        }
+        return b;
+      });
+  out.work_ahead = sums.work_ahead;
+  out.impulse_ahead = sums.impulse_ahead;
+  out.work = sums.work_behind + (previous ? previous->work + previous->work_ahead : 0.0);
+  out.impulse = sums.impulse_behind +
                 (previous ? Vec3(previous->impulse + previous->impulse_ahead) : Vec3::Zero());
 }
+
+// The sums over nodes at t^n.
+struct NodeSums {
+  double kinetic = 0.0, mass = 0.0, momentum_scale = 0.0;
+  Vec3 momentum = Vec3::Zero();
+  NodeSums& operator+=(const NodeSums& o) {
+    kinetic += o.kinetic;
+    mass += o.mass;
+    momentum_scale += o.momentum_scale;
+    momentum += o.momentum;
+    return *this;
+  }
+};
 
 }  // namespace
 
@@ -65,14 +98,24 @@ Sample sample_balance(const State& st, const Sample* previous, const TetSums* su
   s.t = st.t;
   s.dt = st.dt;
   const double f = kick_fraction(st);
-  for (std::size_t i = 0; i < st.x.size(); ++i) {
-    // ½ m U·(U + 2f (U* − U)) = ½ m U^n·(U^n + τ^{n-1/2} a^n)
-    s.kinetic += 0.5 * st.m[i] * st.v[i].dot(st.v[i] + 2.0 * f * (st.v_star[i] - st.v[i]));
-    s.mass += st.m[i];
-    const Vec3 p = st.m[i] * centred_velocity(st, static_cast<Index>(i));
-    s.momentum += p;
-    s.momentum_scale += p.norm();
-  }
+  // On the threads in fixed blocks, added in block order.
+  const NodeSums nodes =
+      parallel::sum_blocks<NodeSums>(st.x.size(), [&](std::size_t begin, std::size_t end) {
+        NodeSums b;
+        for (std::size_t i = begin; i < end; ++i) {
+          // ½ m U·(U + 2f (U* − U)) = ½ m U^n·(U^n + τ^{n-1/2} a^n)
+          b.kinetic += 0.5 * st.m[i] * st.v[i].dot(st.v[i] + 2.0 * f * (st.v_star[i] - st.v[i]));
+          b.mass += st.m[i];
+          const Vec3 p = st.m[i] * centred_velocity(st, static_cast<Index>(i));
+          b.momentum += p;
+          b.momentum_scale += p.norm();
+        }
+        return b;
+      });
+  s.kinetic = nodes.kinetic;
+  s.mass = nodes.mass;
+  s.momentum = nodes.momentum;
+  s.momentum_scale = nodes.momentum_scale;
   // The tets' energies summed exactly, then rounded once (the same for any order of the tets).
   const TetSums own = sums ? TetSums{} : tet_sums(st);
   const TetSums& tets = sums ? *sums : own;
