@@ -21,7 +21,8 @@ struct ImpulseSums {
 };
 
 // impulse[i] acts on node first + i; summed on the threads in fixed blocks, added in block
-// order (the same bits for any thread count). A zero impulse adds only zeros: skipped.
+// order (the same bits for any thread count). A zero impulse adds only zeros while the
+// velocities are finite (a non-finite one stops the run at sample_stage's check): skipped.
 void account(const std::vector<Vec3>& impulse, const State& st, double f,
              const ImpulseLedger* previous, ImpulseLedger& out, std::size_t first = 0) {
   const ImpulseSums sums =

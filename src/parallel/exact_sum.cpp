@@ -62,8 +62,9 @@ template <int W>
 // With σ1 = 2^11 2^e ≥ 2^11 max |x| (2^11 > k_chunk / 2 + 2), each lane's sum of the q's is
 // exact (every partial sum a multiple of 2^-53 σ1 below σ1 in magnitude); the p' go on to
 // σ2 = 2^-42 σ1 ≥ 2^11 max |p'|, and their remainders to σ3 = 2^-42 σ2. The lanes' sums of the
-// three parts go into `parts` (3 W values); what the parts leave (nonzero only for a value
-// below 2^-52 max |x|) into left[0 .. n), returning whether any is nonzero.
+// three parts go into `parts` (3 W values); what the parts leave into left[0 .. n), returning
+// whether any is nonzero: the parts hold every bit down to 2^-53 σ3 = 2^(e − 126), so only a
+// value below 2^(e − 73) (some 2^-72 max |x|) can leave any.
 template <int W>
 [[gnu::always_inline]] inline bool split_body(const double* x, std::size_t n, int e, double* parts,
                                               double* left) {
@@ -121,14 +122,15 @@ TC_TARGET_AVX512 bool split_avx512(const double* x, std::size_t n, int e, double
 
 }  // namespace
 
-void ExactSum::add_all(const double* x, std::size_t n) {
-  add_all(x, n, widest_lanes());
+ExactSum::Chunks ExactSum::add_all(const double* x, std::size_t n) {
+  return add_all(x, n, widest_lanes());
 }
 
-void ExactSum::add_all(const double* x, std::size_t n, Lanes lanes) {
-  if (lanes == Lanes::scalar) {
+ExactSum::Chunks ExactSum::add_all(const double* x, std::size_t n, Lanes lanes) {
+  Chunks chunks;
+  if (runnable_lanes(lanes, "the exact sums") == Lanes::scalar) {
     for (std::size_t i = 0; i < n; ++i) add(x[i]);
-    return;
+    return chunks;
   }
   const Copy copy = copy_for(lanes, Copy{scan_sse2, split_sse2, 2}, Copy{scan_sse2, split_sse2, 2},
                              Copy{scan_avx2, split_avx2, 4}, Copy{scan_avx512, split_avx512, 8});
@@ -145,11 +147,15 @@ void ExactSum::add_all(const double* x, std::size_t n, Lanes lanes) {
     }
     double parts[24], left[k_chunk];
     const bool any_left = copy.split(c, m, e, parts, left);
+    ++chunks.split;
     for (int k = 0; k < 3 * copy.width; ++k) add(parts[k]);
-    if (any_left)
+    if (any_left) {
+      ++chunks.leftover;
       for (std::size_t j = 0; j < m; ++j)
         if (left[j] != 0.0) add(left[j]);
+    }
   }
+  return chunks;
 }
 
 // Every limb but the top into [0, 2^32), the carries upward (floor division: negative limbs

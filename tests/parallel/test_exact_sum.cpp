@@ -9,6 +9,8 @@
 #include <cmath>
 #include <limits>
 #include <random>
+#include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "tetcontact/parallel/exact_sum.hpp"
@@ -152,53 +154,99 @@ TEST(ExactSum, AddAllIsTheOneByOneSumExactly) {
     for (double& x : xs) x *= f;
     return xs;
   };
-  std::vector<std::vector<double>> sets;
+  const auto topped = [](std::vector<double> xs) {  // each chunk's largest 0.75
+    for (std::size_t i = 0; i < xs.size(); i += 1024) xs[i] = 0.75;
+    return xs;
+  };
+  // Each set with the path its chunks must take: by their parts, with values left below them,
+  // or one by one.
+  enum class Path { parts, leftover, one_by_one };
+  struct Set {
+    std::vector<double> xs;
+    Path path;
+  };
+  std::vector<Set> sets;
   for (const std::size_t n : {1u, 7u, 8u, 9u, 1023u, 1024u, 1025u, 5000u}) {
-    sets.push_back(energies(n));
-    sets.push_back(wide(n));
-    sets.push_back(near_one(n));
-    sets.push_back(scaled(energies(n), 0x1p-880));   // the parts near underflow
-    sets.push_back(scaled(energies(n), 0x1p-1000));  // too small for the parts: one by one
-    sets.push_back(scaled(energies(n), 0x1p+1000));  // too large for them
+    sets.push_back({energies(n), Path::parts});
+    sets.push_back({near_one(n), Path::parts});
+    sets.push_back({scaled(energies(n), 0x1p-880), Path::parts});        // the parts near underflow
+    sets.push_back({scaled(energies(n), 0x1p-1000), Path::one_by_one});  // below the parts
+    sets.push_back({scaled(topped(energies(n)), 0x1p+1005), Path::one_by_one});  // above them
+    if (n >= 1023) sets.push_back({wide(n), Path::leftover});  // 2^1000 beside subnormals
+    if (n >= 8) {
+      std::vector<double> low = scaled(energies(n), 0x1p-880);  // subnormals and −0 among them
+      low[n / 2] = -0.0;
+      low[n / 3] = std::numeric_limits<double>::denorm_min() * 3.0;
+      low[n / 4] = -0x1p-1030;
+      sets.push_back({low, Path::leftover});
+    }
   }
-  std::size_t split_exercised = 0;
+  std::size_t naive_differs = 0;
   const tc::Lanes widest = tc::widest_lanes();
   EXPECT_NE(widest, tc::Lanes::scalar);
+  const auto lanes_run = [&] {
+    std::vector<tc::Lanes> run;
+    for (const tc::Lanes l : {tc::Lanes::sse2, tc::Lanes::avx2, tc::Lanes::avx512})
+      if (l <= widest) run.push_back(l);
+    return run;
+  }();
   for (std::size_t k = 0; k < sets.size(); ++k) {
-    const std::vector<double>& xs = sets[k];
+    const std::vector<double>& xs = sets[k].xs;
     mpq_class sum = 0;
     ExactSum one;
     for (const double x : xs) one.add(x), sum += exact(x);
-    for (const tc::Lanes lanes :
-         {tc::Lanes::scalar, tc::Lanes::sse2, tc::Lanes::avx2, tc::Lanes::avx512}) {
-      if (lanes > widest) continue;
+    for (const tc::Lanes lanes : lanes_run) {
       ExactSum all, diff;
-      all.add_all(xs.data(), xs.size(), lanes);
+      const ExactSum::Chunks chunks = all.add_all(xs.data(), xs.size(), lanes);
       diff.add_all(xs.data(), xs.size(), lanes);
       for (const double x : xs) diff.add(-x);
-      EXPECT_EQ(std::bit_cast<std::uint64_t>(diff.value()), 0u)
-          << "set " << k << ", lanes " << static_cast<int>(lanes);
+      const std::string at =
+          "set " + std::to_string(k) + ", lanes " + std::to_string(static_cast<int>(lanes));
+      EXPECT_EQ(std::bit_cast<std::uint64_t>(diff.value()), 0u) << at;
       EXPECT_EQ(std::bit_cast<std::uint64_t>(all.value()),
                 std::bit_cast<std::uint64_t>(one.value()))
-          << "set " << k << ", lanes " << static_cast<int>(lanes);
+          << at;
+      // The path the set was made for was taken.
+      const std::size_t count = (xs.size() + 1023) / 1024;
+      switch (sets[k].path) {
+        case Path::parts:  // every chunk but one of zeros only
+          EXPECT_GE(chunks.split + 1, count) << at;
+          EXPECT_GT(chunks.split, 0u) << at;
+          EXPECT_EQ(chunks.leftover, 0u) << at;
+          break;
+        case Path::leftover:
+          EXPECT_GT(chunks.leftover, 0u) << at;
+          break;
+        case Path::one_by_one:
+          EXPECT_EQ(chunks.split, 0u) << at;
+          break;
+      }
     }
     ExactSum all;
     all.add_all(xs.data(), xs.size());
     EXPECT_TRUE(rounds_correctly(sum, all.value())) << "set " << k;
-    // Naive summation differs from the exact sum on most of these: the check can fail.
+    // Naive summation differs from the exact sum on many of these: the check can fail.
     double naive = 0.0;
     for (const double x : xs) naive += x;
-    split_exercised += naive != all.value();
+    naive_differs += naive != all.value();
   }
-  EXPECT_GT(split_exercised, sets.size() / 4);
-  // Non-finite values: their IEEE sum, as add gives.
-  std::vector<double> xs = energies(100);
-  xs[40] = INFINITY;
-  ExactSum inf;
-  inf.add_all(xs.data(), xs.size());
-  EXPECT_EQ(inf.value(), INFINITY);
-  xs[60] = std::numeric_limits<double>::quiet_NaN();
-  ExactSum nan;
-  nan.add_all(xs.data(), xs.size());
-  EXPECT_TRUE(std::isnan(nan.value()));
+  EXPECT_GT(naive_differs, sets.size() / 4);
+  // Lanes wider than the processor runs are refused.
+  if (widest != tc::Lanes::avx512) {
+    ExactSum wider;
+    EXPECT_THROW(wider.add_all(sets[0].xs.data(), sets[0].xs.size(), tc::Lanes::avx512),
+                 std::invalid_argument);
+  }
+  // Non-finite values: their IEEE sum, as add gives, in every copy.
+  for (const tc::Lanes lanes : lanes_run) {
+    std::vector<double> xs = energies(100);
+    xs[40] = INFINITY;
+    ExactSum inf;
+    inf.add_all(xs.data(), xs.size(), lanes);
+    EXPECT_EQ(inf.value(), INFINITY);
+    xs[60] = std::numeric_limits<double>::quiet_NaN();
+    ExactSum nan;
+    nan.add_all(xs.data(), xs.size(), lanes);
+    EXPECT_TRUE(std::isnan(nan.value()));
+  }
 }

@@ -25,11 +25,16 @@ class ExactSum {
   static constexpr int k_low = -1088;
 
   inline void add(double x);
-  /// Adds x[0 .. n): the same sum as n calls of add, faster on values within some fifteen
-  /// decades of each other (their parts summed in SIMD lanes without error: exact_sum.cpp), in
-  /// the widest lanes the processor runs or in `lanes` (scalar: add, one value at a time).
-  void add_all(const double* x, std::size_t n);
-  void add_all(const double* x, std::size_t n, Lanes lanes);
+  /// Adds x[0 .. n): the same sum as n calls of add, faster where each chunk of 1,024 values
+  /// lies within some twenty decades of its largest (their parts summed in SIMD lanes without
+  /// error: exact_sum.cpp), in the widest lanes the processor runs or in `lanes` (scalar: add,
+  /// one value at a time; wider than the processor runs: std::invalid_argument).
+  struct Chunks {
+    std::size_t split = 0;     // chunks summed by their parts
+    std::size_t leftover = 0;  // of them, those with values below the parts, added one by one
+  };
+  Chunks add_all(const double* x, std::size_t n);
+  Chunks add_all(const double* x, std::size_t n, Lanes lanes);
   /// Adds another sum's value exactly.
   void merge(const ExactSum& other);
   /// The sum rounded to the nearest double (ties to even); NaN or ±inf when a non-finite value
