@@ -20,7 +20,7 @@ constexpr std::size_t k_chunk = 1024;
 // W doubles, elementwise (GCC's vector extension; W the copy's register: 2 SSE2, 4 AVX2,
 // 8 AVX-512), and a mask of as many lanes.
 template <int W>
-struct Lanes8 {
+struct VectorOf {
   using V __attribute__((vector_size(8 * W))) = double;
   using M __attribute__((vector_size(8 * W))) = std::int64_t;
 };
@@ -41,7 +41,7 @@ struct Scan {
 };
 template <int W>
 [[gnu::always_inline]] inline Scan scan_body(const double* x, std::size_t n) {
-  using V = typename Lanes8<W>::V;
+  using V = typename VectorOf<W>::V;
   V big{}, nan{};
   for (std::size_t i = 0; i < n; i += W) {
     V p;
@@ -68,10 +68,10 @@ template <int W>
 template <int W>
 [[gnu::always_inline]] inline bool split_body(const double* x, std::size_t n, int e, double* parts,
                                               double* left) {
-  using V = typename Lanes8<W>::V;
+  using V = typename VectorOf<W>::V;
   const double s1 = std::ldexp(1.0, e + 11), s2 = std::ldexp(s1, -42), s3 = std::ldexp(s2, -42);
   V a1{}, a2{}, a3{};
-  typename Lanes8<W>::M any{};
+  typename VectorOf<W>::M any{};
   for (std::size_t i = 0; i < n; i += W) {
     V p;
     load<W>(p, x + i, n - i);
