@@ -125,6 +125,47 @@ TEST(Element, ForcesOfUniformPressureBalanceTractions) {
   EXPECT_NEAR(r.dt_stable / (h_min / mat.wave_speed()), 1.0, 1e-12);
 }
 
+// The nodal forces are each cell's corner forces f_i = σ a_i / 3 (f_0 = −(f_1 + f_2 + f_3))
+// added cell by cell in ascending order, cells turned into particles left out: an irregular
+// box with a different stress in every cell, against that scatter done here.
+TEST(Element, NodalForcesAreTheCellsCornerForcesAddedInCellOrder) {
+  Model model = test::single_body_model(distorted_box(), test::aluminium());
+  State st = initial_state(model);
+  const std::size_t cells = model.mesh.tets.size();
+  for (std::size_t t = 0; t < cells; ++t) {
+    const double u = static_cast<double>(t);
+    st.s[t] = Sym6{1e6 * std::sin(u),     2e6 * std::cos(u),     -3e6 * std::sin(2 * u),
+                   4e5 * std::cos(3 * u), 5e5 * std::sin(5 * u), -6e5 * std::cos(7 * u)};
+    st.p[t] = 1e7 * std::cos(11 * u);
+    st.q[t] = 1e5 * (t % 3);
+  }
+  // A step with every cell, then some cells turned into particles: their corner forces from
+  // that step must not reach the nodes.
+  ElementScratch scratch;
+  compute_forces(model.mesh.tets, model.element, st, scratch);
+  for (std::size_t t = 5; t < cells; t += 17) st.damage[t] = Damage::particle;
+  compute_forces(model.mesh.tets, model.element, st, scratch);
+  std::vector<Vec3> scatter(st.x.size(), Vec3::Zero());
+  double largest = 0.0;
+  for (std::size_t t = 0; t < cells; ++t) {
+    if (st.damage[t] == Damage::particle) continue;
+    const Tet& k = model.mesh.tets[t];
+    const std::array<Vec3, 4> a = face_area_vectors(st.x[k[0]], st.x[k[1]], st.x[k[2]], st.x[k[3]]);
+    const Mat3 sigma = to_mat3(st.s[t]) - (st.p[t] + st.q[t]) * Mat3::Identity();
+    Vec3 f0 = Vec3::Zero();
+    for (int i = 1; i < 4; ++i) {
+      const Vec3 fi = sigma * a[i] / 3.0;
+      scatter[k[i]] += fi;
+      f0 -= fi;
+      largest = std::max(largest, fi.norm());
+    }
+    scatter[k[0]] += f0;
+  }
+  ASSERT_GT(largest, 0.0);
+  for (std::size_t n = 0; n < st.x.size(); ++n)
+    EXPECT_LE((st.f[n] - scatter[n]).norm(), 1e-12 * largest) << "node " << n;
+}
+
 // Jaumann rate under rigid rotation: a stressed cube spun through a full turn in 1,000 exact
 // rotation steps keeps its principal stresses to 1e-10 relative, and its stress is the
 // initial one rotated (σ = R σ0 Rᵀ). The mid-step velocity gradient of an exact rotation is
