@@ -4,6 +4,8 @@
 #include <array>
 #include <cmath>
 
+#include "tetcontact/narrowphase/bounded_poly.hpp"
+
 namespace tc {
 namespace {
 
@@ -25,14 +27,6 @@ double up(double x) {
 }
 Iv operator+(Iv a, Iv b) {
   return {down(a.lo + b.lo), up(a.hi + b.hi)};
-}
-Iv operator-(Iv a, Iv b) {
-  return {down(a.lo - b.hi), up(a.hi - b.lo)};
-}
-Iv operator*(Iv a, Iv b) {
-  const double p = a.lo * b.lo, q = a.lo * b.hi, r = a.hi * b.lo, s = a.hi * b.hi;
-  return {down(std::min(std::min(p, q), std::min(r, s))),
-          up(std::max(std::max(p, q), std::max(r, s)))};
 }
 // The double t times an interval (two products instead of four).
 Iv scaled(double t, Iv a) {
@@ -61,30 +55,6 @@ struct IPoly {
   std::array<Iv, 5> c{};
   int n = 0;  // number of coefficients
 };
-IPoly operator+(const IPoly& a, const IPoly& b) {
-  IPoly r;
-  r.n = std::max(a.n, b.n);
-  for (int k = 0; k < r.n; ++k)
-    r.c[k] = k < a.n && k < b.n ? a.c[k] + b.c[k] : (k < a.n ? a.c[k] : b.c[k]);
-  return r;
-}
-IPoly operator-(const IPoly& a, const IPoly& b) {
-  IPoly r;
-  r.n = std::max(a.n, b.n);
-  for (int k = 0; k < r.n; ++k) {
-    const Iv x = k < a.n ? a.c[k] : Iv{0.0, 0.0}, y = k < b.n ? b.c[k] : Iv{0.0, 0.0};
-    r.c[k] = x - y;
-  }
-  return r;
-}
-IPoly operator*(const IPoly& a, const IPoly& b) {  // degrees must add up to ≤ 4
-  IPoly r;
-  r.n = a.n + b.n - 1;
-  for (int k = 0; k < r.n; ++k) r.c[k] = {0.0, 0.0};
-  for (int i = 0; i < a.n; ++i)
-    for (int j = 0; j < b.n; ++j) r.c[i + j] = r.c[i + j] + a.c[i] * b.c[j];
-  return r;
-}
 // Value at the double t (an interval holding the exact value).
 Iv at(const IPoly& p, double t) {
   Iv r{0.0, 0.0};
@@ -116,20 +86,21 @@ Iv over(const IPoly& p, double t0, double t1) {
   return p.n == 0 ? Iv{0.0, 0.0} : Iv{down(g[0].lo - spread), up(g[0].hi + spread)};
 }
 
-struct IVec {
-  IPoly x, y, z;
-};
-IVec operator-(const IVec& a, const IVec& b) {
-  return {a.x - b.x, a.y - b.y, a.z - b.z};
-}
-IVec cross(const IVec& a, const IVec& b) {
-  return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
-}
-IPoly dot(const IVec& a, const IVec& b) {
-  return a.x * b.x + a.y * b.y + a.z * b.z;
+// The enclosure of a polynomial formed in doubles with its error bounds (bounded_poly.hpp):
+// each coefficient v ± (e (1 + 2⁻⁴⁵) + 2⁻¹⁰⁰⁰), the bound widened for its own rounding and for
+// underflow, and the ends once more for theirs. A non-finite value or bound gives non-finite
+// ends, which no strict test below passes: undecided.
+IPoly enclosure(const BoundedPoly& p) {
+  IPoly r;
+  r.n = p.n;
+  for (int k = 0; k < p.n; ++k) {
+    const double e = up(p.e[k] * (1.0 + 0x1p-45) + 0x1p-1000);
+    r.c[k] = {down(p.v[k] - e), up(p.v[k] + e)};
+  }
+  return r;
 }
 
-using Points = std::array<IVec, 4>;
+using Points = std::array<BoundedVec, 4>;
 // The polynomials whose signs decide the inside test at a coplanar time, and which rule.
 struct Inside {
   std::array<IPoly, 4> polys;
@@ -151,9 +122,9 @@ Certain edges_rule(const Value& o) {
   return opposite(o0, o1) && opposite(o2, o3) ? Certain::yes : Certain::unknown;
 }
 Inside edges_meet(const Points& p) {
-  const IVec u = p[1] - p[0], v = p[3] - p[2], m = cross(u, v);
-  return {{dot(cross(u, p[2] - p[0]), m), dot(cross(u, p[3] - p[0]), m),
-           dot(cross(v, p[0] - p[2]), m), dot(cross(v, p[1] - p[2]), m)},
+  const BoundedVec u = p[1] - p[0], v = p[3] - p[2], m = cross(u, v);
+  return {{enclosure(dot(cross(u, p[2] - p[0]), m)), enclosure(dot(cross(u, p[3] - p[0]), m)),
+           enclosure(dot(cross(v, p[0] - p[2]), m)), enclosure(dot(cross(v, p[1] - p[2]), m))},
           4,
           true};
 }
@@ -171,10 +142,10 @@ Certain face_rule(const Value& side) {
   return all_positive ? Certain::yes : Certain::unknown;
 }
 Inside vertex_in_face(const Points& p) {
-  const IVec &v = p[0], &a = p[1], &b = p[2], &c = p[3];
-  const IVec n = cross(b - a, c - a);
-  return {{dot(cross(b - a, v - a), n), dot(cross(c - b, v - b), n), dot(cross(a - c, v - c), n),
-           IPoly{}},
+  const BoundedVec &v = p[0], &a = p[1], &b = p[2], &c = p[3];
+  const BoundedVec n = cross(b - a, c - a);
+  return {{enclosure(dot(cross(b - a, v - a), n)), enclosure(dot(cross(c - b, v - b), n)),
+           enclosure(dot(cross(a - c, v - c), n)), IPoly{}},
           3,
           false};
 }
@@ -253,16 +224,14 @@ Certain subdivide(const std::array<Vec3, 8>& q, int o, int i, int j, int k,
   if (separated_over(q, first_b, 0.0, 1.0)) return Certain::no;
   Points p;
   for (int n = 0; n < 4; ++n) {
-    IPoly* coord[3] = {&p[n].x, &p[n].y, &p[n].z};
+    BoundedPoly* coord[3] = {&p[n].x, &p[n].y, &p[n].z};
     for (int d = 0; d < 3; ++d) {
       const double x0 = q[n][d], x1 = q[4 + n][d];
       if (!(std::abs(x0) < kLimit && std::abs(x1) < kLimit)) return Certain::unknown;
-      coord[d]->n = 2;  // x0 + t (x1 − x0)
-      coord[d]->c[0] = {x0, x0};
-      coord[d]->c[1] = Iv{x1, x1} - Iv{x0, x0};
+      *coord[d] = BoundedPoly::moving(x0, x1);
     }
   }
-  const IPoly f = dot(p[i] - p[o], cross(p[j] - p[o], p[k] - p[o]));
+  const IPoly f = enclosure(dot(p[i] - p[o], cross(p[j] - p[o], p[k] - p[o])));
   Inside inside;
   const auto inside_over = [&](double t0, double t1) {
     if (inside.count == 0) inside = make_inside(p);

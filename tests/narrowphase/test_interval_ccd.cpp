@@ -45,6 +45,7 @@ TEST(IntervalCcd, AgreesWithExactAndDecidesGenericQueries) {
       EXPECT_EQ(c == Certain::yes, exact) << "query " << k << " type " << type;
     }
   }
+  RecordProperty("decided", std::to_string(decided));
   EXPECT_GT(hits, total / 20);
   EXPECT_GE(decided, 0.995 * total);  // 100 % measured
 }

@@ -2,8 +2,9 @@
 // arithmetic, and says "unknown" for the rest, which the exact path answers.
 //
 // The coplanarity determinant (Dobritsa et al. eq. 13) and the inside test's orientation
-// polynomials are formed once as polynomials in t with interval coefficients (every rounding
-// widened outward), unless a separating axis over the whole step, in doubles with a certified
+// polynomials are formed once as polynomials in t in doubles, each coefficient with a bound on
+// its error carried through every operation (midpoint and radius), and enclosed as intervals,
+// unless a separating axis over the whole step, in doubles with a certified
 // error bound, already tells the primitives apart (most pairs of a contact interface, sliding
 // past each other). The step [0, 1] is cut into time intervals T, on which each polynomial is
 // enclosed by its centred form (Taylor coefficients at T's middle), so that

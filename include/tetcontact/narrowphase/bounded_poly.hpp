@@ -1,0 +1,80 @@
+// Polynomials in t of degree ≤ 4 formed in plain doubles, each coefficient with a bound on its
+// error carried through every operation (midpoint and radius), for the certified floating-point
+// CCD filter (interval_ccd.cpp): the exact polynomial's coefficient k lies in v[k] ± e[k].
+//
+// An input's e is 0 (an exact double) or ε |v| (rounded once; ε = 2⁻⁵³: half an ulp is at most
+// ε |v| for a normal result); a sum's e is its terms' plus ε |v|; a product's
+//   |x| e_y + |y| e_x + e_x e_y + ε |v|,
+// since |XY − xy| ≤ |x| |Y − y| + |y| |X − x| + |X − x| |Y − y|. The bounds are computed in doubles
+// too, on nonnegative numbers a few dozen operations deep, so each may fall short of its exact
+// value by a relative 2⁻⁴⁷ at most: a user widens them by 2⁻⁴⁵ (and by 2⁻¹⁰⁰⁰ for products that
+// underflow, each off by at most 2⁻¹⁰⁷⁴) before trusting them. Against interval ends (four
+// products, their minimum and maximum, and a widening at every operation) about half the work.
+#pragma once
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+namespace tc {
+
+struct BoundedPoly {
+  static constexpr double kEps = 0x1p-53;
+  std::array<double, 5> v{}, e{};
+  int n = 0;  // number of coefficients; those past n are 0, exact
+
+  /// x0 + t (x1 − x0): a coordinate moving linearly over the step, its slope rounded once.
+  static BoundedPoly moving(double x0, double x1) {
+    BoundedPoly p;
+    p.n = 2;
+    p.v = {x0, x1 - x0, 0.0, 0.0, 0.0};
+    p.e = {0.0, kEps * std::abs(x1 - x0), 0.0, 0.0, 0.0};
+    return p;
+  }
+};
+
+inline BoundedPoly sum(const BoundedPoly& x, const BoundedPoly& y, double sign) {
+  BoundedPoly r;
+  r.n = std::max(x.n, y.n);
+  for (int k = 0; k < r.n; ++k) {
+    r.v[k] = x.v[k] + sign * y.v[k];
+    r.e[k] = x.e[k] + y.e[k] + BoundedPoly::kEps * std::abs(r.v[k]);
+  }
+  return r;
+}
+inline BoundedPoly operator+(const BoundedPoly& x, const BoundedPoly& y) {
+  return sum(x, y, 1.0);
+}
+inline BoundedPoly operator-(const BoundedPoly& x, const BoundedPoly& y) {
+  return sum(x, y, -1.0);
+}
+/// Degrees must add up to ≤ 4.
+inline BoundedPoly operator*(const BoundedPoly& x, const BoundedPoly& y) {
+  constexpr double eps = BoundedPoly::kEps;
+  BoundedPoly r;
+  r.n = x.n + y.n - 1;
+  for (int i = 0; i < x.n; ++i)
+    for (int j = 0; j < y.n; ++j) {
+      const double p = x.v[i] * y.v[j];
+      const double ep = std::abs(x.v[i]) * y.e[j] + std::abs(y.v[j]) * x.e[i] + x.e[i] * y.e[j] +
+                        eps * std::abs(p);
+      r.v[i + j] += p;
+      r.e[i + j] += ep + eps * std::abs(r.v[i + j]);
+    }
+  return r;
+}
+
+struct BoundedVec {
+  BoundedPoly x, y, z;
+};
+inline BoundedVec operator-(const BoundedVec& a, const BoundedVec& b) {
+  return {a.x - b.x, a.y - b.y, a.z - b.z};
+}
+inline BoundedVec cross(const BoundedVec& a, const BoundedVec& b) {
+  return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
+}
+inline BoundedPoly dot(const BoundedVec& a, const BoundedVec& b) {
+  return a.x * b.x + a.y * b.y + a.z * b.z;
+}
+
+}  // namespace tc
