@@ -87,8 +87,8 @@ Iv over(const IPoly& p, double t0, double t1) {
 }
 
 // The enclosure of a polynomial formed in doubles with its error bounds (bounded_poly.hpp):
-// each coefficient v ± (e (1 + 2⁻⁴⁵) + 2⁻¹⁰⁰⁰), the bound widened for its own rounding and for
-// underflow, and the ends once more for theirs. A non-finite value or bound gives non-finite
+// each coefficient v ± (e (1 + 2⁻⁴⁵) + 2⁻¹⁰⁰⁰), the bound widened for its own rounding (and by a
+// margin), and the ends once more for theirs. A non-finite value or bound gives non-finite
 // ends, which no strict test below passes: undecided.
 IPoly enclosure(const BoundedPoly& p) {
   IPoly r;

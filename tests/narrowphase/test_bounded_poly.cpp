@@ -56,22 +56,32 @@ void compare(const BoundedPoly& b, const reference::Poly& exact, Count& c) {
 
 }  // namespace
 
-// Queries of four points moving over a step, three kinds: generic ones; nearly coplanar ones far
+// Queries of four points moving over a step, four kinds: generic ones; nearly coplanar ones far
 // from the origin (large offsets, small differences: the slopes and differences round and the
-// determinant cancels); and motions whose ends differ by a few ulps. For each, the coplanarity
+// determinant cancels); motions whose ends differ by a few ulps; and points whose x is of order
+// 2⁹⁹ and y, z of 2⁻⁵³⁶ and 2⁻⁵⁴⁰ (the cross products' y z terms fall below the normal range, and
+// the dot product multiplies their rounding by 2⁹⁹). For each, the coplanarity
 // determinant det[b − a, c − a, d − a] and the edges' four inside orientations
 // ((b − a) × (c − a))·m, m = (b − a) × (d − c), as the filter forms them. Without the bounds'
 // propagation through the products (only each product's own rounding kept) exact coefficients
-// fall outside (test run with that change: it fails).
+// fall outside, and so they do without the products' 2⁻¹⁰²² (test run with each change: it
+// fails).
 TEST(BoundedPoly, EveryExactCoefficientLiesWithinItsBound) {
   std::mt19937 rng(7);
   std::uniform_real_distribution<double> u(-1, 1);
+  std::uniform_int_distribution<int> scale(0, 4);
   Count c;
-  for (int q = 0; q < 3000; ++q) {
-    const int kind = q % 3;
+  for (int q = 0; q < 4000; ++q) {
+    const int kind = q % 4;
     const double offset = kind == 1 ? 1e6 : 0.0;
     std::array<double, 24> x{};
     for (int k = 0; k < 12; ++k) {
+      if (kind == 3) {  // x of order 2⁹⁹, y and z of 2⁻⁵³⁶ and 2⁻⁵⁴⁰: y z underflows
+        const int e = (k % 3 == 0 ? 99 : k % 3 == 1 ? -536 : -540) - scale(rng);
+        x[k] = std::ldexp(u(rng), e);
+        x[12 + k] = rng() % 2 ? x[k] : x[k] + std::ldexp(u(rng), e);
+        continue;
+      }
       x[k] = offset + (kind == 1 ? 1e-3 : 1.0) * u(rng);
       x[12 + k] = kind == 2 ? x[k] + 4.0 * std::abs(x[k]) * 0x1p-52 * u(rng)
                             : x[k] + (kind == 1 ? 1e-4 : 0.5) * u(rng);
@@ -95,7 +105,7 @@ TEST(BoundedPoly, EveryExactCoefficientLiesWithinItsBound) {
     compare(dot(cross(bv, bp[1] - bp[2]), bm), dot(cross(ev, sub(ep[1], ep[2])), em), c);
   }
   RecordProperty("compared", std::to_string(c.compared));
-  EXPECT_EQ(c.compared, 3000L * 5 * 5);
+  EXPECT_EQ(c.compared, 4000L * 5 * 5);
   EXPECT_EQ(c.outside, 0);
 }
 

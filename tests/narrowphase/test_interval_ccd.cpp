@@ -2,6 +2,7 @@
 // path (run alone, every filter off), and decides generic queries by itself.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdlib>
 #include <fstream>
 #include <optional>
@@ -117,6 +118,22 @@ std::vector<Query> random_queries(unsigned seed, int count) {
 }
 
 }  // namespace
+
+// A product below the normal range inside the determinant: the vertex p passes through the
+// triangle (a, b, c) at t = 1/2 (p = b/2 + c/4 there), and the determinant's one coefficient that
+// says so, 2⁻⁹⁷⁸ (6t − 3), is a product of 2⁹⁹ with a product that underflows (1.5 · 2⁻¹⁰⁷⁴,
+// rounded to 2⁻¹⁰⁷³). A filter that bounds that rounding only relatively certifies "no"
+// (the determinant 2⁻⁹⁷⁸ (6t − 7) in doubles, negative on all of [0, 1]).
+TEST(IntervalCcd, AProductThatUnderflowsIsNotCertifiedAway) {
+  const Vec3 a(0, 0, 0), b(std::ldexp(1.0, 99), 3 * std::ldexp(1.0, -534), 0),
+      c(0, 0, std::ldexp(1.0, -540));
+  const Vec3 p0(3 * std::ldexp(1.0, 96), 1.5 * std::ldexp(1.0, -534), std::ldexp(1.0, -542));
+  const Vec3 p1(5 * std::ldexp(1.0, 96), p0.y(), p0.z());
+  const std::array<Vec3, 8> q{p0, a, b, c, p1, a, b, c};
+  ASSERT_TRUE(exact_vertex_face_ccd(q, CcdFilters{false, false, false}));  // the integer path
+  EXPECT_NE(interval_vertex_face_ccd(q), Certain::no);
+  EXPECT_TRUE(exact_vertex_face_ccd(q));
+}
 
 // Each filter alone in front of the integer path, and all three, give the integer path's own
 // answer on the handcrafted degenerate set (7,279 queries with ground truth, which the integer

@@ -3,13 +3,17 @@
 // CCD filter (interval_ccd.cpp): the exact polynomial's coefficient k lies in v[k] ± e[k].
 //
 // An input's e is 0 (an exact double) or ε |v| (rounded once; ε = 2⁻⁵³: half an ulp is at most
-// ε |v| for a normal result); a sum's e is its terms' plus ε |v|; a product's
-//   |x| e_y + |y| e_x + e_x e_y + ε |v|,
-// since |XY − xy| ≤ |x| |Y − y| + |y| |X − x| + |X − x| |Y − y|. The bounds are computed in doubles
-// too, on nonnegative numbers a few dozen operations deep, so each may fall short of its exact
-// value by a relative 2⁻⁴⁷ at most: a user widens them by 2⁻⁴⁵ (and by 2⁻¹⁰⁰⁰ for products that
-// underflow, each off by at most 2⁻¹⁰⁷⁴) before trusting them. Against interval ends (four
-// products, their minimum and maximum, and a widening at every operation) about half the work.
+// ε |v| for a normal result, and a difference below 2⁻¹⁰²¹ is exact); a sum's e is its terms' plus
+// ε |v| (a sum that lands below the normal range is exact); a product's
+//   |x| e_y + |y| e_x + e_x e_y + ε |v| + 2⁻¹⁰²²,
+// since |XY − xy| ≤ |x| |Y − y| + |y| |X − x| + |X − x| |Y − y|, and a product that underflows
+// is off by up to 2⁻¹⁰⁷⁵, which no relative term covers and later products would multiply by up
+// to 2²⁰⁰: the 2⁻¹⁰²² covers it, and keeps every bound a product makes at least that large, so
+// that an underflow in computing a bound (at most 2⁻¹⁰⁷⁵) is a relative 2⁻⁵³ of it. The bounds are
+// computed in doubles, on nonnegative numbers at most 23 roundings deep, so each may fall short
+// of its exact value by a relative 2⁻⁴⁷ at most: a user widens them by 2⁻⁴⁵ before trusting them.
+// Against interval ends (four products, their minimum and maximum, and a widening at every
+// operation) about half the work.
 #pragma once
 
 #include <algorithm>
@@ -57,7 +61,7 @@ inline BoundedPoly operator*(const BoundedPoly& x, const BoundedPoly& y) {
     for (int j = 0; j < y.n; ++j) {
       const double p = x.v[i] * y.v[j];
       const double ep = std::abs(x.v[i]) * y.e[j] + std::abs(y.v[j]) * x.e[i] + x.e[i] * y.e[j] +
-                        eps * std::abs(p);
+                        eps * std::abs(p) + 0x1p-1022;
       r.v[i + j] += p;
       r.e[i + j] += ep + eps * std::abs(r.v[i + j]);
     }
