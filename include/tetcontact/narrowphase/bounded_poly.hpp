@@ -8,10 +8,12 @@
 //   |x| e_y + |y| e_x + e_x e_y + ε |v| + 2⁻¹⁰²²,
 // since |XY − xy| ≤ |x| |Y − y| + |y| |X − x| + |X − x| |Y − y|, and a product that underflows
 // is off by up to 2⁻¹⁰⁷⁵, which no relative term covers and later products would multiply by up
-// to 2²⁰⁰: the 2⁻¹⁰²² covers it, and keeps every bound a product makes at least that large, so
-// that an underflow in computing a bound (at most 2⁻¹⁰⁷⁵) is a relative 2⁻⁵³ of it. The bounds are
-// computed in doubles, on nonnegative numbers at most 23 roundings deep, so each may fall short
-// of its exact value by a relative 2⁻⁴⁷ at most: a user widens them by 2⁻⁴⁵ before trusting them.
+// to 2²⁰⁰: the 2⁻¹⁰²² covers it, and the underflows in computing the term's own bound (|x| e_y,
+// |y| e_x, e_x e_y: with the product's, at most 2⁻¹⁰⁷³ in all), so that nothing absolute is left
+// for a later product to scale up (sums below 2⁻¹⁰²¹ are exact). The bounds are computed in
+// doubles on nonnegative numbers, at most about 35 roundings deep (e_x e_y compounds both
+// shortfalls), so each may fall short of its exact value by a relative 2⁻⁴⁷ at most: a user
+// widens them by 2⁻⁴⁵ before trusting them.
 // Against interval ends (four products, their minimum and maximum, and a widening at every
 // operation) about half the work.
 #pragma once
