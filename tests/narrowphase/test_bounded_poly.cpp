@@ -18,14 +18,12 @@ using namespace tc;
 namespace {
 
 // The same expressions twice: in doubles with bounds, and exactly.
+using reference::mul;
 struct ExactVec {
   reference::Poly x, y, z;
 };
 ExactVec sub(const ExactVec& a, const ExactVec& b) {
   return {reference::add(a.x, b.x, -1), reference::add(a.y, b.y, -1), reference::add(a.z, b.z, -1)};
-}
-reference::Poly mul(const reference::Poly& a, const reference::Poly& b) {
-  return reference::mul(a, b);
 }
 ExactVec cross(const ExactVec& a, const ExactVec& b) {
   return {reference::add(mul(a.y, b.z), mul(a.z, b.y), -1),
