@@ -1,4 +1,5 @@
 #include "tetcontact/narrowphase/exact_ccd.hpp"
+#include "tetcontact/narrowphase/coplanarity.hpp"
 
 #include "tetcontact/narrowphase/interval_ccd.hpp"
 
@@ -936,59 +937,13 @@ bool boxes_apart(const std::array<Vec3, 8>& q) {
   return false;
 }
 
-// y × z in doubles, in the form of Shewchuk's orient3d, with the absolute products beside it,
-// so that det[x, y, z] = x · (y × z) comes with its permanent |x| · (|y₁z₂| + |y₂z₁|, …): rounding
-// in the products, the differences and the sums errs by at most 5 ε times the permanent, the
-// rounded differences that make x, y, z by 3 ε more (ε = 2⁻⁵³).
-struct Cross {
-  Vec3 value, magnitude;
-  double dot(const Vec3& x) const { return (x[0] * value[0] + x[1] * value[1]) + x[2] * value[2]; }
-  double permanent(const Vec3& x) const {
-    return (std::abs(x[0]) * magnitude[0] + std::abs(x[1]) * magnitude[1]) +
-           std::abs(x[2]) * magnitude[2];
-  }
-};
-Cross cross_bounded(const Vec3& y, const Vec3& z) {
-  const double p12 = y[1] * z[2], p21 = y[2] * z[1], p20 = y[2] * z[0], p02 = y[0] * z[2],
-               p01 = y[0] * z[1], p10 = y[1] * z[0];
-  return {Vec3(p12 - p21, p20 - p02, p01 - p10),
-          Vec3(std::abs(p12) + std::abs(p21), std::abs(p20) + std::abs(p02),
-               std::abs(p01) + std::abs(p10))};
-}
-// An error bound e is usable when it is neither overflowed nor in the subnormal range.
-bool usable_bound(double e) {
-  return e < 1e300 && (e == 0 || e >= 1e-280);
-}
-
-// Certified floating-point filter: the coplanarity determinant (Dobritsa et al. eq. 13)
-//   f(t) = det[u(t), v(t), w(t)],  u = P_i − P_o, v = P_j − P_o, w = P_k − P_o, each linear in t,
-// is trilinear in (u, v, w), so in the Bernstein basis of [0, 1]
-//   f(t) = Σ_k S_k C(3,k)⁻¹ · C(3,k) (1 − t)^{3−k} t^k,  S_k = Σ of det[u_a, v_b, w_c] over
-// a + b + c = k (a, b, c ∈ {0, 1}: the vectors at t = 0 or 1).
-// When all four S_k have one strict sign, f has no root in [0, 1]: no contact. Each det is
-// computed in doubles; its error, from the rounded differences (1 ulp each), the products and
-// the sums, is below 8 ε Σ|terms| (ε = 2⁻⁵³); we use 16 ε. Undecided (false) when the sizes
+// The certified Bernstein test (coplanarity.hpp): when all four S_k have one strict sign
+// beyond their bounds, f has no root in [0, 1]: no contact. Undecided (false) when the sizes
 // leave the normal range.
 bool coplanarity_never_zero(const std::array<Vec3, 8>& q, int o, int i, int j, int k) {
-  constexpr double eps = 0x1p-53;
-  Vec3 u[2], v[2], w[2];
-  for (int s = 0; s < 2; ++s) {
-    u[s] = q[4 * s + i] - q[4 * s + o];
-    v[s] = q[4 * s + j] - q[4 * s + o];
-    w[s] = q[4 * s + k] - q[4 * s + o];
-  }
-  // Each cross product v_b × w_c serves both u's.
-  double S[4] = {0, 0, 0, 0}, E[4] = {0, 0, 0, 0};
-  for (int b = 0; b < 2; ++b)
-    for (int c = 0; c < 2; ++c) {
-      const Cross cr = cross_bounded(v[b], w[c]);
-      for (int a = 0; a < 2; ++a) {
-        S[a + b + c] += cr.dot(u[a]);
-        E[a + b + c] += 16 * eps * cr.permanent(u[a]);
-      }
-    }
-  for (int n = 0; n < 4; ++n)
-    if (!usable_bound(E[n])) return false;
+  const Coplanarity c = coplanarity(q, o, i, j, k);
+  if (!c.usable()) return false;
+  const auto& [S, E] = c;
   const bool pos = S[0] > E[0] && S[1] > E[1] && S[2] > E[2] && S[3] > E[3];
   const bool neg = S[0] < -E[0] && S[1] < -E[1] && S[2] < -E[2] && S[3] < -E[3];
   return pos || neg;
@@ -1006,7 +961,7 @@ bool no_motion(const std::array<Vec3, 8>& q) {
 // cannot meet.
 bool certainly_not_coplanar(const std::array<Vec3, 8>& q, int o, int i, int j, int k) {
   const Vec3 x = q[i] - q[o];
-  const Cross cr = cross_bounded(q[j] - q[o], q[k] - q[o]);
+  const BoundedCross cr = cross_bounded(q[j] - q[o], q[k] - q[o]);
   const double e = 16 * 0x1p-53 * cr.permanent(x);
   return usable_bound(e) && std::abs(cr.dot(x)) > e;
 }

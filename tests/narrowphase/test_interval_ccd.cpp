@@ -119,6 +119,56 @@ std::vector<Query> random_queries(unsigned seed, int count) {
 
 }  // namespace
 
+// Near misses at a coplanar time: an edge cd sweeps across the line of an edge ab at a random
+// time, crossing it inside ab or within a gap of 10⁻¹⁴ to 1 beyond an end, and half the time
+// lifted off ab's plane by that gap; a vertex passes a triangle's edge the same way (c, the
+// triangle's third point, off ab). Sizes from 1 down to 10⁻⁶, a slight motion of a. The
+// determinant has a root in the step and the inside test's sign at it decides: the filter
+// brackets the root and tests there, and agrees with the integer path alone. Measured: 157 of
+// the 20,000 undecided (0.8 %); 531 (2.7 %) by subdividing the step alone.
+TEST(IntervalCcd, NearMissesAtACoplanarTimeAreDecided) {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(-1, 1), unit(0, 1);
+  const auto random_vec = [&] { return Vec3(u(rng), u(rng), u(rng)); };
+  long total = 0, undecided = 0, hits = 0;
+  for (int k = 0; k < 10000; ++k) {
+    const double scale = std::pow(10.0, -6 * unit(rng));
+    const double gap = (unit(rng) < 0.5 ? -1 : 1) * std::pow(10.0, -14 * unit(rng));
+    const Vec3 a = random_vec(), b = random_vec(), dir = random_vec();
+    const double s = unit(rng) < 0.3 ? (unit(rng) < 0.5 ? 0.0 : 1.0) + gap : unit(rng);
+    const Vec3 x = a + s * (b - a);  // where cd crosses ab's line
+    const Vec3 c0 = x + 0.5 * dir, d0 = x - (0.5 + unit(rng)) * dir;
+    const Vec3 lift =
+        unit(rng) < 0.5 ? Vec3(Vec3::Zero()) : Vec3(gap * (b - a).cross(dir).normalized());
+    const Vec3 motion = scale * random_vec();
+    const double t = unit(rng);
+    std::array<Vec3, 8> q;
+    q[0] = scale * a, q[1] = scale * b;
+    q[2] = scale * (c0 + lift) - t * motion, q[3] = scale * (d0 + lift) - t * motion;
+    q[4] = q[0] + 1e-3 * scale * unit(rng) * random_vec(), q[5] = q[1];
+    q[6] = q[2] + motion, q[7] = q[3] + motion;
+    // The vertex c passing the triangle (a, b, e), e off ab's line in the plane.
+    const Vec3 e = q[2] + (q[1] - q[0]).cross(q[2] - q[0]);
+    const std::array<Vec3, 8> vf{q[2], q[0], q[1], e, q[6], q[4], q[5], e + motion};
+    for (const bool ee : {true, false}) {
+      const std::array<Vec3, 8>& query = ee ? q : vf;
+      const Certain c = ee ? interval_edge_edge_ccd(query) : interval_vertex_face_ccd(query);
+      ++total;
+      if (c == Certain::unknown) {
+        ++undecided;
+        continue;
+      }
+      const CcdFilters none{false, false, false};
+      const bool exact = ee ? exact_edge_edge_ccd(query, none) : exact_vertex_face_ccd(query, none);
+      hits += exact;
+      ASSERT_EQ(c == Certain::yes, exact) << "query " << k << (ee ? " ee" : " vf");
+    }
+  }
+  RecordProperty("undecided", std::to_string(undecided));
+  EXPECT_GT(hits, total / 4);
+  EXPECT_LT(undecided, total / 80);
+}
+
 // A product below the normal range inside the determinant: the vertex p passes through the
 // triangle (a, b, c) at t = 1/2 (p = b/2 + c/4 there), and the determinant's one coefficient that
 // says so, 2⁻⁹⁷⁸ (6t − 3), is a product of 2⁹⁹ with a product that underflows (1.5 · 2⁻¹⁰⁷⁴,

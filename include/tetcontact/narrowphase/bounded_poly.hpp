@@ -70,6 +70,37 @@ inline BoundedPoly operator*(const BoundedPoly& x, const BoundedPoly& y) {
   return r;
 }
 
+/// A single value with its bound, the degree-0 case of the rules above.
+struct Bounded {
+  double v = 0.0, e = 0.0;
+};
+inline Bounded operator+(Bounded x, Bounded y) {
+  const double v = x.v + y.v;
+  return {v, x.e + y.e + BoundedPoly::kEps * std::abs(v)};
+}
+inline Bounded operator-(Bounded x, Bounded y) {
+  const double v = x.v - y.v;
+  return {v, x.e + y.e + BoundedPoly::kEps * std::abs(v)};
+}
+inline Bounded operator*(Bounded x, Bounded y) {
+  const double v = x.v * y.v;
+  return {v, std::abs(x.v) * y.e + std::abs(y.v) * x.e + x.e * y.e +
+                 BoundedPoly::kEps * std::abs(v) + 0x1p-1022};
+}
+struct Bounded3 {
+  std::array<Bounded, 3> x;
+};
+inline Bounded3 operator-(const Bounded3& a, const Bounded3& b) {
+  return {{a.x[0] - b.x[0], a.x[1] - b.x[1], a.x[2] - b.x[2]}};
+}
+inline Bounded3 cross(const Bounded3& a, const Bounded3& b) {
+  return {{a.x[1] * b.x[2] - a.x[2] * b.x[1], a.x[2] * b.x[0] - a.x[0] * b.x[2],
+           a.x[0] * b.x[1] - a.x[1] * b.x[0]}};
+}
+inline Bounded dot(const Bounded3& a, const Bounded3& b) {
+  return a.x[0] * b.x[0] + a.x[1] * b.x[1] + a.x[2] * b.x[2];
+}
+
 struct BoundedVec {
   BoundedPoly x, y, z;
 };
